@@ -1,0 +1,168 @@
+"""Result object of the SEM driver and the post-processing shared by the solvers."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Iterable
+
+import numpy as np
+from numpy.typing import NDArray
+
+__all__ = ["SEMResult", "SERIES", "local_maxima"]
+
+#: Output name -> (attribute of the result, units, description).
+SERIES: dict[str, tuple[str, str, str]] = {
+    "contact_force": ("contact_force", "N", "contact force P(t)"),
+    "approach": ("approach", "m", "approach alpha(t) of impactor and rod end (negative: gap)"),
+    "impactor_displacement": ("impactor_displacement", "m", "impactor displacement towards the rod"),
+    "impactor_velocity": ("impactor_velocity", "m/s", "impactor velocity, positive towards the rod"),
+    "rod_end_displacement": ("rod_end_displacement", "m", "axial displacement of the struck rod end"),
+}
+
+
+def local_maxima(
+    time: NDArray[np.float64], force: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Every strict local maximum of a sampled force, refined by a parabola.
+
+    Parameters
+    ----------
+    time, force : ndarray, shape (n,)
+        Nodes (increasing times, s) and force values, N.
+
+    Returns
+    -------
+    peak_time_s, peak_force_N : ndarray, shape (k,)
+        The vertex of the parabola through each interior maximum and its two neighbours
+        (the node itself where the parabola is degenerate).
+    """
+    t = np.asarray(time, dtype=float)
+    p = np.asarray(force, dtype=float)
+    if len(p) < 3:
+        return np.empty(0), np.empty(0)
+    i = np.flatnonzero((p[1:-1] > p[:-2]) & (p[1:-1] >= p[2:]) & (p[1:-1] > 0)) + 1
+    times, values = [], []
+    for k in i:
+        t0, t1, t2 = t[k - 1], t[k], t[k + 1]
+        p0, p1, p2 = p[k - 1], p[k], p[k + 1]
+        # Newton form of the interpolating parabola through the three nodes
+        d01 = (p1 - p0) / (t1 - t0)
+        d12 = (p2 - p1) / (t2 - t1)
+        curv = (d12 - d01) / (t2 - t0)
+        if curv < 0:
+            tv = 0.5 * (t0 + t1) - d01 / (2.0 * curv)
+            tv = min(max(tv, t0), t2)
+            pv = p0 + d01 * (tv - t0) + curv * (tv - t0) * (tv - t1)
+        else:
+            tv, pv = t1, p1
+        times.append(tv)
+        values.append(max(pv, p1))
+    return np.asarray(times), np.asarray(values)
+
+
+@dataclass(frozen=True)
+class SEMResult:
+    """Outcome of one SEM run. Failure is data: check ``success`` and ``status``.
+
+    Attributes
+    ----------
+    success : bool
+        True when at least the first contact was computed to its end.
+    status : str
+        ``completed`` (no further contact is possible), ``truncated`` (stopped by
+        ``max_time_factor`` or ``max_contacts`` after a complete first contact) or
+        ``failed``.
+    message : str
+        Human-readable explanation of the status.
+    scheme : str
+        ``implicit`` or ``paper``.
+    dt_s : float
+        The nominal time step, s.
+    time, contact_force, approach, impactor_displacement, impactor_velocity, rod_end_displacement : ndarray, shape (n,)
+        Histories at the nodes (s, N, m, m, m/s, m).
+    contact_start_s, contact_end_s : ndarray, shape (c,)
+        Every contact interval found, s.
+    peak_time_s, peak_force_N : ndarray, shape (k,)
+        Every local maximum of the force over all contacts.
+    rebound_velocity_m_s : float
+        Impactor velocity at the end of the run, m/s (negative: moving away from the rod).
+    rod_energy_J : float
+        Work done on the rod by the contact force, J (the energy left in the rod).
+    energy_error : float
+        (KE_in - KE_out - rod_energy - Hertz energy left) / KE_in.
+    n_steps, n_newton_iterations, n_events : int
+        Cost counters: accepted nodes, Newton iterations, located contact events.
+    wall_time_s : float
+        Wall time of the solve, s.
+    """
+
+    success: bool
+    status: str
+    message: str
+    scheme: str
+    dt_s: float
+    time: NDArray[np.float64]
+    contact_force: NDArray[np.float64]
+    approach: NDArray[np.float64]
+    impactor_displacement: NDArray[np.float64]
+    impactor_velocity: NDArray[np.float64]
+    rod_end_displacement: NDArray[np.float64]
+    contact_start_s: NDArray[np.float64]
+    contact_end_s: NDArray[np.float64]
+    peak_time_s: NDArray[np.float64]
+    peak_force_N: NDArray[np.float64]
+    rebound_velocity_m_s: float
+    rod_energy_J: float
+    energy_error: float
+    n_steps: int
+    n_newton_iterations: int
+    n_events: int
+    wall_time_s: float
+    extra: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def contact_time_s(self) -> float:
+        """Duration of the first contact, s (NaN when it did not end)."""
+        if len(self.contact_end_s) == 0:
+            return math.nan
+        return float(self.contact_end_s[0] - self.contact_start_s[0])
+
+    @property
+    def n_contacts(self) -> int:
+        """Number of complete contact intervals."""
+        return int(len(self.contact_end_s))
+
+    def summary(self) -> dict[str, Any]:
+        """Scalars and small arrays for the HDF5 ``summary`` group (plain types)."""
+        return {
+            "contact_time_s": self.contact_time_s,
+            "peak_force_N": np.asarray(self.peak_force_N, dtype=float),
+            "peak_time_s": np.asarray(self.peak_time_s, dtype=float),
+            "rebound_velocity_m_s": float(self.rebound_velocity_m_s),
+            "energy_error": float(self.energy_error),
+            "rod_energy_J": float(self.rod_energy_J),
+            "contact_start_s": np.asarray(self.contact_start_s, dtype=float),
+            "contact_end_s": np.asarray(self.contact_end_s, dtype=float),
+            "n_contacts": self.n_contacts,
+            "success": bool(self.success),
+            "status": self.status,
+            "message": self.message,
+            "scheme": self.scheme,
+            "dt_s": float(self.dt_s),
+            "n_steps": int(self.n_steps),
+            "n_newton_iterations": int(self.n_newton_iterations),
+            "n_events": int(self.n_events),
+            "solver_wall_time_s": float(self.wall_time_s),
+            **self.extra,
+        }
+
+    def series(self, outputs: Iterable[str]) -> dict[str, tuple[NDArray[np.float64], str, str]]:
+        """``time`` plus the requested outputs as name -> (array, units, description)."""
+        out = {"time": (self.time, "s", "time since first contact")}
+        for name in outputs:
+            if name not in SERIES:
+                raise ValueError(f"outputs: unknown output {name!r}; known: {sorted(SERIES)}")
+            attr, units, description = SERIES[name]
+            out[name] = (getattr(self, attr), units, description)
+        return out
