@@ -1,0 +1,39 @@
+# rodimpact: two commands do all the set-up on a fresh machine with Python 3.11 and pip.
+#   make paper   build .venv from environment.lock if missing or stale, then snakemake -j2
+#   make test    same environment; snakemake --lint, a dry run, pytest
+#   make bench   benchmarks -> results/benchmarks/*.csv (one job at a time, for clean timings)
+
+PYTHON ?= $(shell command -v python3.11 || command -v python3)
+VENV   := .venv
+BIN    := $(VENV)/bin
+STAMP  := $(VENV)/.installed-from-lock
+CORES  ?= 2
+
+.PHONY: paper test bench env clean distclean
+
+$(STAMP): environment.lock pyproject.toml
+	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info[:2] == (3, 11) else "rodimpact needs Python 3.11 (environment.lock is for 3.11), found " + sys.version.split()[0])'
+	rm -rf $(VENV)
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check --require-hashes -r environment.lock
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check --no-deps --no-build-isolation -e .
+	touch $(STAMP)
+
+env: $(STAMP)
+
+paper: $(STAMP)
+	$(BIN)/snakemake -j$(CORES)
+
+test: $(STAMP)
+	$(BIN)/snakemake --lint
+	$(BIN)/snakemake -n --quiet rules
+	$(BIN)/python -m pytest
+
+bench: $(STAMP)
+	$(BIN)/snakemake -j1 --forcerun bench_sem results/benchmarks/sem.csv
+
+clean:
+	rm -rf results logs .snakemake
+
+distclean: clean
+	rm -rf $(VENV)

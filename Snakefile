@@ -1,0 +1,22 @@
+# rodimpact: rebuild Belyaev, Shurpatov & Ma (2018) from configuration alone.
+#   snakemake -j2                       the whole paper (the sets in config.yaml: targets)
+#   snakemake -j2 results/tables/table2_r1_l30.csv   only what that table needs
+from snakemake.utils import min_version
+
+min_version("9.0")
+
+
+configfile: "config/config.yaml"
+
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/solve.smk"
+include: "workflow/rules/tables.smk"
+include: "workflow/rules/figures.smk"
+include: "workflow/rules/bench.smk"
+
+
+rule all:
+    input:
+        default_targets(),
+    default_target: True

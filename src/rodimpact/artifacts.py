@@ -1,0 +1,77 @@
+"""One function per artifact of the workflow: read HDF5 runs, write tables and figures.
+
+The workflow's scripts call these and nothing else; tests call them directly.
+"""
+
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+from typing import Sequence
+
+from .figures import plot_contact_force, plot_table2_contact_time, save_figure
+from .store import read_run
+from .tables import (
+    load_records,
+    provenance_record,
+    table2_frame,
+    variants_summary,
+    write_provenance,
+    write_table,
+)
+
+__all__ = ["make_fig2", "make_fig_table2", "make_table2", "make_table2_variants"]
+
+log = logging.getLogger(__name__)
+
+TABLE2_CAPTION = ("Table 2: contact time of steel balls on the aluminium rod at 0.3225 m/s, "
+                  "rod geometry variant {variant}. Times in us; errors |model - measured| / measured in %.")
+
+
+def _by_variant(runs: Sequence[str | Path], variants: Sequence[str]):
+    records = load_records(runs)
+    grouped = {v: [r for r in records if r.config.get("variant") == v] for v in variants}
+    return records, {v: table2_frame(recs) for v, recs in grouped.items() if recs}
+
+
+def make_table2(runs: Sequence[str | Path], variant: str, *, csv: str | Path, md: str | Path,
+                tex: str | Path, provenance: str | Path) -> None:
+    """Table 2 for one geometry variant, with its provenance sidecar."""
+    records = load_records(runs)
+    wrong = sorted({r.case_id for r in records if r.config.get("variant") != variant})
+    if wrong:
+        raise ValueError(f"runs: cases {wrong} do not belong to variant {variant!r}")
+    frame = table2_frame(records)
+    write_table(frame, csv=csv, md=md, tex=tex, caption=TABLE2_CAPTION.format(variant=variant))
+    write_provenance(provenance, records, [csv, md, tex])
+    log.info("table 2 (%s): %d rows from %d runs", variant, len(frame), len(records))
+
+
+def make_table2_variants(runs: Sequence[str | Path], variants: Sequence[str], *, csv: str | Path,
+                         md: str | Path, provenance: str | Path) -> None:
+    """Per variant and method, the mean and max error against the measurements."""
+    records, frames = _by_variant(runs, variants)
+    summary = variants_summary(frames)
+    write_table(summary, csv=csv, md=md, caption="Error against the measured contact times, per rod "
+                "geometry variant and method, next to the paper's own errors (%).")
+    write_provenance(provenance, records, [csv, md])
+
+
+def make_fig2(runs: Sequence[str | Path], *, pdf: str | Path, png: str | Path) -> None:
+    """Fig. 2: contact force against time for one case, every method stored."""
+    records = [read_run(p) for p in runs]
+    cases = sorted({r.case_id for r in records})
+    if len(cases) != 1:
+        raise ValueError(f"runs: Fig. 2 shows one case, got {cases}")
+    fig = plot_contact_force(records, title=f"Contact force, case {cases[0]!r} (Fig. 2 of the paper)")
+    save_figure(fig, pdf=pdf, png=png, provenance=provenance_record(records, [pdf, png]),
+                title="Fig. 2: contact force against time")
+
+
+def make_fig_table2(runs: Sequence[str | Path], variants: Sequence[str], *, pdf: str | Path,
+                    png: str | Path) -> None:
+    """Contact time against ball mass per geometry variant."""
+    records, frames = _by_variant(runs, variants)
+    fig = plot_table2_contact_time(frames)
+    save_figure(fig, pdf=pdf, png=png, provenance=provenance_record(records, [pdf, png]),
+                title="Table 2: contact time against ball mass")

@@ -1,0 +1,73 @@
+"""Benchmarks of the solvers: wall time against accuracy (``make bench``, not tests)."""
+
+from __future__ import annotations
+
+import logging
+import os
+import platform
+import time
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+import pandas as pd
+
+from .sem import ImpactProblem, SEMOptions, solve_sem
+
+__all__ = ["benchmark_sem", "machine_info"]
+
+log = logging.getLogger(__name__)
+
+
+def machine_info() -> dict[str, Any]:
+    """Where a benchmark ran."""
+    return {"machine": platform.node(), "processor": platform.processor() or platform.machine(),
+            "cpu_count": os.cpu_count(), "python": platform.python_version()}
+
+
+def _timed(problem: ImpactProblem, options: SEMOptions, repeats: int):
+    best, result = np.inf, None
+    for _ in range(repeats):
+        started = time.perf_counter()
+        result = solve_sem(problem, options)
+        best = min(best, time.perf_counter() - started)
+    return result, best
+
+
+def _rel_errors(result, ref) -> tuple[float, float]:
+    tc = abs(result.contact_time_s / ref.contact_time_s - 1.0)
+    if len(result.peak_force_N) != len(ref.peak_force_N):
+        return tc, np.inf
+    return tc, float(np.max(np.abs(result.peak_force_N / ref.peak_force_N - 1.0)))
+
+
+def benchmark_sem(case: Mapping[str, Any], *, implicit_steps: Sequence[int] = (50, 100, 200, 400, 800, 1600, 3200),
+                  paper_steps: Sequence[int] = (1000, 2000, 4000, 8000, 16000, 32000, 64000),
+                  reference_steps: int = 64000, repeats: int = 3) -> pd.DataFrame:
+    """Wall time and relative error of both SEM schemes at several steps.
+
+    The reference is the implicit scheme at ``reference_steps`` steps per Hertz time; its
+    own error is estimated by Richardson from the run at half as many steps (second order)
+    and reported in the ``reference_error`` column.
+
+    Returns
+    -------
+    DataFrame
+        One row per (scheme, steps_per_contact): dt_s, n_steps, wall_time_s (best of
+        ``repeats``), contact_time_rel_error, peak_force_rel_error (max over maxima),
+        energy_error, reference_error, and the machine it ran on.
+    """
+    problem = ImpactProblem.from_case(case)
+    ref = solve_sem(problem, SEMOptions(steps_per_contact=reference_steps))
+    half = solve_sem(problem, SEMOptions(steps_per_contact=reference_steps // 2))
+    ref_error = max(_rel_errors(half, ref)) / 3.0
+    rows = []
+    for scheme, steps in (("implicit", implicit_steps), ("paper", paper_steps)):
+        for n in steps:
+            result, wall = _timed(problem, SEMOptions(scheme=scheme, steps_per_contact=n), repeats)
+            tc, peak = _rel_errors(result, ref)
+            rows.append({"case": case["id"], "scheme": scheme, "steps_per_contact": n, "dt_s": result.dt_s,
+                         "n_steps": result.n_steps, "wall_time_s": wall, "contact_time_rel_error": tc,
+                         "peak_force_rel_error": peak, "energy_error": result.energy_error,
+                         "reference_error": ref_error, **machine_info()})
+            log.info("%s n=%d: %.4f s, errors %.2e %.2e", scheme, n, wall, tc, peak)
+    return pd.DataFrame(rows)

@@ -1,0 +1,180 @@
+"""Tables built from stored runs only (never from a solver): Table 2 and its summaries.
+
+Errors follow the paper (NOTES.md item 5): |model - measured| / measured, in %.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import json
+import logging
+import math
+from pathlib import Path
+from typing import Any, Iterable, Sequence
+
+import numpy as np
+import pandas as pd
+
+from .atomic import atomic_output
+from .provenance import code_version
+from .store import RunRecord, read_summary
+
+__all__ = [
+    "METHOD_ORDER",
+    "PUBLISHED_FAMILY",
+    "load_records",
+    "provenance_record",
+    "table2_frame",
+    "variants_summary",
+    "write_provenance",
+    "write_table",
+]
+
+log = logging.getLogger(__name__)
+
+#: Column order of our methods in every table.
+METHOD_ORDER = ("sem", "sem_paper", "fem1d", "fem_axi")
+#: Which of the paper's published columns each of our methods is compared with.
+PUBLISHED_FAMILY = {"sem": "sem", "sem_paper": "sem", "fem1d": "fem", "fem_axi": "fem"}
+
+
+def load_records(paths: Iterable[str | Path]) -> list[RunRecord]:
+    """Read the summaries (and verified configs) of stored runs."""
+    return [read_summary(p) for p in paths]
+
+
+def _methods(records: Sequence[RunRecord]) -> list[str]:
+    present = {r.method for r in records}
+    return [m for m in METHOD_ORDER if m in present] + sorted(present - set(METHOD_ORDER))
+
+
+def _error_pct(model: float, measured: float | None) -> float:
+    if measured is None or not math.isfinite(model):
+        return math.nan
+    return abs(model - measured) / measured * 100.0
+
+
+def _published(config: dict[str, Any], family: str, key: str) -> float:
+    block = (config.get("published") or {}).get(family) or {}
+    value = block.get(key)
+    return math.nan if value is None else float(value)
+
+
+def table2_frame(records: Sequence[RunRecord]) -> pd.DataFrame:
+    """One row per case (ball), sorted by mass: measured, published and our contact times.
+
+    Parameters
+    ----------
+    records : sequence of RunRecord
+        Runs of the cases of one geometry variant, any methods (several per case).
+
+    Returns
+    -------
+    DataFrame
+        Columns ``case_id, row, variant, diameter_mm, mass_g, measured_us,
+        published_fem_us, published_sem_us, published_fem_error_pct,
+        published_sem_error_pct``, then ``{method}_us, {method}_error_pct`` for each
+        method present, and ``sem_vs_published_sem_pct`` when ``sem`` is present.
+    """
+    by_case: dict[str, dict[str, RunRecord]] = {}
+    for rec in records:
+        by_case.setdefault(rec.case_id, {})[rec.method] = rec
+    methods = _methods(records)
+    rows = []
+    for case_id, runs in by_case.items():
+        config = next(iter(runs.values())).config
+        measured = (config.get("measured") or {}).get("contact_time_us")
+        row: dict[str, Any] = {
+            "case_id": case_id,
+            "row": config.get("row", case_id),
+            "variant": config.get("variant"),
+            "diameter_mm": 2000.0 * config["impactor"]["radius_m"],
+            "mass_g": 1000.0 * config["impactor"]["mass_kg"],
+            "measured_us": math.nan if measured is None else float(measured),
+            "published_fem_us": _published(config, "fem", "contact_time_us"),
+            "published_sem_us": _published(config, "sem", "contact_time_us"),
+            "published_fem_error_pct": _published(config, "fem", "error_pct"),
+            "published_sem_error_pct": _published(config, "sem", "error_pct"),
+        }
+        for method in methods:
+            rec = runs.get(method)
+            ours = math.nan if rec is None else 1e6 * float(rec.summary["contact_time_s"])
+            row[f"{method}_us"] = ours
+            row[f"{method}_error_pct"] = _error_pct(ours, measured)
+        if "sem" in methods:
+            row["sem_vs_published_sem_pct"] = (row["sem_us"] / row["published_sem_us"] - 1.0) * 100.0
+        rows.append(row)
+    frame = pd.DataFrame(rows)
+    return frame.sort_values("mass_g", kind="stable").reset_index(drop=True)
+
+
+def variants_summary(frames: dict[str, pd.DataFrame]) -> pd.DataFrame:
+    """Per variant and method: mean, max and mean signed error against the measurements,
+    next to the paper's own errors for the same family of method (SEM or FEM).
+
+    Parameters
+    ----------
+    frames : dict
+        Variant name -> :func:`table2_frame` of that variant.
+    """
+    rows = []
+    for variant, frame in frames.items():
+        measured = frame["measured_us"].to_numpy(float)
+        for column in frame.columns:
+            if not column.endswith("_us") or column.startswith(("measured", "published")):
+                continue
+            method = column[: -len("_us")]
+            family = PUBLISHED_FAMILY.get(method)
+            ours = frame[column].to_numpy(float)
+            signed = (ours - measured) / measured * 100.0
+            paper = frame[f"published_{family}_error_pct"].to_numpy(float) if family else np.array([np.nan])
+            rows.append({
+                "variant": variant,
+                "method": method,
+                "n_cases": int(np.sum(np.isfinite(signed))),
+                "mean_error_pct": float(np.nanmean(np.abs(signed))),
+                "max_error_pct": float(np.nanmax(np.abs(signed))),
+                "mean_signed_error_pct": float(np.nanmean(signed)),
+                "paper_method": family or "",
+                "paper_mean_error_pct": float(np.nanmean(paper)),
+                "paper_max_error_pct": float(np.nanmax(paper)),
+            })
+    return pd.DataFrame(rows)
+
+
+def write_table(frame: pd.DataFrame, *, csv: str | Path, md: str | Path | None = None,
+                tex: str | Path | None = None, caption: str = "", digits: int = 2) -> None:
+    """Write a table as CSV (full precision) and optionally Markdown and LaTeX (rounded)."""
+    with atomic_output(csv) as tmp:
+        frame.to_csv(tmp, index=False, float_format="%.10g")
+    rounded = frame.round(digits)
+    if md is not None:
+        text = rounded.to_markdown(index=False, floatfmt=f".{digits}f")
+        _write_text(md, (f"{caption}\n\n" if caption else "") + text + "\n")
+    if tex is not None:
+        _write_text(tex, rounded.to_latex(index=False, float_format=f"%.{digits}f",
+                                          caption=caption or None, escape=True))
+
+
+def _write_text(path: str | Path, text: str) -> None:
+    with atomic_output(path) as tmp:
+        tmp.write_text(text, encoding="utf-8")
+
+
+def provenance_record(records: Sequence[RunRecord], artifacts: Iterable[str | Path]) -> dict[str, Any]:
+    """What an artifact was made from: every input run with its config hash and code."""
+    return {
+        "artifacts": [str(a) for a in artifacts],
+        "created_utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        "code_version": code_version(),
+        "inputs": [
+            {"path": str(r.path), "case_id": r.case_id, "method": r.method,
+             "config_sha256": r.config_sha256, "code_version": r.code_version}
+            for r in records
+        ],
+    }
+
+
+def write_provenance(path: str | Path, records: Sequence[RunRecord], artifacts: Iterable[str | Path]) -> None:
+    """Write :func:`provenance_record` as JSON."""
+    _write_text(path, json.dumps(provenance_record(records, artifacts), indent=2) + "\n")

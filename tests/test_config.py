@@ -1,0 +1,477 @@
+"""Tests of the configuration layer (rodimpact.config): shipped config, schemas, error messages.
+
+Every test that changes a file works on a copy of config/ and workflow/schemas/ in tmp_path.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import pickle
+import shutil
+from collections.abc import Callable
+from pathlib import Path
+
+import pytest
+import yaml
+from jsonschema import Draft202012Validator
+
+from rodimpact.config import (
+    METHODS,
+    OUTPUTS,
+    ConfigError,
+    Project,
+    load_global_config,
+    load_project,
+)
+
+ROOT = Path(__file__).resolve().parents[1]
+SCHEMAS = ROOT / "workflow" / "schemas"
+ROWS = ["ball_3.16mm", "ball_4.75mm", "ball_5.56mm", "ball_6.34mm", "ball_9.51mm", "ball_12.73mm"]
+VARIANTS = {  # name -> (rod radius, rod length), m
+    "r10_l30": (0.010, 0.0301),
+    "r1_l301": (0.001, 0.301),
+    "r1_l30": (0.001, 0.0301),
+    "r10_l301": (0.010, 0.301),
+}
+
+
+# --------------------------------------------------------------------------- helpers
+
+
+@pytest.fixture
+def project_dir(tmp_path: Path) -> Path:
+    """A copy of the project's config and schemas to break."""
+    shutil.copytree(ROOT / "config", tmp_path / "config")
+    shutil.copytree(SCHEMAS, tmp_path / "workflow" / "schemas")
+    return tmp_path
+
+
+def load(root: Path) -> Project:
+    return load_project(load_global_config(root / "config" / "config.yaml"), root=root)
+
+
+def edit(path: Path, change: Callable[[dict], None]) -> None:
+    """Apply `change` to the YAML document in `path` (comments are lost: copies only)."""
+    document = yaml.safe_load(path.read_text())
+    change(document)
+    path.write_text(yaml.safe_dump(document, sort_keys=False))
+
+
+def error_of(root: Path) -> str:
+    with pytest.raises(ConfigError) as info:
+        load(root)
+    return str(info.value)
+
+
+@pytest.fixture(scope="module")
+def shipped() -> Project:
+    return load(ROOT)
+
+
+# --------------------------------------------------------------------------- shipped config
+
+
+def test_shipped_config_loads_all_cases(shipped: Project) -> None:
+    expected = ["model"] + [f"{row}-{variant}" for row in ROWS for variant in VARIANTS]
+    assert list(shipped.cases) == expected  # 1 + 6 rows x 4 variants, in file order
+    assert shipped.sets == {"model": ["model"], "table2": expected[1:]}
+    assert list(shipped.variants["table2"]) == list(VARIANTS)
+    assert shipped.variants["model"] == {}
+
+
+def test_model_case_is_table1_model_column(shipped: Project) -> None:
+    case = shipped.cases["model"]
+    assert (case["row"], case["variant"], case["set"]) == ("model", None, "model")
+    assert case["source_file"] == "config/cases/model.yaml"
+    assert case["impactor"] == {
+        "mass_kg": 0.5,
+        "radius_m": 0.01,
+        "velocity_m_s": 1.0,
+        "material": {"name": "steel", "youngs_modulus_pa": 2.1e11, "poisson_ratio": 0.3, "density_kg_m3": 7800.0},
+    }
+    assert case["rod"]["length_m"] == 0.5
+    assert case["rod"]["area_m2"] == 5.0e-5
+    assert case["rod"]["radius_m"] is None
+    assert case["rod"]["far_end"] == "fixed"
+    assert case["methods"] == ["sem", "sem_paper"]
+    assert case["outputs"] == list(OUTPUTS)
+    assert case["measured"] is None
+    assert case["published"]["fem_vs_sem"] == {"contact_time_difference_pct": 11.0, "extrema_difference_pct": 9.0}
+
+
+def test_table2_variants_set_rod_geometry(shipped: Project) -> None:
+    for variant, (radius, length) in VARIANTS.items():
+        cases = shipped.cases_in("table2", variant)
+        assert [case["row"] for case in cases] == ROWS
+        for case in cases:
+            assert case["id"] == f"{case['row']}-{variant}"
+            assert case["rod"]["radius_m"] == radius
+            assert case["rod"]["length_m"] == length
+            assert case["rod"]["area_m2"] == pytest.approx(math.pi * radius**2, rel=1e-15)
+            assert case["rod"]["material"]["name"] == "aluminium_table1"
+            assert case["impactor"]["velocity_m_s"] == 0.3225
+            assert case["impactor"]["material"]["name"] == "steel"
+
+
+def test_defaults_are_filled(shipped: Project) -> None:
+    case = shipped.cases["ball_3.16mm-r10_l30"]
+    assert case["rod"]["far_end"] == "fixed"
+    assert case["methods"] == ["sem"]
+    assert case["outputs"] == ["contact_force"]
+    assert case["numerics"] == {
+        "sem": {"dt_s": None, "steps_per_contact": 2000, "max_time_factor": 100.0, "max_contacts": 50}
+    }
+    assert shipped.cases["model"]["numerics"]["sem_paper"]["steps_per_contact"] == 20000
+    assert case["measured"]["source"].startswith("Table 2")
+    assert case["published"]["source"].startswith("Table 2")
+
+
+def test_resolved_cases_are_plain_json(shipped: Project) -> None:
+    for case in shipped.cases.values():
+        assert json.loads(json.dumps(case)) == case  # no tuples, numpy, NaN
+    assert isinstance(shipped.cases["model"]["published"]["fem_vs_sem"]["extrema_difference_pct"], float)
+
+
+def test_cases_in_rejects_unknown_set_and_variant(shipped: Project) -> None:
+    assert len(shipped.cases_in("table2")) == 24
+    with pytest.raises(KeyError, match="unknown case set 'tabel2'"):
+        shipped.cases_in("tabel2")
+    with pytest.raises(KeyError, match="unknown variant 'r5' of case set 'table2'"):
+        shipped.cases_in("table2", "r5")
+
+
+def test_global_config_defaults_are_filled(tmp_path: Path) -> None:
+    (tmp_path / "config.yaml").write_text("targets: {sets: [model]}\n")
+    config = load_global_config(tmp_path / "config.yaml", schema_dir=SCHEMAS)
+    assert config["cases_dir"] == "config/cases"
+    assert config["materials"] == "config/materials.yaml"
+    assert config["numerics"]["sem"] == {
+        "steps_per_contact": 2000, "dt_s": None, "max_time_factor": 100.0, "max_contacts": 50
+    }
+    assert config["numerics"]["sem_paper"]["steps_per_contact"] == 20000
+
+
+def test_snakemake_validate_fills_the_same_defaults() -> None:
+    from snakemake.utils import validate
+
+    config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+    validate(config, str(SCHEMAS / "config.schema.yaml"))
+    assert config == load_global_config(ROOT / "config" / "config.yaml")
+    empty: dict = {}
+    validate(empty, str(SCHEMAS / "config.schema.yaml"))
+    assert empty["numerics"]["sem_paper"]["steps_per_contact"] == 20000
+
+
+def test_new_case_file_is_picked_up(project_dir: Path) -> None:
+    (project_dir / "config" / "cases" / "extra.yaml").write_text(
+        "cases:\n"
+        "  - id: soft_ball\n"
+        "    impactor: {mass_kg: 0.01, radius_m: 0.005, velocity_m_s: 2.0, material: steel}\n"
+        "    rod: {length_m: 1.0, radius_m: 0.002, far_end: free,\n"
+        "          material: {name: rubber, youngs_modulus_pa: 1.0e7, poisson_ratio: 0.49, density_kg_m3: 1100}}\n"
+    )
+    project = load(project_dir)
+    assert project.sets["extra"] == ["soft_ball"]  # set = file stem by default
+    case = project.cases["soft_ball"]
+    assert list(project.cases)[:2] == ["soft_ball", "model"]  # files in name order
+    assert case["rod"]["far_end"] == "free"
+    assert case["rod"]["material"] == {
+        "name": "rubber", "youngs_modulus_pa": 1.0e7, "poisson_ratio": 0.49, "density_kg_m3": 1100.0
+    }
+    assert case["source_file"] == "config/cases/extra.yaml"
+
+
+def test_case_numerics_override_global(project_dir: Path) -> None:
+    edit(project_dir / "config/cases/model.yaml",
+         lambda d: d["cases"][0].update(numerics={"sem_paper": {"dt_s": 1e-8}, "sem": {"max_contacts": 3}}))
+    numerics = load(project_dir).cases["model"]["numerics"]
+    assert numerics["sem"] == {"dt_s": None, "steps_per_contact": 2000, "max_time_factor": 100.0, "max_contacts": 3}
+    assert numerics["sem_paper"] == {"dt_s": 1e-8, "steps_per_contact": 20000, "max_time_factor": 100.0,
+                                     "max_contacts": 50}
+
+
+def test_case_variants_list_selects_variants(project_dir: Path) -> None:
+    edit(project_dir / "config/cases/table2.yaml", lambda d: d["cases"][0].update(variants=["r1_l301"]))
+    project = load(project_dir)
+    assert [c["id"] for c in project.cases_in("table2")][:2] == ["ball_3.16mm-r1_l301", "ball_4.75mm-r10_l30"]
+    assert len(project.cases_in("table2")) == 21
+
+
+# --------------------------------------------------------------------------- schemas
+
+
+def _schema(name: str) -> dict:
+    return yaml.safe_load((SCHEMAS / name).read_text())
+
+
+def test_known_lists_match_the_schemas() -> None:
+    assert tuple(_schema("config.schema.yaml")["$defs"]["method"]["enum"]) == METHODS
+    assert tuple(_schema("cases.schema.yaml")["$defs"]["output"]["enum"]) == OUTPUTS
+
+
+def _nodes(schema: dict):
+    """Every (sub)schema of `schema`, through the keywords our schemas use."""
+    yield schema
+    for keyword in ("properties", "$defs"):
+        for sub in schema.get(keyword, {}).values():
+            yield from _nodes(sub)
+    for keyword in ("items", "additionalProperties", "propertyNames", "not"):
+        if isinstance(schema.get(keyword), dict):
+            yield from _nodes(schema[keyword])
+
+
+@pytest.mark.parametrize("name", ["config.schema.yaml", "cases.schema.yaml", "materials.schema.yaml"])
+def test_schemas_are_valid_documented_and_closed(name: str) -> None:
+    schema = _schema(name)
+    Draft202012Validator.check_schema(schema)
+    assert schema["$schema"] == "https://json-schema.org/draft/2020-12/schema"
+    assert all("description" in sub for sub in schema["$defs"].values())
+    for node in _nodes(schema):
+        for prop, sub in node.get("properties", {}).items():
+            # a bare {$ref: ...} is documented by the described $defs entry it points to
+            assert "description" in sub or set(sub) == {"$ref"}, f"{name}: property {prop!r} undocumented"
+        if "properties" in node:
+            # closed; or keys limited by propertyNames; or extends (by $ref) a closed schema,
+            # only adding constraints or defaults
+            closed = node.get("additionalProperties") is False or "propertyNames" in node or "$ref" in node
+            assert closed, f"{name}: {node} is open"
+
+
+# --------------------------------------------------------------------------- malformed input
+
+MODEL = "config/cases/model.yaml"
+TABLE2 = "config/cases/table2.yaml"
+
+
+def _set(path: str, *keys_and_value):
+    """An edit setting document[k1][k2]...= value (a key of None deletes)."""
+    *keys, last, value = keys_and_value
+
+    def change(document: dict) -> None:
+        node = document
+        for key in keys:
+            node = node[key]
+        if value is None:
+            del node[last]
+        else:
+            node[last] = value
+
+    return path, change
+
+
+def _rename(path: str, keys: tuple, old: str, new: str):
+    def change(document: dict) -> None:
+        node = document
+        for key in keys:
+            node = node[key]
+        node[new] = node.pop(old)
+
+    return path, change
+
+
+INLINE_STEEL = {"youngs_modulus_pa": 2.1e11, "poisson_ratio": 0.3, "density_kg_m3": 7800.0}
+
+MALFORMED = {
+    "missing mass": (
+        _set(TABLE2, "cases", 0, "impactor", "mass_kg", None),
+        f"{TABLE2}: case 'ball_3.16mm-r10_l30': field 'impactor.mass_kg': missing required field",
+    ),
+    "mass is text": (
+        _set(TABLE2, "cases", 0, "impactor", "mass_kg", "abc"),
+        f"{TABLE2}: case 'ball_3.16mm': field 'impactor.mass_kg': must be a number, got string 'abc'",
+    ),
+    "negative mass": (
+        _set(TABLE2, "cases", 0, "impactor", "mass_kg", -0.13),
+        f"{TABLE2}: case 'ball_3.16mm': field 'impactor.mass_kg': must be > 0, got -0.13",
+    ),
+    "zero rod length": (
+        _set(MODEL, "cases", 0, "rod", "length_m", 0),
+        f"{MODEL}: case 'model': field 'rod.length_m': must be > 0, got 0",
+    ),
+    "non-positive Young's modulus inline": (
+        _set(MODEL, "cases", 0, "impactor", "material", {**INLINE_STEEL, "youngs_modulus_pa": -2.1e11}),
+        f"{MODEL}: case 'model': field 'impactor.material.youngs_modulus_pa': must be > 0, got -210000000000.0",
+    ),
+    "Poisson 0.5": (
+        _set("config/materials.yaml", "materials", "steel", "poisson_ratio", 0.5),
+        "config/materials.yaml: field 'materials.steel.poisson_ratio': must be < 0.5, got 0.5",
+    ),
+    "Poisson -1.2 inline": (
+        _set(MODEL, "cases", 0, "rod", "material", {**INLINE_STEEL, "poisson_ratio": -1.2}),
+        f"{MODEL}: case 'model': field 'rod.material.poisson_ratio': must be > -1, got -1.2",
+    ),
+    "inline material incomplete": (
+        _set(MODEL, "cases", 0, "rod", "material", {"youngs_modulus_pa": 2.1e11, "poisson_ratio": 0.3}),
+        f"{MODEL}: case 'model': field 'rod.material.density_kg_m3': missing required field",
+    ),
+    "unknown method": (
+        _set(MODEL, "cases", 0, "methods", ["sem", "fem2d"]),
+        f"{MODEL}: case 'model': field 'methods[1]': unknown method 'fem2d'; known: sem, sem_paper",
+    ),
+    "repeated method": (
+        _set(MODEL, "cases", 0, "methods", ["sem", "sem"]),
+        f"{MODEL}: case 'model': field 'methods': items must be unique; 'sem' appears more than once",
+    ),
+    "no method": (
+        _set(MODEL, "cases", 0, "methods", []),
+        f"{MODEL}: case 'model': field 'methods': must not be empty",
+    ),
+    "unknown output": (
+        _set(MODEL, "cases", 0, "outputs", ["contact_force", "stress"]),
+        f"{MODEL}: case 'model': field 'outputs[1]': unknown output 'stress'; known: " + ", ".join(OUTPUTS),
+    ),
+    "unknown numerics method": (
+        _set(MODEL, "cases", 0, "numerics", {"fem": {"dt_s": 1e-9}}),
+        f"{MODEL}: case 'model': field 'numerics.fem': unknown method 'fem'; known: sem, sem_paper",
+    ),
+    "numerics too few steps": (
+        _set(MODEL, "cases", 0, "numerics", {"sem": {"steps_per_contact": 5}}),
+        f"{MODEL}: case 'model': field 'numerics.sem.steps_per_contact': must be >= 10, got 5",
+    ),
+    "unknown variant": (
+        _set(TABLE2, "cases", 0, "variants", ["r10_l30", "r5_l30"]),
+        f"{TABLE2}: case 'ball_3.16mm': field 'variants[1]': unknown variant 'r5_l30'; "
+        "declared: r10_l30, r1_l301, r1_l30, r10_l301",
+    ),
+    "variant without description": (
+        _set(TABLE2, "variants", "r1_l30", "description", None),
+        f"{TABLE2}: field 'variants.r1_l30.description': missing required field",
+    ),
+    "unknown material name": (
+        _set(MODEL, "cases", 0, "rod", "material", "steal"),
+        f"{MODEL}: case 'model': field 'rod.material': unknown material 'steal'; known: steel, aluminium_table1",
+    ),
+    "both area and radius": (
+        _set(MODEL, "cases", 0, "rod", "radius_m", 0.004),
+        f"{MODEL}: case 'model': field 'rod': exactly one of 'area_m2' and 'radius_m' must be given, got both",
+    ),
+    "neither area nor radius": (
+        _set(MODEL, "cases", 0, "rod", "area_m2", None),
+        f"{MODEL}: case 'model': field 'rod': exactly one of 'area_m2' and 'radius_m' must be given, got neither",
+    ),
+    "typo mas_kg": (
+        _rename(TABLE2, ("cases", 0, "impactor"), "mass_kg", "mas_kg"),
+        f"{TABLE2}: case 'ball_3.16mm': field 'impactor.mas_kg': unknown field (did you mean 'mass_kg'?); "
+        "allowed: mass_kg, radius_m, velocity_m_s, material",
+    ),
+    "far end clamped": (
+        _set(MODEL, "cases", 0, "rod", "far_end", "clamped"),
+        f"{MODEL}: case 'model': field 'rod.far_end': unknown far-end condition 'clamped'; known: fixed, free",
+    ),
+    "id with a dash": (
+        _set(MODEL, "cases", 0, "id", "model-1"),
+        f"{MODEL}: case 'model-1': field 'id': must match the pattern '^[A-Za-z0-9][A-Za-z0-9_.]*$', got 'model-1'",
+    ),
+    "case without id": (
+        _set(MODEL, "cases", 0, "id", None),
+        f"{MODEL}: field 'cases[0].id': missing required field",
+    ),
+    "id in defaults": (
+        _set(TABLE2, "defaults", "id", "x"),
+        f"{TABLE2}: field 'defaults.id': is not allowed here",
+    ),
+    "no cases": (
+        _set(MODEL, "cases", []),
+        f"{MODEL}: field 'cases': must not be empty",
+    ),
+    "measurement without source": (
+        _set(TABLE2, "defaults", "measured", "source", None),
+        f"{TABLE2}: case 'ball_3.16mm-r10_l30': field 'measured.source': missing required field",
+    ),
+    "published error negative": (
+        _set(TABLE2, "cases", 2, "published", "fem", "error_pct", -49.42),
+        f"{TABLE2}: case 'ball_5.56mm': field 'published.fem.error_pct': must be >= 0, got -49.42",
+    ),
+    "not a number": (
+        _set(MODEL, "cases", 0, "impactor", "velocity_m_s", float("inf")),
+        f"{MODEL}: case 'model': field 'impactor.velocity_m_s': must be a finite number, got inf",
+    ),
+    "unknown target set": (
+        _set("config/config.yaml", "targets", "sets", ["model", "tabel2"]),
+        "config/config.yaml: field 'targets.sets[1]': unknown case set 'tabel2'; known: model, table2",
+    ),
+}
+
+
+@pytest.mark.parametrize("change, expected", MALFORMED.values(), ids=MALFORMED.keys())
+def test_malformed_input_is_reported(project_dir: Path, change, expected: str) -> None:
+    path, apply = change
+    edit(project_dir / path, apply)
+    assert error_of(project_dir) == expected
+
+
+def test_first_problem_in_file_order_is_reported(project_dir: Path) -> None:
+    def change(document: dict) -> None:
+        document["cases"][3]["impactor"]["radius_m"] = 0
+        document["cases"][1]["impactor"]["mass_kg"] = -1
+        document["cases"][1]["measured"]["contact_time_us"] = "x"
+
+    edit(project_dir / TABLE2, change)
+    assert error_of(project_dir) == f"{TABLE2}: case 'ball_4.75mm': field 'impactor.mass_kg': must be > 0, got -1"
+
+
+def test_duplicate_case_id_names_both_files(project_dir: Path) -> None:
+    model = project_dir / MODEL
+    shutil.copy(model, project_dir / "config/cases/a_copy.yaml")
+    assert error_of(project_dir) == (
+        f"{MODEL}: case 'model': field 'id': duplicate case id; already defined in config/cases/a_copy.yaml"
+    )
+
+
+def test_yaml_syntax_error_names_file_and_line(project_dir: Path) -> None:
+    (project_dir / "config/cases/broken.yaml").write_text("cases:\n  - id: a\n    rod: {length_m: 1\n  - id: b\n")
+    message = error_of(project_dir)
+    assert message.startswith("config/cases/broken.yaml: invalid YAML at line 4, column 7: ")
+
+
+def test_duplicate_yaml_key_is_an_error(project_dir: Path) -> None:
+    text = (project_dir / MODEL).read_text().replace("      mass_kg: 0.5\n", "      mass_kg: 0.5\n      mass_kg: 5\n")
+    (project_dir / MODEL).write_text(text)
+    assert error_of(project_dir).startswith(f"{MODEL}: invalid YAML at line 12, column 7: duplicate key 'mass_kg'")
+
+
+def test_empty_case_file(project_dir: Path) -> None:
+    (project_dir / "config/cases/empty.yaml").write_text("# nothing yet\n")
+    assert error_of(project_dir) == (
+        "config/cases/empty.yaml: file is empty; expected a mapping with a non-empty 'cases' list"
+    )
+
+
+def test_case_file_that_is_not_a_mapping(project_dir: Path) -> None:
+    (project_dir / "config/cases/list.yaml").write_text("- id: a\n")
+    assert error_of(project_dir) == "config/cases/list.yaml: must be a mapping, got a list"
+
+
+def test_missing_materials_file(project_dir: Path) -> None:
+    (project_dir / "config/materials.yaml").unlink()
+    assert error_of(project_dir) == "config/materials.yaml: file not found"
+
+
+def test_global_config_typo(project_dir: Path) -> None:
+    path = project_dir / "config/config.yaml"
+    edit(path, lambda d: d.update(numerics={"sem": {"step_per_contact": 100}}))
+    with pytest.raises(ConfigError) as info:
+        load_global_config(path)
+    assert str(info.value) == (
+        "config/config.yaml: field 'numerics.sem.step_per_contact': unknown field "
+        "(did you mean 'steps_per_contact'?); allowed: dt_s, steps_per_contact, max_time_factor, max_contacts"
+    )
+
+
+def test_exponent_without_sign_is_a_number(project_dir: Path) -> None:
+    text = (project_dir / "config/materials.yaml").read_text().replace("2.1e+11", "2.1e11")
+    (project_dir / "config/materials.yaml").write_text(text)
+    assert load(project_dir).cases["model"]["rod"]["material"]["youngs_modulus_pa"] == 2.1e11
+
+
+def test_config_error_parts_and_pickling() -> None:
+    err = ConfigError("must be > 0, got -0.13", file="config/cases/table2.yaml", case="ball_3.16mm",
+                      field="impactor.mass_kg")
+    assert str(err) == "config/cases/table2.yaml: case 'ball_3.16mm': field 'impactor.mass_kg': must be > 0, got -0.13"
+    assert (err.file, err.case, err.field, err.reason) == (
+        "config/cases/table2.yaml", "ball_3.16mm", "impactor.mass_kg", "must be > 0, got -0.13"
+    )
+    assert isinstance(err, ValueError)
+    assert str(pickle.loads(pickle.dumps(err))) == str(err)
+    assert str(ConfigError("file not found", file="x.yaml")) == "x.yaml: file not found"

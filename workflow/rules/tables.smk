@@ -1,0 +1,40 @@
+# Tables: read HDF5 runs only.
+
+
+rule table2:
+    """Table 2 of the paper for one reading of the experiment's rod geometry."""
+    input:
+        runs=lambda w: table2_runs(w.variant),
+        code=SRC,
+    output:
+        csv="results/tables/table2_{variant}.csv",
+        md="results/tables/table2_{variant}.md",
+        tex="results/tables/table2_{variant}.tex",
+        provenance="results/tables/table2_{variant}.provenance.json",
+    params:
+        variant="{variant}",
+    log:
+        "logs/tables/table2_{variant}.log",
+    conda:
+        "../envs/rodimpact.yaml"
+    script:
+        "../scripts/table2.py"
+
+
+rule table2_variants:
+    """Mean and max error against the measurements per geometry variant and method."""
+    input:
+        runs=[run for v in TABLE2_VARIANTS for run in table2_runs(v)],
+        code=SRC,
+    output:
+        csv="results/tables/table2_variants.csv",
+        md="results/tables/table2_variants.md",
+        provenance="results/tables/table2_variants.provenance.json",
+    params:
+        variants=TABLE2_VARIANTS,
+    log:
+        "logs/tables/table2_variants.log",
+    conda:
+        "../envs/rodimpact.yaml"
+    script:
+        "../scripts/table2_variants.py"

@@ -1,0 +1,9 @@
+"""Snakemake adapter: the per-variant error summary of Table 2."""
+
+from rodimpact.artifacts import make_table2_variants
+from rodimpact.logs import script_logging
+
+with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
+    out = snakemake.output  # noqa: F821
+    make_table2_variants(snakemake.input.runs, snakemake.params.variants,  # noqa: F821
+                         csv=out.csv, md=out.md, provenance=out.provenance)
