@@ -40,8 +40,8 @@ def _rel_errors(result, ref) -> tuple[float, float]:
     return tc, float(np.max(np.abs(result.peak_force_N / ref.peak_force_N - 1.0)))
 
 
-def benchmark_sem(case: Mapping[str, Any], *, implicit_steps: Sequence[int] = (50, 100, 200, 400, 800, 1600, 3200),
-                  paper_steps: Sequence[int] = (1000, 2000, 4000, 8000, 16000, 32000, 64000),
+def benchmark_sem(case: Mapping[str, Any], *, implicit_steps: Sequence[int] = (50, 100, 200, 400, 800, 1600, 2000, 3200),
+                  paper_steps: Sequence[int] = (1000, 2000, 4000, 8000, 16000, 20000, 32000, 64000),
                   reference_steps: int = 64000, repeats: int = 3) -> pd.DataFrame:
     """Wall time and relative error of both SEM schemes at several steps.
 

@@ -4,7 +4,7 @@
 rule bench_sem:
     """Wall time and error of both SEM schemes on 'model' at several step sizes."""
     input:
-        code=SRC,
+        code=SRC_BENCH,
     output:
         csv="results/benchmarks/sem.csv",
     params:

@@ -1,10 +1,21 @@
 # Validation of the configuration (before any job), and the helpers the rules share.
+import os
+import re
 import sys
 from pathlib import Path
 
 from snakemake.utils import validate
 
+# The workflow runs the code of its own checkout (src/), in this process and in its jobs,
+# whatever else is installed: the sources snakemake tracks are the sources that run.
+SRC_DIR = str(Path(workflow.basedir, "src"))
+sys.path.insert(0, SRC_DIR)
+# Set (not read from the user) for the jobs; every job's snakemake re-parses this file, so
+# remote jobs set it too.
+os.environ.update(PYTHONPATH=os.pathsep.join(filter(None, [SRC_DIR, os.environ.get("PYTHONPATH")])))
+
 from rodimpact.config import METHODS, ConfigError, load_project
+from rodimpact.sources import module_sources
 
 validate(config, "../schemas/config.schema.yaml")
 try:
@@ -12,15 +23,26 @@ try:
 except ConfigError as error:
     sys.exit(f"rodimpact: invalid configuration: {error}")
 
-# Rules that import rodimpact list its sources as inputs: a code change reruns them.
-SRC = sorted(str(p.relative_to(workflow.basedir)) for p in Path(workflow.basedir, "src/rodimpact").rglob("*.py"))
+
+def sources(*entry_modules):
+    """Package files a script's imports reach: listed as inputs, a code change reruns the rule."""
+    return [os.path.relpath(p, workflow.basedir) for p in module_sources(SRC_DIR, entry_modules)]
+
+
+SRC_SOLVE = sources("rodimpact.runner", "rodimpact.logs")
+SRC_PRESENT = sources("rodimpact.artifacts", "rodimpact.logs")
+SRC_BENCH = sources("rodimpact.bench", "rodimpact.atomic", "rodimpact.logs")
 TABLE2_VARIANTS = list(PROJECT.variants.get("table2", {}))
+
+
+def one_of(names):
+    return "|".join(map(re.escape, names)) or "(?!)"
 
 
 wildcard_constraints:
     case="[A-Za-z0-9][A-Za-z0-9_.\-]*",
-    method="|".join(METHODS),
-    variant="|".join(TABLE2_VARIANTS) or "no-variant",
+    method=one_of(METHODS),
+    variant=one_of(TABLE2_VARIANTS),
 
 
 def runs_of(cases):
@@ -50,7 +72,7 @@ def default_targets():
     if "table2" in sets:
         targets += expand("results/tables/table2_{variant}.{ext}", variant=TABLE2_VARIANTS,
                           ext=["csv", "md", "tex", "provenance.json"])
-        targets += ["results/tables/table2_variants.csv"]
+        targets += expand("results/tables/table2_variants.{ext}", ext=["csv", "md", "provenance.json"])
         targets += expand("results/figures/table2_contact_time.{ext}", ext=["pdf", "png"])
     for name in sets:
         targets += runs_of(PROJECT.cases_in(name))

@@ -5,7 +5,7 @@ rule fig2:
     """Fig. 2: contact force against time for the case 'model', every method it runs."""
     input:
         runs=lambda w: runs_of([PROJECT.cases["model"]]),
-        code=SRC,
+        code=SRC_PRESENT,
     output:
         pdf="results/figures/fig2_contact_force.pdf",
         png="results/figures/fig2_contact_force.png",
@@ -21,7 +21,7 @@ rule fig_table2:
     """Contact time against ball mass: measured, published and ours, per geometry variant."""
     input:
         runs=[run for v in TABLE2_VARIANTS for run in table2_runs(v)],
-        code=SRC,
+        code=SRC_PRESENT,
     output:
         pdf="results/figures/table2_contact_time.pdf",
         png="results/figures/table2_contact_time.png",

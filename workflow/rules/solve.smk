@@ -4,7 +4,7 @@
 rule solve:
     """Run one method on one case; the HDF5 file appears whole or not at all."""
     input:
-        code=SRC,
+        code=SRC_SOLVE,
     output:
         h5="results/runs/{case}/{method}.h5",
     params:

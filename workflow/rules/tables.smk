@@ -5,7 +5,7 @@ rule table2:
     """Table 2 of the paper for one reading of the experiment's rod geometry."""
     input:
         runs=lambda w: table2_runs(w.variant),
-        code=SRC,
+        code=SRC_PRESENT,
     output:
         csv="results/tables/table2_{variant}.csv",
         md="results/tables/table2_{variant}.md",
@@ -25,7 +25,7 @@ rule table2_variants:
     """Mean and max error against the measurements per geometry variant and method."""
     input:
         runs=[run for v in TABLE2_VARIANTS for run in table2_runs(v)],
-        code=SRC,
+        code=SRC_PRESENT,
     output:
         csv="results/tables/table2_variants.csv",
         md="results/tables/table2_variants.md",

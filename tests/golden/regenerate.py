@@ -1,0 +1,52 @@
+"""Regenerate tests/golden/sem_runs.csv from the shipped configuration.
+
+    .venv/bin/python tests/golden/regenerate.py
+
+A change of method that moves these numbers must update the golden file in the same commit
+and say why in the commit message (see README.md, "Regression of the published numbers").
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from rodimpact.config import load_global_config, load_project
+from rodimpact.runner import run_case
+
+ROOT = Path(__file__).resolve().parents[2]
+GOLDEN = Path(__file__).with_name("sem_runs.csv")
+
+
+def golden_frame() -> pd.DataFrame:
+    """Contact time, force maxima and rebound velocity of every SEM run of the shipped cases."""
+    config = load_global_config(ROOT / "config" / "config.yaml")
+    project = load_project(config, root=ROOT)
+    rows = []
+    for case in project.cases.values():
+        for method in case["methods"]:
+            if not method.startswith("sem"):
+                continue
+            result = run_case(case, method)
+            rows.append({
+                "case_id": case["id"],
+                "method": method,
+                "n_contacts": result.n_contacts,
+                "contact_time_s": result.contact_time_s,
+                "peak_force_N": " ".join(f"{p:.12g}" for p in result.peak_force_N),
+                "rebound_velocity_m_s": result.rebound_velocity_m_s,
+            })
+    return pd.DataFrame(rows)
+
+
+def parse_peaks(text: str) -> np.ndarray:
+    return np.array([float(v) for v in str(text).split()])
+
+
+if __name__ == "__main__":
+    frame = golden_frame()
+    frame.to_csv(GOLDEN, index=False, float_format="%.12g")
+    print(f"wrote {GOLDEN} ({len(frame)} runs)", file=sys.stderr)

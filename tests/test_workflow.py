@@ -1,0 +1,606 @@
+"""End-to-end tests of the snakemake workflow, run through its command line.
+
+Every test works in a temporary copy of the project (Snakefile, config/, workflow/, src/);
+snakemake never runs in the repository itself and the repository's config/ is never written.
+One full build (``snakemake -j2``, ~30 s on 2 cores) is shared by the module; tests that change
+something copy that built project (results and .snakemake metadata included, mtimes kept) or
+start from a fresh, unbuilt copy.
+
+The subprocesses get no PYTHONPATH: the workflow itself (workflow/rules/common.smk) puts the
+copy's ``src/`` first, so it runs the code it lists as inputs, not the repository's editable
+install (``test_jobs_run_the_checkouts_own_code``).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+from collections import Counter
+from pathlib import Path
+
+import h5py
+import pandas as pd
+import pytest
+from PIL import Image
+
+from rodimpact.config import load_global_config, load_project
+from rodimpact.store import REQUIRED_SUMMARY, read_run
+
+pytestmark = pytest.mark.workflow
+
+REPO_ROOT = Path(__file__).resolve().parents[1]
+PROJECT_PARTS = ("Snakefile", "config", "workflow", "src")
+TABLE2_VARIANTS = ("r10_l30", "r1_l301", "r1_l30", "r10_l301")
+ROOT_ATTRS = (
+    "case_id", "method", "config_json", "config_sha256", "code_version", "library_versions",
+    "wall_time_s",
+)  # fmt: skip
+SUMMARY_ATTRS = ("contact_time_s", "peak_force_N", "peak_time_s", "rebound_velocity_m_s", "energy_error")
+TABLE2_COLUMNS = (
+    "diameter_mm", "mass_g", "measured_us", "published_fem_us", "published_sem_us", "sem_us",
+    "sem_error_pct",
+)  # fmt: skip
+BUILD_TIMEOUT_S = 600
+DRY_RUN_TIMEOUT_S = 120
+
+
+# --------------------------------------------------------------------------------------------
+# helpers
+# --------------------------------------------------------------------------------------------
+
+
+def copy_project(dest: Path) -> Path:
+    """A fresh, unbuilt copy of the project at ``dest``."""
+    dest.mkdir(parents=True, exist_ok=True)
+    ignore = shutil.ignore_patterns("__pycache__", "*.pyc", "*.egg-info", "*.tmp*")
+    for part in PROJECT_PARTS:
+        source = REPO_ROOT / part
+        if source.is_dir():
+            shutil.copytree(source, dest / part, ignore=ignore)
+        else:
+            shutil.copy2(source, dest / part)
+    return dest
+
+
+def clone_built(built: Path, dest: Path) -> Path:
+    """A copy of a built project: results, logs and .snakemake metadata, mtimes preserved."""
+    shutil.copytree(built, dest, symlinks=True)
+    return dest
+
+
+class Run:
+    """A finished snakemake process; ``output`` is stdout and stderr together."""
+
+    def __init__(self, proc: subprocess.CompletedProcess):
+        self.returncode, self.stdout, self.stderr = proc.returncode, proc.stdout, proc.stderr
+        self.output = proc.stdout + proc.stderr
+        self.args = proc.args
+
+    def describe(self) -> str:
+        tail = self.output[-6000:]
+        return f"snakemake {' '.join(map(str, self.args[4:]))} -> exit {self.returncode}\n{tail}"
+
+
+def snakemake(project: Path, *args: str, timeout: float = DRY_RUN_TIMEOUT_S) -> Run:
+    """Run the snakemake CLI of this interpreter's environment in ``project``."""
+    env = {key: value for key, value in os.environ.items()
+           if not key.startswith("SNAKEMAKE") and key != "PYTHONPATH"}
+    env.update(MPLBACKEND="Agg")
+    proc = subprocess.run(
+        [sys.executable, "-m", "snakemake", "--nocolor", *args],
+        cwd=project, env=env, capture_output=True, text=True, timeout=timeout, check=False,
+    )  # fmt: skip
+    return Run(proc)
+
+
+def job_stats(output: str) -> dict[str, int]:
+    """Jobs per rule from snakemake's "Job stats" table (empty when nothing is planned).
+
+    Why this table: it is what snakemake itself counts from the DAG it would execute, for
+    dry runs and real runs alike, and its layout (``job count`` header, dashes, one
+    ``<rule> <n>`` line per rule, ``total <n>``) has been stable since snakemake 7. The
+    per-job blocks are not used because snakemake 9 prints them twice in a dry run. The table
+    may also be printed more than once; every copy must agree and sum to its total.
+    """
+    tables = []
+    for match in re.finditer(r"^Job stats:\n(.*?)^total\s+(\d+)\s*$", output, re.M | re.S):
+        rows = {}
+        for line in match.group(1).splitlines():
+            row = re.fullmatch(r"(\S+)\s+(\d+)", line.strip())
+            if row and row.group(1) != "job":
+                rows[row.group(1)] = int(row.group(2))
+        assert sum(rows.values()) == int(match.group(2)), f"inconsistent job stats:\n{match.group(0)}"
+        tables.append(rows)
+    assert all(table == tables[0] for table in tables), f"job stats tables differ: {tables}"
+    return tables[0] if tables else {}
+
+
+def summary(project: Path, *targets: str) -> list[dict[str, str]]:
+    """``snakemake --summary``: one row per output file of the DAG of ``targets``.
+
+    Tab-separated, with columns output_file, date, rule, log-file(s), status and plan;
+    ``plan`` is "update pending" for files that would be (re)built. This names the exact
+    files a run would write, which the job counts alone cannot.
+    """
+    run = snakemake(project, "--summary", *targets)
+    assert run.returncode == 0, run.describe()
+    lines = [line.split("\t") for line in run.stdout.splitlines() if line.count("\t") == 5]
+    assert lines and lines[0][0] == "output_file", run.describe()
+    header = lines[0]
+    return [dict(zip(header, line)) for line in lines[1:]]
+
+
+def pending(rows: list[dict[str, str]], rule: str | None = None) -> set[str]:
+    """Output files a run would (re)build, optionally of one rule only."""
+    return {
+        row["output_file"]
+        for row in rows
+        if row["plan"] == "update pending" and (rule is None or row["rule"] == rule)
+    }
+
+
+def project_cases(project: Path):
+    """The resolved project of a copy, as the workflow sees it."""
+    config = load_global_config(project / "config" / "config.yaml")
+    return load_project(config, root=project)
+
+
+def run_path(case_id: str, method: str) -> str:
+    return f"results/runs/{case_id}/{method}.h5"
+
+
+def pdf_info_string(raw: bytes, key: str) -> str:
+    """The literal string value of ``/<key>`` in a PDF's info dictionary (no pypdf needed).
+
+    Matplotlib writes the info dictionary uncompressed; a literal string is delimited by
+    balanced parentheses with backslash escapes (PDF 32000-1, 7.3.4.2).
+    """
+    match = re.search(rb"/" + key.encode() + rb"\s*\(", raw)
+    assert match, f"no /{key} literal string in the PDF"
+    escapes = {b"n": b"\n", b"r": b"\r", b"t": b"\t", b"b": b"\b", b"f": b"\f",
+               b"(": b"(", b")": b")", b"\\": b"\\"}  # fmt: skip
+    out, depth, i = bytearray(), 0, match.end()
+    while True:
+        char = raw[i : i + 1]
+        if not char:
+            raise AssertionError(f"unterminated /{key} string in the PDF")
+        if char == b"\\":
+            nxt = raw[i + 1 : i + 2]
+            if nxt in escapes:
+                out += escapes[nxt]
+                i += 2
+            elif nxt in (b"\n", b"\r"):  # line continuation
+                i += 2
+            else:
+                octal = re.match(rb"[0-7]{1,3}", raw[i + 1 : i + 4])
+                if octal:
+                    out.append(int(octal.group(0), 8) & 0xFF)
+                    i += 1 + len(octal.group(0))
+                else:
+                    i += 1
+            continue
+        if char == b"(":
+            depth += 1
+        elif char == b")":
+            if depth == 0:
+                break
+            depth -= 1
+        out += char
+        i += 1
+    if out.startswith(b"\xfe\xff"):
+        return out[2:].decode("utf-16-be")
+    return out.decode("latin-1")
+
+
+# --------------------------------------------------------------------------------------------
+# the shared full build
+# --------------------------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A copy of the project after ``snakemake -j2`` (the whole paper). Never modified."""
+    project = copy_project(tmp_path_factory.mktemp("built") / "project")
+    run = snakemake(project, "-j2", timeout=BUILD_TIMEOUT_S)
+    assert run.returncode == 0, run.describe()
+    return project
+
+
+@pytest.fixture(scope="module")
+def expected(built: Path) -> dict:
+    """What the build must contain, from the copy's configuration."""
+    project = project_cases(built)
+    model = project.cases["model"]
+    by_variant = {
+        v: [run_path(c["id"], m) for c in project.cases_in("table2", v) for m in c["methods"]]
+        for v in TABLE2_VARIANTS
+    }
+    runs = [run_path(c["id"], m) for name in ("model", "table2")
+            for c in project.cases_in(name) for m in c["methods"]]  # fmt: skip
+    # The paper: 'model' with two methods, six balls x four rod readings with sem.
+    assert sorted(project.variants["table2"]) == sorted(TABLE2_VARIANTS)
+    assert all(len(paths) == 6 for paths in by_variant.values())
+    assert len(runs) == 26
+    return {
+        "project": project,
+        "runs": runs,
+        "model_runs": [run_path("model", m) for m in model["methods"]],
+        "table2_runs": by_variant,
+    }
+
+
+@pytest.fixture(scope="module")
+def stored_hashes(built: Path, expected: dict) -> dict[str, str]:
+    """config_sha256 of every run, read straight from the HDF5 root attributes."""
+    hashes = {}
+    for path in expected["runs"]:
+        with h5py.File(built / path, "r") as h5:
+            value = h5.attrs["config_sha256"]
+        hashes[path] = value.decode() if isinstance(value, bytes) else str(value)
+    return hashes
+
+
+def assert_inputs_match(inputs: list[dict], runs: list[str], hashes: dict[str, str]) -> None:
+    """A provenance record lists exactly ``runs``, each with the hash stored in the run."""
+    assert sorted(entry["path"] for entry in inputs) == sorted(runs)
+    for entry in inputs:
+        assert entry["config_sha256"] == hashes[entry["path"]], entry["path"]
+        case_id, method = Path(entry["path"]).parent.name, Path(entry["path"]).stem
+        assert (entry["case_id"], entry["method"]) == (case_id, method)
+
+
+# --------------------------------------------------------------------------------------------
+# 1. the full build
+# --------------------------------------------------------------------------------------------
+
+
+def test_full_build_produces_every_artifact(built: Path, expected: dict) -> None:
+    artifacts = [
+        *(f"results/tables/table2_{v}.{ext}" for v in TABLE2_VARIANTS
+          for ext in ("csv", "md", "tex", "provenance.json")),
+        *(f"results/tables/table2_variants.{ext}" for ext in ("csv", "md", "provenance.json")),
+        *(f"results/figures/{name}.{ext}" for name in ("fig2_contact_force", "table2_contact_time")
+          for ext in ("pdf", "png")),
+        *expected["runs"],
+    ]  # fmt: skip
+    missing = [a for a in artifacts if not (built / a).is_file() or (built / a).stat().st_size == 0]
+    assert not missing, f"missing or empty: {missing}"
+    # No stray run files, and no temporary file left anywhere under results/.
+    stored = sorted(p.relative_to(built).as_posix() for p in (built / "results/runs").rglob("*.h5"))
+    assert stored == sorted(expected["runs"])
+    assert not [p for p in (built / "results").rglob("*") if ".tmp" in p.name]
+
+
+def test_every_run_file_has_provenance_and_summary(built: Path, expected: dict) -> None:
+    for path in expected["runs"]:
+        with h5py.File(built / path, "r") as h5:
+            assert set(ROOT_ATTRS) <= set(h5.attrs), path
+            assert set(SUMMARY_ATTRS) <= set(h5["summary"].attrs), path
+        record = read_run(built / path)  # verifies config_sha256 against config_json
+        case_id, method = Path(path).parent.name, Path(path).stem
+        assert (record.case_id, record.method) == (case_id, method)
+        assert record.config["id"] == case_id
+        assert record.config["run"]["method"] == method
+        # The stored configuration is the resolved case the workflow was given.
+        case = expected["project"].cases[case_id]
+        assert {k: record.config[k] for k in case} == json.loads(json.dumps(case))
+        assert re.fullmatch(r"[0-9a-f]{64}", record.config_sha256)
+        assert record.code_version.startswith("0.1.0")
+        assert "numpy" in record.library_versions and "h5py" in record.library_versions
+        assert math.isfinite(record.wall_time_s) and record.wall_time_s >= 0
+        assert set(REQUIRED_SUMMARY) <= set(record.summary)
+        contact = record.summary["contact_time_s"]
+        assert math.isfinite(contact) and 1e-6 < contact < 1e-2, (path, contact)
+        assert len(record.summary["peak_force_N"]) >= 1
+        assert max(record.summary["peak_force_N"]) > 0
+        assert math.isfinite(record.summary["energy_error"])
+        assert "contact_force" in record.series and len(record.series["time"]) > 10
+
+
+def test_table2_csvs(built: Path, expected: dict) -> None:
+    cases = expected["project"].cases
+    for variant, runs in expected["table2_runs"].items():
+        table = pd.read_csv(built / f"results/tables/table2_{variant}.csv")
+        assert set(TABLE2_COLUMNS) <= set(table.columns), variant
+        assert len(table) == 6, variant
+        assert sorted(table["case_id"]) == sorted(Path(r).parent.name for r in runs)
+        for row in table.itertuples():
+            case = cases[row.case_id]
+            assert row.measured_us == pytest.approx(case["measured"]["contact_time_us"])
+            assert row.published_sem_us == pytest.approx(case["published"]["sem"]["contact_time_us"])
+            assert row.mass_g == pytest.approx(1000 * case["impactor"]["mass_kg"])
+            assert row.diameter_mm == pytest.approx(2000 * case["impactor"]["radius_m"])
+            assert math.isfinite(row.sem_us) and row.sem_us > 0
+            error = abs(row.sem_us - row.measured_us) / row.measured_us * 100
+            assert row.sem_error_pct == pytest.approx(error, rel=1e-6)
+        assert table["mass_g"].is_monotonic_increasing
+        assert table["sem_us"].is_monotonic_increasing, f"{variant}: heavier ball, longer contact"
+        assert "ball_3.16mm" in (built / f"results/tables/table2_{variant}.md").read_text()
+        assert r"\begin{tabular}" in (built / f"results/tables/table2_{variant}.tex").read_text()
+    summary_table = pd.read_csv(built / "results/tables/table2_variants.csv")
+    assert sorted(summary_table["variant"]) == sorted(TABLE2_VARIANTS)
+    assert (summary_table["n_cases"] == 6).all()
+
+
+def test_table_provenance_matches_run_files(
+    built: Path, expected: dict, stored_hashes: dict[str, str]
+) -> None:
+    for variant, runs in expected["table2_runs"].items():
+        record = json.loads((built / f"results/tables/table2_{variant}.provenance.json").read_text())
+        assert_inputs_match(record["inputs"], runs, stored_hashes)
+        assert f"results/tables/table2_{variant}.csv" in record["artifacts"]
+    record = json.loads((built / "results/tables/table2_variants.provenance.json").read_text())
+    all_table2 = [run for runs in expected["table2_runs"].values() for run in runs]
+    assert_inputs_match(record["inputs"], all_table2, stored_hashes)
+
+
+@pytest.mark.parametrize("figure", ["fig2_contact_force", "table2_contact_time"])
+def test_figures_carry_provenance(
+    built: Path, expected: dict, stored_hashes: dict[str, str], figure: str
+) -> None:
+    runs = (
+        expected["model_runs"]
+        if figure == "fig2_contact_force"
+        else [run for runs in expected["table2_runs"].values() for run in runs]
+    )
+    with Image.open(built / f"results/figures/{figure}.png") as png:
+        png.load()
+        assert png.size[0] > 100 and png.size[1] > 100
+        from_png = json.loads(png.info["Description"])
+    assert_inputs_match(from_png["inputs"], runs, stored_hashes)
+
+    raw = (built / f"results/figures/{figure}.pdf").read_bytes()
+    assert raw.startswith(b"%PDF-")
+    for run in runs:
+        assert stored_hashes[run].encode() in raw, f"{figure}.pdf lacks the hash of {run}"
+    from_pdf = json.loads(pdf_info_string(raw, "Subject"))
+    assert_inputs_match(from_pdf["inputs"], runs, stored_hashes)
+
+
+# --------------------------------------------------------------------------------------------
+# 2. only what a target needs
+# --------------------------------------------------------------------------------------------
+
+
+def test_target_plans_only_its_jobs(tmp_path: Path) -> None:
+    project = copy_project(tmp_path / "project")
+    target = "results/tables/table2_r1_l30.csv"
+    run = snakemake(project, "-n", "-j2", target)
+    assert run.returncode == 0, run.describe()
+    assert job_stats(run.output) == {"solve": 6, "table2": 1}, run.describe()
+    # Which files: the six r1_l30 runs and the four outputs of that one table2 job.
+    rows = summary(project, target)
+    balls = [c["id"] for c in project_cases(project).cases_in("table2", "r1_l30")]
+    assert pending(rows, "solve") == {run_path(ball, "sem") for ball in balls}
+    assert pending(rows, "table2") == {
+        f"results/tables/table2_r1_l30.{ext}" for ext in ("csv", "md", "tex", "provenance.json")
+    }
+    assert pending(rows) == pending(rows, "solve") | pending(rows, "table2")
+    assert not (project / "results").exists(), "a dry run must not write results"
+
+
+# --------------------------------------------------------------------------------------------
+# 3. adding a case is adding YAML
+# --------------------------------------------------------------------------------------------
+
+NEW_TABLE2_ROW = """
+  - id: ball_8.00mm
+    description: "Added by a test: steel ball, diameter 8.00 mm, mass 2.09 g"
+    impactor:
+      mass_kg: 2.09e-3
+      radius_m: 4.0e-3
+    measured: {contact_time_us: 75.0}
+"""
+
+NEW_CASE_FILE = """\
+set: my_experiment
+description: A new experiment, added by a test as one more YAML file.
+cases:
+  - id: my_ball
+    description: A steel ball on a short aluminium rod given by its cross-section area
+    impactor: {mass_kg: 1.0e-3, radius_m: 3.0e-3, velocity_m_s: 0.5, material: steel}
+    rod: {length_m: 0.2, area_m2: 1.0e-4, material: aluminium_table1}
+    measured: {contact_time_us: 50.0, source: "lab notebook, page 1"}
+"""
+
+
+def test_new_row_in_table2_yaml_is_computed(built: Path, tmp_path: Path) -> None:
+    project = clone_built(built, tmp_path / "project")
+    with open(project / "config/cases/table2.yaml", "a", encoding="utf-8") as handle:
+        handle.write(NEW_TABLE2_ROW)
+    new_case = "ball_8.00mm-r10_l30"
+
+    run = snakemake(project, "-j2", "results/tables/table2_r10_l30.csv", timeout=BUILD_TIMEOUT_S)
+    assert run.returncode == 0, run.describe()
+    # The six existing runs are reused: one new solve, then the table.
+    assert job_stats(run.output) == {"solve": 1, "table2": 1}, run.describe()
+
+    record = read_run(project / run_path(new_case, "sem"))
+    assert record.config["measured"]["contact_time_us"] == 75.0
+    assert record.config["impactor"]["mass_kg"] == pytest.approx(2.09e-3)
+    assert record.config["rod"]["radius_m"] == pytest.approx(0.010)  # from the variant
+
+    table = pd.read_csv(project / "results/tables/table2_r10_l30.csv")
+    assert len(table) == 7
+    new = table[table["case_id"] == new_case]
+    assert len(new) == 1, table["case_id"].tolist()
+    row = new.iloc[0]
+    assert row["measured_us"] == 75.0
+    assert row["mass_g"] == pytest.approx(2.09) and row["diameter_mm"] == pytest.approx(8.0)
+    assert math.isfinite(row["sem_us"]) and row["sem_us"] > 0
+    assert row["sem_us"] == pytest.approx(1e6 * record.summary["contact_time_s"], rel=1e-9)
+    assert math.isnan(row["published_sem_us"]) and math.isnan(row["published_fem_us"])
+    # Rows are sorted by mass, and the contact time grows with the mass.
+    assert table["case_id"].tolist().index(new_case) == 4
+    assert table["sem_us"].is_monotonic_increasing
+    provenance = json.loads((project / "results/tables/table2_r10_l30.provenance.json").read_text())
+    assert run_path(new_case, "sem") in [entry["path"] for entry in provenance["inputs"]]
+
+
+def test_new_case_file_is_picked_up(tmp_path: Path) -> None:
+    project = copy_project(tmp_path / "project")
+    (project / "config/cases/my_experiment.yaml").write_text(NEW_CASE_FILE, encoding="utf-8")
+    target = run_path("my_ball", "sem")
+    run = snakemake(project, "-n", "-j2", target)
+    assert run.returncode == 0, run.describe()
+    assert job_stats(run.output) == {"solve": 1}, run.describe()
+    assert pending(summary(project, target)) == {target}
+    resolved = project_cases(project)
+    assert resolved.sets["my_experiment"] == ["my_ball"]
+    assert resolved.cases["my_ball"]["rod"]["area_m2"] == pytest.approx(1.0e-4)
+
+
+# --------------------------------------------------------------------------------------------
+# 4. reruns
+# --------------------------------------------------------------------------------------------
+
+
+def test_rerun_after_full_build_plans_nothing(built: Path) -> None:
+    run = snakemake(built, "-n", "-j2")
+    assert run.returncode == 0, run.describe()
+    assert "Nothing to be done" in run.output, run.describe()
+    assert job_stats(run.output) == {}, run.describe()
+
+
+def test_changed_case_value_reruns_only_that_case(built: Path, tmp_path: Path) -> None:
+    project = clone_built(built, tmp_path / "project")
+    model_yaml = project / "config/cases/model.yaml"
+    text = model_yaml.read_text(encoding="utf-8")
+    assert text.count("velocity_m_s: 1.0\n") == 1
+    model_yaml.write_text(text.replace("velocity_m_s: 1.0\n", "velocity_m_s: 1.1\n"), encoding="utf-8")
+
+    run = snakemake(project, "-n", "-j2")
+    assert run.returncode == 0, run.describe()
+    assert job_stats(run.output) == {"solve": 2, "fig2": 1, "all": 1}, run.describe()
+    rows = summary(project)
+    assert pending(rows, "solve") == {run_path("model", "sem"), run_path("model", "sem_paper")}
+    assert pending(rows, "fig2") == {
+        "results/figures/fig2_contact_force.pdf", "results/figures/fig2_contact_force.png",
+    }  # fmt: skip
+    assert not {p for p in pending(rows) if "table2" in p or "ball_" in p}
+
+
+def test_code_change_reruns_the_solvers(built: Path, tmp_path: Path) -> None:
+    project = clone_built(built, tmp_path / "project")
+    with open(project / "src/rodimpact/hertz.py", "a", encoding="utf-8") as handle:
+        handle.write("# touched\n")  # content changes, so the checksum changes too
+
+    run = snakemake(project, "-n", "-j2")
+    assert run.returncode == 0, run.describe()
+    stats = job_stats(run.output)
+    assert stats.get("solve") == 26, run.describe()
+    assert "Updated input files: src/rodimpact/hertz.py" in run.output
+    rows = summary(project)
+    assert pending(rows, "solve") == {row["output_file"] for row in rows if row["rule"] == "solve"}
+
+
+def test_figure_code_change_reruns_no_solver(built: Path, tmp_path: Path) -> None:
+    """Each rule depends on the modules its script imports, not on the whole package."""
+    project = clone_built(built, tmp_path / "project")
+    with open(project / "src/rodimpact/figures.py", "a", encoding="utf-8") as handle:
+        handle.write("# touched\n")
+    run = snakemake(project, "-n", "-j2")
+    assert run.returncode == 0, run.describe()
+    stats = job_stats(run.output)
+    assert "solve" not in stats, run.describe()
+    assert stats.get("fig2") == 1 and stats.get("fig_table2") == 1, run.describe()
+
+
+# --------------------------------------------------------------------------------------------
+# 5. bad input stops everything before any job
+# --------------------------------------------------------------------------------------------
+
+
+def test_jobs_run_the_checkouts_own_code(tmp_path: Path) -> None:
+    """A job imports the copy's src/, not the repository's installed package."""
+    project = copy_project(tmp_path / "project")
+    runner = project / "src" / "rodimpact" / "runner.py"
+    runner.write_text(runner.read_text() + '\nraise ImportError("runner.py of the copy")\n')
+    run = snakemake(project, "-j1", run_path("model", "sem"), timeout=BUILD_TIMEOUT_S)
+    assert run.returncode != 0, run.describe()
+    log = (project / "logs" / "runs" / "model" / "sem.log")
+    assert "runner.py of the copy" in run.output + (log.read_text() if log.exists() else ""), run.describe()
+
+
+def _negative_mass(project: Path) -> None:
+    path = project / "config/cases/model.yaml"
+    text = path.read_text(encoding="utf-8")
+    assert text.count("mass_kg: 0.5\n") == 1
+    path.write_text(text.replace("mass_kg: 0.5\n", "mass_kg: -0.5\n"), encoding="utf-8")
+
+
+def _unknown_method(project: Path) -> None:
+    path = project / "config/cases/model.yaml"
+    text = path.read_text(encoding="utf-8")
+    assert text.count("methods: [sem, sem_paper]") == 1
+    path.write_text(text.replace("methods: [sem, sem_paper]", "methods: [sem, fem2d]"), encoding="utf-8")
+
+
+def _unknown_variant(project: Path) -> None:
+    path = project / "config/cases/table2.yaml"
+    text = path.read_text(encoding="utf-8")
+    anchor = "  - id: ball_4.75mm\n"
+    assert text.count(anchor) == 1
+    path.write_text(text.replace(anchor, anchor + "    variants: [r10_l30, r2_l30]\n"), encoding="utf-8")
+
+
+@pytest.mark.parametrize(
+    ("break_config", "file", "case", "field"),
+    [
+        pytest.param(_negative_mass, "config/cases/model.yaml", "model", "impactor.mass_kg", id="negative-mass"),
+        pytest.param(_unknown_method, "config/cases/model.yaml", "model", "methods[1]", id="unknown-method"),
+        pytest.param(_unknown_variant, "config/cases/table2.yaml", "ball_4.75mm", "variants[1]", id="unknown-variant"),
+    ],
+)  # fmt: skip
+def test_bad_input_stops_before_any_job(
+    tmp_path: Path, break_config, file: str, case: str, field: str
+) -> None:
+    project = copy_project(tmp_path / "project")
+    break_config(project)
+    run = snakemake(project, "-n", "-j2")
+    assert run.returncode != 0, run.describe()
+    lines = [line for line in run.output.splitlines() if line.strip()]
+    assert len(lines) == 1, f"expected one line, got:\n{run.output}"
+    message = lines[0]
+    assert message.startswith("rodimpact: invalid configuration: ")
+    assert file in message and f"case '{case}'" in message and f"field '{field}'" in message, message
+    assert "Traceback" not in run.output
+    assert not (project / "results").exists()
+    assert not (project / "logs").exists()
+
+
+# --------------------------------------------------------------------------------------------
+# 6. atomic outputs
+# --------------------------------------------------------------------------------------------
+
+# A 1 ms step is longer than the whole horizon (1.0001 x the ~0.88 ms contact-time estimate of
+# 'model'): the first step ends past the horizon with the first contact not over, so the
+# solver reports failure and runner.run_case raises SolverFailed (checked with the library).
+FAILING_NUMERICS = """\
+    numerics:
+      sem: {dt_s: 1.0e-3, max_time_factor: 1.0001}
+"""
+
+
+def test_failing_solver_leaves_no_file(tmp_path: Path) -> None:
+    project = copy_project(tmp_path / "project")
+    with open(project / "config/cases/model.yaml", "a", encoding="utf-8") as handle:
+        handle.write(FAILING_NUMERICS)
+    target = run_path("model", "sem")
+    # --keep-incomplete: snakemake must not be the one that cleans up; the rule itself must
+    # never leave a (half-)file behind.
+    run = snakemake(project, "-j1", "--keep-incomplete", target, timeout=BUILD_TIMEOUT_S)
+    assert run.returncode != 0, run.describe()
+    assert "Error in rule solve" in run.output, run.describe()
+    log = (project / "logs/runs/model/sem.log").read_text(encoding="utf-8")
+    assert "SolverFailed" in log and "before the first contact ended" in log, log
+    assert not (project / target).exists()
+    run_dir = project / "results/runs/model"
+    leftovers = [p.name for p in run_dir.iterdir()] if run_dir.exists() else []
+    assert not [name for name in leftovers if ".tmp" in name], leftovers
+    assert leftovers == [], leftovers
