@@ -94,7 +94,8 @@ def test_model_case_is_table1_model_column(shipped: Project) -> None:
     assert case["rod"]["area_m2"] == 5.0e-5
     assert case["rod"]["radius_m"] is None
     assert case["rod"]["far_end"] == "fixed"
-    assert case["methods"] == ["sem", "sem_paper"]
+    assert case["methods"] == ["sem", "sem_paper", "fem1d"]
+    assert case["stations"] == [0.5]
     assert case["outputs"] == list(OUTPUTS)
     assert case["measured"] is None
     assert case["published"]["fem_vs_sem"] == {"contact_time_difference_pct": 11.0, "extrema_difference_pct": 9.0}
@@ -117,10 +118,13 @@ def test_table2_variants_set_rod_geometry(shipped: Project) -> None:
 def test_defaults_are_filled(shipped: Project) -> None:
     case = shipped.cases["ball_3.16mm-r10_l30"]
     assert case["rod"]["far_end"] == "fixed"
-    assert case["methods"] == ["sem"]
+    assert case["methods"] == ["sem", "fem1d"]
     assert case["outputs"] == ["contact_force"]
+    assert case["stations"] == []
     assert case["numerics"] == {
-        "sem": {"dt_s": None, "steps_per_contact": 2000, "max_time_factor": 100.0, "max_contacts": 50}
+        "sem": {"dt_s": None, "steps_per_contact": 2000, "max_time_factor": 100.0, "max_contacts": 50},
+        "fem1d": {"dt_s": None, "steps_per_contact": 2000, "max_time_factor": 100.0, "max_contacts": 50,
+                  "element": "P2", "elements": None, "points_per_wavelength": 200.0},
     }
     assert shipped.cases["model"]["numerics"]["sem_paper"]["steps_per_contact"] == 20000
     assert case["measured"]["source"].startswith("Table 2")
@@ -147,7 +151,8 @@ def test_global_config_defaults_are_filled(tmp_path: Path) -> None:
     assert config["cases_dir"] == "config/cases"
     assert config["materials"] == "config/materials.yaml"
     assert config["numerics"]["sem"] == {
-        "steps_per_contact": 2000, "dt_s": None, "max_time_factor": 100.0, "max_contacts": 50
+        "steps_per_contact": 2000, "dt_s": None, "max_time_factor": 100.0, "max_contacts": 50,
+        "element": "P2", "elements": None, "points_per_wavelength": 200.0,
     }
     assert config["numerics"]["sem_paper"]["steps_per_contact"] == 20000
 
@@ -307,7 +312,7 @@ MALFORMED = {
     ),
     "unknown method": (
         _set(MODEL, "cases", 0, "methods", ["sem", "fem2d"]),
-        f"{MODEL}: case 'model': field 'methods[1]': unknown method 'fem2d'; known: sem, sem_paper",
+        f"{MODEL}: case 'model': field 'methods[1]': unknown method 'fem2d'; known: sem, sem_paper, fem1d",
     ),
     "repeated method": (
         _set(MODEL, "cases", 0, "methods", ["sem", "sem"]),
@@ -323,7 +328,7 @@ MALFORMED = {
     ),
     "unknown numerics method": (
         _set(MODEL, "cases", 0, "numerics", {"fem": {"dt_s": 1e-9}}),
-        f"{MODEL}: case 'model': field 'numerics.fem': unknown method 'fem'; known: sem, sem_paper",
+        f"{MODEL}: case 'model': field 'numerics.fem': unknown method 'fem'; known: sem, sem_paper, fem1d",
     ),
     "numerics too few steps": (
         _set(MODEL, "cases", 0, "numerics", {"sem": {"steps_per_contact": 5}}),
@@ -455,7 +460,7 @@ def test_global_config_typo(project_dir: Path) -> None:
         load_global_config(path)
     assert str(info.value) == (
         "config/config.yaml: field 'numerics.sem.step_per_contact': unknown field "
-        "(did you mean 'steps_per_contact'?); allowed: dt_s, steps_per_contact, max_time_factor, max_contacts"
+        "(did you mean 'steps_per_contact'?); allowed: dt_s, steps_per_contact, max_time_factor, max_contacts, element, elements, points_per_wavelength"
     )
 
 
@@ -475,3 +480,22 @@ def test_config_error_parts_and_pickling() -> None:
     assert isinstance(err, ValueError)
     assert str(pickle.loads(pickle.dumps(err))) == str(err)
     assert str(ConfigError("file not found", file="x.yaml")) == "x.yaml: file not found"
+
+
+def test_setting_of_another_method_is_refused(project_dir: Path) -> None:
+    edit(project_dir / MODEL, lambda d: d["cases"][0].update(numerics={"sem": {"elements": 10}}))
+    assert error_of(project_dir) == (
+        f"{MODEL}: case 'model': field 'numerics.sem.elements': not a setting of "
+        "method 'sem'; its settings: dt_s, steps_per_contact, max_time_factor, max_contacts")
+
+
+def test_station_output_needs_stations(project_dir: Path) -> None:
+    edit(project_dir / MODEL, lambda d: d["cases"][0].update(stations=[]))
+    message = error_of(project_dir)
+    assert message.startswith(f"{MODEL}: case 'model': field 'outputs[")
+    assert "'station_displacement' needs stations" in message
+
+
+def test_station_outside_the_rod_is_refused(project_dir: Path) -> None:
+    edit(project_dir / MODEL, lambda d: d["cases"][0].update(stations=[0.5, 1.5]))
+    assert f"{MODEL}: case 'model': field 'stations[1]'" in error_of(project_dir)

@@ -36,7 +36,7 @@ from rodimpact._schema import (
 logger = logging.getLogger(__name__)
 
 #: Known computation methods (keep equal to ``$defs/method`` in config.schema.yaml).
-METHODS: tuple[str, ...] = ("sem", "sem_paper")
+METHODS: tuple[str, ...] = ("sem", "sem_paper", "fem1d")
 #: Known output time series (keep equal to ``$defs/output`` in cases.schema.yaml).
 OUTPUTS: tuple[str, ...] = (
     "contact_force",
@@ -44,7 +44,18 @@ OUTPUTS: tuple[str, ...] = (
     "impactor_displacement",
     "impactor_velocity",
     "rod_end_displacement",
+    "station_displacement",
+    "station_strain",
+    "energy",
 )
+#: The numerical settings each method has (a case setting another one is an error).
+_COMMON_SETTINGS = ("dt_s", "steps_per_contact", "max_time_factor", "max_contacts")
+METHOD_SETTINGS: dict[str, tuple[str, ...]] = {
+    "sem": _COMMON_SETTINGS,
+    "sem_paper": _COMMON_SETTINGS,
+    "fem1d": _COMMON_SETTINGS + ("element", "elements", "points_per_wavelength"),
+}
+_INTEGER_SETTINGS = ("steps_per_contact", "max_contacts", "elements")
 
 DEFAULT_SCHEMA_DIR = Path("workflow") / "schemas"
 DEFAULT_CONFIG_FILE = "config/config.yaml"
@@ -308,6 +319,10 @@ class _ProjectBuilder:
             other = self.cases[case_id]["source_file"]
             where = "earlier in this file" if other == source.label else f"in {other}"
             raise error(f"duplicate case id; already defined {where}", field="id")
+        for index, output in enumerate(case["outputs"]):
+            if output.startswith("station_") and not case["stations"]:
+                raise error(f"output {output!r} needs stations (fractions of the rod length)",
+                            field=f"outputs[{index}]")
         self.cases[case_id] = {
             "id": case_id,
             "row": row,
@@ -319,6 +334,7 @@ class _ProjectBuilder:
             "rod": self._rod(case["rod"], error),
             "methods": list(case["methods"]),
             "outputs": list(case["outputs"]),
+            "stations": [float(x) for x in case["stations"]],
             "numerics": self._numerics(case, case_id, source),
             "measured": with_floats(case["measured"]),
             "published": with_floats(case["published"]),
@@ -363,13 +379,13 @@ class _ProjectBuilder:
                 message = f"no numerics for method {method!r} (case {case_id!r}, {source.label})"
                 raise self.config_source.error(message, field=f"numerics.{method}")
             overrides = case.get("numerics", {}).get(method, {})
+            allowed = METHOD_SETTINGS[method]
+            for name in overrides:
+                if name not in allowed:
+                    message = f"not a setting of method {method!r}; its settings: {', '.join(allowed)}"
+                    raise source.error(message, case=case_id, field=f"numerics.{method}.{name}")
             fields = {**self.config["numerics"][method], **overrides}
-            resolved[method] = {
-                "dt_s": None if fields["dt_s"] is None else float(fields["dt_s"]),
-                "steps_per_contact": int(fields["steps_per_contact"]),
-                "max_time_factor": float(fields["max_time_factor"]),
-                "max_contacts": int(fields["max_contacts"]),
-            }
+            resolved[method] = {name: _setting(name, fields.get(name)) for name in allowed}
         return resolved
 
     def build(self) -> Project:
@@ -417,3 +433,10 @@ class Project:
             for case_id in self.sets[set_name]
             if variant is None or self.cases[case_id]["variant"] == variant
         ]
+
+
+def _setting(name: str, value: Any) -> Any:
+    """A numerical setting as a plain Python value (ints for counts, floats for numbers)."""
+    if value is None or isinstance(value, str):
+        return value
+    return int(value) if name in _INTEGER_SETTINGS else float(value)

@@ -24,6 +24,7 @@ __all__ = [
     "effective_modulus",
     "hertz_constant",
     "hertz_rigid_impact",
+    "solve_hertz_step",
 ]
 
 #: Contact time of a Hertz impact on a rigid wall in units of alpha_max / v0:
@@ -111,3 +112,28 @@ def hertz_rigid_impact(mass_kg: float, velocity_m_s: float, hertz_k: float) -> H
         contact_time_s=HERTZ_TIME_FACTOR * alpha_max / velocity_m_s,
         peak_force_N=hertz_k * alpha_max**1.5,
     )
+
+
+def solve_hertz_step(a: float, b: float, k: float, guess: float) -> tuple[float, int]:
+    """Root alpha >= 0 of alpha + b k alpha^(3/2) = a (a > 0, b >= 0); also the iteration count.
+
+    The implicit step of any scheme in which the approach is affine in the new force,
+    alpha = a - b P, with P = k alpha^(3/2) (b > 0 gives a unique root).
+
+    f is increasing and convex on alpha >= 0, so Newton converges monotonically from any
+    start after its first step; ``guess`` is clipped to [0, upper bound].
+    """
+    bk = b * k
+    upper = a if bk <= 0 else min(a, (a / bk) ** (2.0 / 3.0))
+    alpha = min(max(guess, 0.0), upper)
+    for iteration in range(1, 60):
+        root = math.sqrt(alpha)
+        f = alpha + bk * alpha * root - a
+        step = f / (1.0 + 1.5 * bk * root)
+        alpha_new = alpha - step
+        if alpha_new < 0.0:
+            alpha_new = 0.5 * alpha
+        if abs(alpha_new - alpha) <= 1e-15 * alpha_new or alpha_new == alpha:
+            return alpha_new, iteration
+        alpha = alpha_new
+    raise RuntimeError(f"Newton on the Hertz law did not converge (a={a!r}, b={b!r})")

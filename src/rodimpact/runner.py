@@ -7,6 +7,7 @@ import time
 from pathlib import Path
 from typing import Any, Callable, Mapping
 
+from .fem import FEM1DOptions, solve_fem1d
 from .sem import ImpactProblem, SEMOptions, solve_sem
 from .store import write_run
 
@@ -21,9 +22,15 @@ class SolverFailed(RuntimeError):
 
 def _sem(scheme: str) -> Callable[[Mapping[str, Any], Mapping[str, Any]], Any]:
     def run(case: Mapping[str, Any], numerics: Mapping[str, Any]) -> Any:
-        return solve_sem(ImpactProblem.from_case(case), SEMOptions.from_mapping(numerics, scheme))
+        return solve_sem(ImpactProblem.from_case(case), SEMOptions.from_mapping(numerics, scheme),
+                         stations=case.get("stations", ()))
 
     return run
+
+
+def _fem1d(case: Mapping[str, Any], numerics: Mapping[str, Any]) -> Any:
+    return solve_fem1d(ImpactProblem.from_case(case), FEM1DOptions.from_mapping(numerics),
+                       stations=case.get("stations", ()))
 
 
 #: method name (as in the case's ``methods``) -> callable(case, numerics) -> result object
@@ -31,6 +38,7 @@ def _sem(scheme: str) -> Callable[[Mapping[str, Any], Mapping[str, Any]], Any]:
 RUNNERS: dict[str, Callable[[Mapping[str, Any], Mapping[str, Any]], Any]] = {
     "sem": _sem("implicit"),
     "sem_paper": _sem("paper"),
+    "fem1d": _fem1d,
 }
 
 

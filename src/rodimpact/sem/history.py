@@ -38,6 +38,8 @@ class ForceHistory:
     def __init__(self, rod: Rod, linear: bool) -> None:
         self.linear = linear
         self.impedance = rod.impedance
+        self.wave_speed = rod.wave_speed
+        self.length = rod.length_m
         self.period = rod.reflection_period
         self.sign = rod.reflection_sign
         self.t: list[float] = [0.0]
@@ -80,6 +82,16 @@ class ForceHistory:
             out[inner] += 0.5 * dt[inner] ** 2 * (P[j + 1] - P[j]) / (t[j + 1] - t[j])
         return np.where(tau > 0.0, out, 0.0)
 
+    def force_array(self, tau: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The force at any times, with the history's own interpolation (0 before t = 0)."""
+        tau = np.asarray(tau, dtype=float)
+        t = np.asarray(self.t)
+        P = np.asarray(self.P)
+        if self.linear:
+            return np.where(tau > 0.0, np.interp(tau, t, P), 0.0)
+        i = np.clip(np.searchsorted(t, tau, side="right") - 1, 0, len(t) - 1)
+        return np.where(tau > 0.0, P[i], 0.0)
+
     # -- rod ---------------------------------------------------------------------------
     def _coefficient(self, j: int) -> float:
         return 1.0 if j == 0 else 2.0 * self.sign**j
@@ -120,6 +132,53 @@ class ForceHistory:
             if not math.isfinite(self.period):
                 break
         return known / self.impedance, coef / self.impedance
+
+    def _waves(self, x: float, times: NDArray[np.float64]) -> list[tuple[float, float, float]]:
+        """(sign, delay, direction) of every wave that has reached x by max(times).
+
+        d'Alembert with reflections: waves travelling towards the far end (direction +1)
+        arrive with delay (2jl + x)/a and sign s^j; those travelling back (direction -1)
+        with delay (2(j+1)l - x)/a and sign s^(j+1).
+        """
+        a, length = self.wave_speed, self.length
+        waves = [(1.0, x / a, 1.0)]
+        if not math.isfinite(length):
+            return waves
+        horizon = float(np.max(times, initial=0.0))
+        j = 0
+        while True:
+            back = (2 * (j + 1) * length - x) / a
+            if back > horizon:
+                break
+            waves.append((float(self.sign ** (j + 1)), back, -1.0))
+            forward = (2 * (j + 1) * length + x) / a
+            if forward > horizon:
+                break
+            waves.append((float(self.sign ** (j + 1)), forward, 1.0))
+            j += 1
+        return waves
+
+    def displacement_at(self, x: float, times: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Axial displacement u(x, t) of the cross-section at distance x from the struck end, m.
+
+        u = (1/Z) sum over waves of sign * Q(t - delay).
+        """
+        times = np.asarray(times, dtype=float)
+        total = np.zeros_like(times)
+        for sign, delay, _ in self._waves(x, times):
+            total += sign * self.impulse_array(times - delay)
+        return total / self.impedance
+
+    def strain_at(self, x: float, times: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Axial strain du/dx at x (negative in compression), dimensionless.
+
+        du/dx = -(1/(E S)) sum over waves of sign * direction * P(t - delay).
+        """
+        times = np.asarray(times, dtype=float)
+        total = np.zeros_like(times)
+        for sign, delay, direction in self._waves(x, times):
+            total -= sign * direction * self.force_array(times - delay)
+        return total / (self.impedance * self.wave_speed)
 
     def rod_displacement(self, times: NDArray[np.float64]) -> NDArray[np.float64]:
         """End displacement u at any times (force beyond the last node held), m."""

@@ -21,41 +21,21 @@ from __future__ import annotations
 import logging
 import math
 import time as _time
+from typing import Sequence
 
 import numpy as np
 from scipy.optimize import brentq
 
+from ..hertz import solve_hertz_step
 from .history import ForceHistory
 from .problem import ImpactProblem, SEMOptions
-from .result import SEMResult, local_maxima
+from ..result import ImpactResult, local_maxima
 
 __all__ = ["solve_sem"]
 
 log = logging.getLogger(__name__)
 
 _MAX_WINDOW_SAMPLES = 400_000
-
-
-def _hertz_approach(a: float, b: float, k: float, guess: float) -> tuple[float, int]:
-    """Root alpha >= 0 of alpha + b k alpha^(3/2) = a (a > 0, b >= 0); also the iteration count.
-
-    f is increasing and convex on alpha >= 0, so Newton converges monotonically from any
-    start after its first step; ``guess`` is clipped to [0, upper bound].
-    """
-    bk = b * k
-    upper = a if bk <= 0 else min(a, (a / bk) ** (2.0 / 3.0))
-    alpha = min(max(guess, 0.0), upper)
-    for iteration in range(1, 60):
-        root = math.sqrt(alpha)
-        f = alpha + bk * alpha * root - a
-        step = f / (1.0 + 1.5 * bk * root)
-        alpha_new = alpha - step
-        if alpha_new < 0.0:
-            alpha_new = 0.5 * alpha
-        if abs(alpha_new - alpha) <= 1e-15 * alpha_new or alpha_new == alpha:
-            return alpha_new, iteration
-        alpha = alpha_new
-    raise RuntimeError(f"Newton on the Hertz law did not converge (a={a!r}, b={b!r})")
 
 
 class _Stepper:
@@ -121,7 +101,7 @@ class _Stepper:
             return
         if a > 0.0:
             guess = 2.0 * alpha_n - self.alpha[-2] if len(self.alpha) > 1 else a
-            alpha_new, iterations = _hertz_approach(a, b, k, guess)
+            alpha_new, iterations = solve_hertz_step(a, b, k, guess)
             self.n_newton += iterations
             p_new = k * alpha_new**1.5
             x_new, v_new = self._impactor(h, p_new)
@@ -193,7 +173,8 @@ class _Stepper:
         return bool(np.all(x - self.hist.rod_displacement(times) < 0.0))
 
 
-def solve_sem(problem: ImpactProblem, options: SEMOptions | None = None) -> SEMResult:
+def solve_sem(problem: ImpactProblem, options: SEMOptions | None = None,
+              stations: Sequence[float] = ()) -> ImpactResult:
     """Solve the SEM contact problem.
 
     Parameters
@@ -202,15 +183,20 @@ def solve_sem(problem: ImpactProblem, options: SEMOptions | None = None) -> SEMR
         The impact.
     options : SEMOptions, optional
         Scheme and step; defaults to ``SEMOptions()`` (implicit scheme).
+    stations : sequence of float
+        Positions along the rod as fractions of its length from the struck end (0..1);
+        the displacement and strain there are computed from the force by d'Alembert's
+        solution (``station_displacement``, ``station_strain``, shape (n, k)).
 
     Returns
     -------
-    SEMResult
+    ImpactResult
         Histories, contact intervals, force maxima, energy balance and cost counters.
         ``success`` is False (and ``status`` ``failed``) when the first contact did not
         end within the time horizon.
     """
     options = SEMOptions() if options is None else options
+    stations = _check_stations(stations, problem)
     started = _time.perf_counter()
     st = _Stepper(problem, options)
     t_max = options.max_time_factor * problem.contact_time_estimate()
@@ -235,17 +221,52 @@ def solve_sem(problem: ImpactProblem, options: SEMOptions | None = None) -> SEMR
             break
     if st.in_contact:
         st.starts = st.starts[: len(st.ends)]
-    return _result(st, status, message, _time.perf_counter() - started)
+    return _result(st, status, message, _time.perf_counter() - started, stations)
 
 
-def _result(st: _Stepper, status: str, message: str, wall: float) -> SEMResult:
+def _check_stations(stations: Sequence[float], problem: ImpactProblem) -> tuple[float, ...]:
+    stations = tuple(float(s) for s in stations)
+    if any(not (0.0 <= s <= 1.0) for s in stations):
+        raise ValueError(f"stations must be fractions of the rod length in [0, 1], got {stations}")
+    if stations and not math.isfinite(problem.rod.length_m):
+        raise ValueError("stations need a rod of finite length")
+    return stations
+
+
+def _histories(st: _Stepper, stations: tuple[float, ...], rod_energy: np.ndarray) -> tuple[dict, dict]:
+    """Station histories (d'Alembert) and energies as extra series; station positions."""
+    t = np.asarray(st.hist.t)
+    alpha = np.asarray(st.alpha)
+    series = {
+        "impactor_kinetic_energy": (0.5 * st.m * np.asarray(st.v) ** 2, "J", "kinetic energy of the impactor"),
+        "contact_energy": (0.4 * st.k * np.maximum(alpha, 0.0) ** 2.5, "J", "Hertz energy stored in the contact"),
+        "rod_energy": (rod_energy, "J", "energy in the rod: work done on it by the contact force"),
+    }
+    extra = {}
+    if stations:
+        length = st.problem.rod.length_m
+        xs = [s * length for s in stations]
+        series["station_displacement"] = (
+            np.column_stack([st.hist.displacement_at(x, t) for x in xs]), "m",
+            "axial displacement of the cross-sections at station_x_m (d'Alembert, from the contact force)")
+        series["station_strain"] = (
+            np.column_stack([st.hist.strain_at(x, t) for x in xs]), "1",
+            "axial strain du/dx at station_x_m (negative in compression; d'Alembert)")
+        extra["station_x_m"] = np.asarray(xs)
+    return series, extra
+
+
+def _result(st: _Stepper, status: str, message: str, wall: float,
+            stations: tuple[float, ...] = ()) -> ImpactResult:
     t = np.asarray(st.hist.t)
     p = np.asarray(st.hist.P)
     u = np.asarray(st.u)
     alpha = np.asarray(st.alpha)
     # work done on the rod, with the scheme's own force representation
     mean_force = 0.5 * (p[1:] + p[:-1]) if st.implicit else p[:-1]
-    rod_energy = float(np.sum(mean_force * np.diff(u)))
+    rod_work = np.concatenate([[0.0], np.cumsum(mean_force * np.diff(u))])
+    rod_energy = float(rod_work[-1])
+    series, extra = _histories(st, stations, rod_work)
     problem = st.problem
     ke_in = problem.kinetic_energy_J
     ke_out = 0.5 * problem.mass_kg * st.v[-1] ** 2
@@ -256,7 +277,7 @@ def _result(st: _Stepper, status: str, message: str, wall: float) -> SEMResult:
         status, message = "failed", "non-finite energy balance"
     log.info("SEM %s: %s (%s), %d steps, contact time %.6g s", st.options.scheme, status, message,
              len(t) - 1, (st.ends[0] - st.starts[0]) if st.ends else math.nan)
-    return SEMResult(
+    return ImpactResult(
         success=status != "failed",
         status=status,
         message=message,
@@ -279,4 +300,6 @@ def _result(st: _Stepper, status: str, message: str, wall: float) -> SEMResult:
         n_newton_iterations=st.n_newton,
         n_events=st.n_events,
         wall_time_s=wall,
+        extra=extra,
+        extra_series=series,
     )

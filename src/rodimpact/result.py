@@ -1,4 +1,4 @@
-"""Result object of the SEM driver and the post-processing shared by the solvers."""
+"""Result object shared by every solver (SEM and FEM) and the post-processing they share."""
 
 from __future__ import annotations
 
@@ -9,15 +9,25 @@ from typing import Any, Iterable
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["SEMResult", "SERIES", "local_maxima"]
+__all__ = ["ImpactResult", "OUTPUT_DATASETS", "SERIES", "local_maxima"]
 
-#: Output name -> (attribute of the result, units, description).
-SERIES: dict[str, tuple[str, str, str]] = {
-    "contact_force": ("contact_force", "N", "contact force P(t)"),
-    "approach": ("approach", "m", "approach alpha(t) of impactor and rod end (negative: gap)"),
-    "impactor_displacement": ("impactor_displacement", "m", "impactor displacement towards the rod"),
-    "impactor_velocity": ("impactor_velocity", "m/s", "impactor velocity, positive towards the rod"),
-    "rod_end_displacement": ("rod_end_displacement", "m", "axial displacement of the struck rod end"),
+#: Histories every solver fills: dataset name -> (units, description).
+SERIES: dict[str, tuple[str, str]] = {
+    "contact_force": ("N", "contact force P(t)"),
+    "approach": ("m", "approach alpha(t) of impactor and rod end (negative: gap)"),
+    "impactor_displacement": ("m", "impactor displacement towards the rod"),
+    "impactor_velocity": ("m/s", "impactor velocity, positive towards the rod"),
+    "rod_end_displacement": ("m", "axial displacement of the struck rod end, positive into the rod"),
+}
+
+#: Output name (a case's ``outputs``) -> (datasets it stores, datasets stored when present).
+#: ``station_*`` have shape (n, k) for the k stations in the summary's ``station_x_m``.
+OUTPUT_DATASETS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
+    **{name: ((name,), ()) for name in SERIES},
+    "station_displacement": (("station_displacement",), ()),
+    "station_strain": (("station_strain",), ()),
+    "energy": (("impactor_kinetic_energy", "contact_energy", "rod_energy"),
+               ("rod_kinetic_energy", "rod_strain_energy")),
 }
 
 
@@ -62,8 +72,8 @@ def local_maxima(
 
 
 @dataclass(frozen=True)
-class SEMResult:
-    """Outcome of one SEM run. Failure is data: check ``success`` and ``status``.
+class ImpactResult:
+    """Outcome of one solver run. Failure is data: check ``success`` and ``status``.
 
     Attributes
     ----------
@@ -76,7 +86,7 @@ class SEMResult:
     message : str
         Human-readable explanation of the status.
     scheme : str
-        ``implicit`` or ``paper``.
+        The solver and scheme, e.g. ``implicit``, ``paper``, ``fem1d-P2-newmark``.
     dt_s : float
         The nominal time step, s.
     time, contact_force, approach, impactor_displacement, impactor_velocity, rod_end_displacement : ndarray, shape (n,)
@@ -95,6 +105,11 @@ class SEMResult:
         Cost counters: accepted nodes, Newton iterations, located contact events.
     wall_time_s : float
         Wall time of the solve, s.
+    extra : dict
+        More summary entries (scalars, strings, 1-D arrays), e.g. ``station_x_m``.
+    extra_series : dict
+        More histories: name -> (array of first dimension n, units, description), e.g.
+        ``station_displacement`` or the energies.
     """
 
     success: bool
@@ -120,6 +135,7 @@ class SEMResult:
     n_events: int
     wall_time_s: float
     extra: dict[str, Any] = field(default_factory=dict)
+    extra_series: dict[str, tuple[NDArray[np.float64], str, str]] = field(default_factory=dict)
 
     @property
     def contact_time_s(self) -> float:
@@ -158,11 +174,23 @@ class SEMResult:
         }
 
     def series(self, outputs: Iterable[str]) -> dict[str, tuple[NDArray[np.float64], str, str]]:
-        """``time`` plus the requested outputs as name -> (array, units, description)."""
+        """``time`` plus the datasets of the requested outputs: name -> (array, units, description).
+
+        Raises
+        ------
+        ValueError
+            An output is unknown, or this run did not compute it (e.g. stations not asked).
+        """
         out = {"time": (self.time, "s", "time since first contact")}
         for name in outputs:
-            if name not in SERIES:
-                raise ValueError(f"outputs: unknown output {name!r}; known: {sorted(SERIES)}")
-            attr, units, description = SERIES[name]
-            out[name] = (getattr(self, attr), units, description)
+            if name not in OUTPUT_DATASETS:
+                raise ValueError(f"outputs: unknown output {name!r}; known: {sorted(OUTPUT_DATASETS)}")
+            required, optional = OUTPUT_DATASETS[name]
+            for dataset in required + optional:
+                if dataset in SERIES:
+                    out[dataset] = (getattr(self, dataset), *SERIES[dataset])
+                elif dataset in self.extra_series:
+                    out[dataset] = self.extra_series[dataset]
+                elif dataset in required:
+                    raise ValueError(f"outputs: {name!r} was not computed by this {self.scheme} run")
         return out
