@@ -30,7 +30,7 @@ test: $(STAMP)
 	$(BIN)/python -m pytest
 
 bench: $(STAMP)
-	$(BIN)/snakemake -j1 --forcerun bench_sem results/benchmarks/sem.csv
+	$(BIN)/snakemake -j1 --forcerun bench_sem bench_fem -- results/benchmarks/sem.csv results/benchmarks/fem.csv
 
 clean:
 	rm -rf results logs .snakemake

@@ -1,4 +1,4 @@
-"""CI regression: our SEM numbers for every shipped case against a committed golden file.
+"""CI regression: our numbers (every method) for every shipped case against a committed golden file.
 
 The solver is deterministic; the tolerance only absorbs floating-point differences between
 machines and library builds. A method change that moves the numbers must regenerate the
@@ -12,7 +12,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-RTOL = 1e-6  # relative; the schemes' own discretisation errors at the shipped steps are ~1e-7 to 1e-5
+RTOL = 1e-6  # relative; the methods' own discretisation errors at the shipped settings are ~1e-7 to 1e-5
 
 _spec = importlib.util.spec_from_file_location("regenerate", Path(__file__).parent / "golden" / "regenerate.py")
 regenerate = importlib.util.module_from_spec(_spec)
@@ -46,7 +46,7 @@ def test_numbers_match_the_golden_file(frames):
 def test_model_case_matches_the_papers_figure_2_shape(frames):
     """Fig. 2 of the paper: one contact with three maxima, the middle one the largest."""
     _, ours = frames
-    for method in ("sem", "sem_paper"):
+    for method in ("sem", "sem_paper", "fem1d"):
         row = ours[(ours.case_id == "model") & (ours.method == method)].iloc[0]
         peaks = regenerate.parse_peaks(row.peak_force_N)
         assert row.n_contacts == 1 and len(peaks) == 3 and np.argmax(peaks) == 1

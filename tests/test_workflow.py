@@ -222,10 +222,10 @@ def expected(built: Path) -> dict:
     }
     runs = [run_path(c["id"], m) for name in ("model", "table2")
             for c in project.cases_in(name) for m in c["methods"]]  # fmt: skip
-    # The paper: 'model' with two methods, six balls x four rod readings with sem.
+    # The paper: 'model' with three methods, six balls x four rod readings with sem and fem1d.
     assert sorted(project.variants["table2"]) == sorted(TABLE2_VARIANTS)
-    assert all(len(paths) == 6 for paths in by_variant.values())
-    assert len(runs) == 26
+    assert all(len(paths) == 12 for paths in by_variant.values())
+    assert len(runs) == 51
     return {
         "project": project,
         "runs": runs,
@@ -264,7 +264,8 @@ def test_full_build_produces_every_artifact(built: Path, expected: dict) -> None
         *(f"results/tables/table2_{v}.{ext}" for v in TABLE2_VARIANTS
           for ext in ("csv", "md", "tex", "provenance.json")),
         *(f"results/tables/table2_variants.{ext}" for ext in ("csv", "md", "provenance.json")),
-        *(f"results/figures/{name}.{ext}" for name in ("fig2_contact_force", "table2_contact_time")
+        *(f"results/figures/{name}.{ext}"
+          for name in ("fig2_contact_force", "fig4_midrod_displacement", "table2_contact_time")
           for ext in ("pdf", "png")),
         *expected["runs"],
     ]  # fmt: skip
@@ -308,7 +309,7 @@ def test_table2_csvs(built: Path, expected: dict) -> None:
         table = pd.read_csv(built / f"results/tables/table2_{variant}.csv")
         assert set(TABLE2_COLUMNS) <= set(table.columns), variant
         assert len(table) == 6, variant
-        assert sorted(table["case_id"]) == sorted(Path(r).parent.name for r in runs)
+        assert sorted(table["case_id"]) == sorted({Path(r).parent.name for r in runs})
         for row in table.itertuples():
             case = cases[row.case_id]
             assert row.measured_us == pytest.approx(case["measured"]["contact_time_us"])
@@ -318,12 +319,17 @@ def test_table2_csvs(built: Path, expected: dict) -> None:
             assert math.isfinite(row.sem_us) and row.sem_us > 0
             error = abs(row.sem_us - row.measured_us) / row.measured_us * 100
             assert row.sem_error_pct == pytest.approx(error, rel=1e-6)
+            # fem1d: the same physics, discretised independently
+            assert row.fem1d_us == pytest.approx(row.sem_us, rel=1e-4)
+            error = abs(row.fem1d_us - row.measured_us) / row.measured_us * 100
+            assert row.fem1d_error_pct == pytest.approx(error, rel=1e-6)
         assert table["mass_g"].is_monotonic_increasing
         assert table["sem_us"].is_monotonic_increasing, f"{variant}: heavier ball, longer contact"
         assert "ball_3.16mm" in (built / f"results/tables/table2_{variant}.md").read_text()
         assert r"\begin{tabular}" in (built / f"results/tables/table2_{variant}.tex").read_text()
     summary_table = pd.read_csv(built / "results/tables/table2_variants.csv")
-    assert sorted(summary_table["variant"]) == sorted(TABLE2_VARIANTS)
+    assert sorted(set(summary_table["variant"])) == sorted(TABLE2_VARIANTS)
+    assert sorted(set(summary_table["method"])) == ["fem1d", "sem"]
     assert (summary_table["n_cases"] == 6).all()
 
 
@@ -339,13 +345,13 @@ def test_table_provenance_matches_run_files(
     assert_inputs_match(record["inputs"], all_table2, stored_hashes)
 
 
-@pytest.mark.parametrize("figure", ["fig2_contact_force", "table2_contact_time"])
+@pytest.mark.parametrize("figure", ["fig2_contact_force", "fig4_midrod_displacement", "table2_contact_time"])
 def test_figures_carry_provenance(
     built: Path, expected: dict, stored_hashes: dict[str, str], figure: str
 ) -> None:
     runs = (
         expected["model_runs"]
-        if figure == "fig2_contact_force"
+        if figure in ("fig2_contact_force", "fig4_midrod_displacement")
         else [run for runs in expected["table2_runs"].values() for run in runs]
     )
     with Image.open(built / f"results/figures/{figure}.png") as png:
@@ -372,11 +378,11 @@ def test_target_plans_only_its_jobs(tmp_path: Path) -> None:
     target = "results/tables/table2_r1_l30.csv"
     run = snakemake(project, "-n", "-j2", target)
     assert run.returncode == 0, run.describe()
-    assert job_stats(run.output) == {"solve": 6, "table2": 1}, run.describe()
-    # Which files: the six r1_l30 runs and the four outputs of that one table2 job.
+    assert job_stats(run.output) == {"solve": 12, "table2": 1}, run.describe()
+    # Which files: the six r1_l30 balls by both methods and the four outputs of the table2 job.
     rows = summary(project, target)
     balls = [c["id"] for c in project_cases(project).cases_in("table2", "r1_l30")]
-    assert pending(rows, "solve") == {run_path(ball, "sem") for ball in balls}
+    assert pending(rows, "solve") == {run_path(ball, m) for ball in balls for m in ("sem", "fem1d")}
     assert pending(rows, "table2") == {
         f"results/tables/table2_r1_l30.{ext}" for ext in ("csv", "md", "tex", "provenance.json")
     }
@@ -417,8 +423,8 @@ def test_new_row_in_table2_yaml_is_computed(built: Path, tmp_path: Path) -> None
 
     run = snakemake(project, "-j2", "results/tables/table2_r10_l30.csv", timeout=BUILD_TIMEOUT_S)
     assert run.returncode == 0, run.describe()
-    # The six existing runs are reused: one new solve, then the table.
-    assert job_stats(run.output) == {"solve": 1, "table2": 1}, run.describe()
+    # The existing runs are reused: the new ball by both methods, then the table.
+    assert job_stats(run.output) == {"solve": 2, "table2": 1}, run.describe()
 
     record = read_run(project / run_path(new_case, "sem"))
     assert record.config["measured"]["contact_time_us"] == 75.0
@@ -476,9 +482,9 @@ def test_changed_case_value_reruns_only_that_case(built: Path, tmp_path: Path) -
 
     run = snakemake(project, "-n", "-j2")
     assert run.returncode == 0, run.describe()
-    assert job_stats(run.output) == {"solve": 2, "fig2": 1, "all": 1}, run.describe()
+    assert job_stats(run.output) == {"solve": 3, "fig2": 1, "fig4": 1, "all": 1}, run.describe()
     rows = summary(project)
-    assert pending(rows, "solve") == {run_path("model", "sem"), run_path("model", "sem_paper")}
+    assert pending(rows, "solve") == {run_path("model", m) for m in ("sem", "sem_paper", "fem1d")}
     assert pending(rows, "fig2") == {
         "results/figures/fig2_contact_force.pdf", "results/figures/fig2_contact_force.png",
     }  # fmt: skip
@@ -493,7 +499,7 @@ def test_code_change_reruns_the_solvers(built: Path, tmp_path: Path) -> None:
     run = snakemake(project, "-n", "-j2")
     assert run.returncode == 0, run.describe()
     stats = job_stats(run.output)
-    assert stats.get("solve") == 26, run.describe()
+    assert stats.get("solve") == 51, run.describe()
     assert "Updated input files: src/rodimpact/hertz.py" in run.output
     rows = summary(project)
     assert pending(rows, "solve") == {row["output_file"] for row in rows if row["rule"] == "solve"}
@@ -537,8 +543,8 @@ def _negative_mass(project: Path) -> None:
 def _unknown_method(project: Path) -> None:
     path = project / "config/cases/model.yaml"
     text = path.read_text(encoding="utf-8")
-    assert text.count("methods: [sem, sem_paper]") == 1
-    path.write_text(text.replace("methods: [sem, sem_paper]", "methods: [sem, fem2d]"), encoding="utf-8")
+    assert text.count("methods: [sem, sem_paper, fem1d]") == 1
+    path.write_text(text.replace("methods: [sem, sem_paper, fem1d]", "methods: [sem, fem2d]"), encoding="utf-8")
 
 
 def _unknown_variant(project: Path) -> None:

@@ -9,7 +9,7 @@ import logging
 from pathlib import Path
 from typing import Sequence
 
-from .figures import plot_contact_force, plot_table2_contact_time, save_figure
+from .figures import plot_contact_force, plot_station_displacement, plot_table2_contact_time, save_figure
 from .store import read_run
 from .tables import (
     load_records,
@@ -20,7 +20,7 @@ from .tables import (
     write_table,
 )
 
-__all__ = ["make_fig2", "make_fig_table2", "make_table2", "make_table2_variants"]
+__all__ = ["make_fig2", "make_fig4", "make_fig_table2", "make_table2", "make_table2_variants"]
 
 log = logging.getLogger(__name__)
 
@@ -66,6 +66,20 @@ def make_fig2(runs: Sequence[str | Path], *, pdf: str | Path, png: str | Path) -
     fig = plot_contact_force(records, title=f"Contact force, case {cases[0]!r} (Fig. 2 of the paper)")
     save_figure(fig, pdf=pdf, png=png, provenance=provenance_record(records, [pdf, png]),
                 title="Fig. 2: contact force against time")
+
+
+def make_fig4(runs: Sequence[str | Path], fraction: float, *, pdf: str | Path, png: str | Path) -> None:
+    """Fig. 4: displacement of the cross-section at ``fraction`` of the rod length, every
+    stored run of one case that recorded stations."""
+    records = [read_run(p) for p in runs]
+    records = [r for r in records if "station_displacement" in r.series]
+    cases = sorted({r.case_id for r in records})
+    if len(cases) != 1:
+        raise ValueError(f"runs: Fig. 4 shows one case with station histories, got {cases}")
+    fig = plot_station_displacement(records, fraction, title=(
+        f"Displacement at {fraction:g} of the rod length, case {cases[0]!r} (Fig. 4 of the paper)"))
+    save_figure(fig, pdf=pdf, png=png, provenance=provenance_record(records, [pdf, png]),
+                title="Fig. 4: displacement of a cross-section of the rod against time")
 
 
 def make_fig_table2(runs: Sequence[str | Path], variants: Sequence[str], *, pdf: str | Path,

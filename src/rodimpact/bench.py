@@ -11,9 +11,10 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 import pandas as pd
 
+from .fem import FEM1DOptions, solve_fem1d
 from .sem import ImpactProblem, SEMOptions, solve_sem
 
-__all__ = ["benchmark_sem", "machine_info"]
+__all__ = ["benchmark_fem1d", "benchmark_sem", "machine_info"]
 
 log = logging.getLogger(__name__)
 
@@ -24,11 +25,11 @@ def machine_info() -> dict[str, Any]:
             "cpu_count": os.cpu_count(), "python": platform.python_version()}
 
 
-def _timed(problem: ImpactProblem, options: SEMOptions, repeats: int):
+def _timed(problem: ImpactProblem, options: Any, repeats: int, solver=solve_sem):
     best, result = np.inf, None
     for _ in range(repeats):
         started = time.perf_counter()
-        result = solve_sem(problem, options)
+        result = solver(problem, options)
         best = min(best, time.perf_counter() - started)
     return result, best
 
@@ -70,4 +71,37 @@ def benchmark_sem(case: Mapping[str, Any], *, implicit_steps: Sequence[int] = (5
                          "peak_force_rel_error": peak, "energy_error": result.energy_error,
                          "reference_error": ref_error, **machine_info()})
             log.info("%s n=%d: %.4f s, errors %.2e %.2e", scheme, n, wall, tc, peak)
+    return pd.DataFrame(rows)
+
+
+def benchmark_fem1d(case: Mapping[str, Any], *, settings: Sequence[tuple[str, int | None, int]] = (
+        ("P1", 20, 500), ("P1", 40, 1000), ("P1", 80, 2000), ("P2", 10, 500), ("P2", 20, 1000),
+        ("P2", None, 2000), ("P2", 80, 4000)), repeats: int = 2) -> pd.DataFrame:
+    """Wall time of fem1d and its agreement with a converged SEM run, per setting.
+
+    Parameters
+    ----------
+    settings : sequence of (element, elements or None, steps_per_contact)
+        None elements: the shipped rule (points_per_wavelength).
+
+    Returns
+    -------
+    DataFrame
+        One row per setting: element, n_elements, n_dofs, steps_per_contact, n_steps,
+        wall_time_s (best of ``repeats``), contact_time_rel_diff and peak_force_rel_diff
+        (max over maxima; inf when the number of maxima differs) against the SEM at 16000
+        steps per Hertz time, and the machine.
+    """
+    problem = ImpactProblem.from_case(case)
+    ref = solve_sem(problem, SEMOptions(steps_per_contact=16000))
+    rows = []
+    for element, n, steps in settings:
+        options = FEM1DOptions(element=element, elements=n, steps_per_contact=steps)
+        result, wall = _timed(problem, options, repeats, solver=solve_fem1d)
+        tc, peak = _rel_errors(result, ref)
+        rows.append({"case": case["id"], "method": "fem1d", "element": element,
+                     "n_elements": result.extra["n_elements"], "n_dofs": result.extra["n_dofs"],
+                     "steps_per_contact": steps, "n_steps": result.n_steps, "wall_time_s": wall,
+                     "contact_time_rel_diff": tc, "peak_force_rel_diff": peak, **machine_info()})
+        log.info("fem1d %s n=%s steps=%d: %.3f s, diffs %.2e %.2e", element, n, steps, wall, tc, peak)
     return pd.DataFrame(rows)

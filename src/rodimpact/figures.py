@@ -18,12 +18,13 @@ from .atomic import atomic_output  # noqa: E402
 from .store import RunRecord  # noqa: E402
 from .tables import METHOD_ORDER  # noqa: E402
 
-__all__ = ["METHOD_LABELS", "plot_contact_force", "plot_table2_contact_time", "save_figure"]
+__all__ = ["METHOD_LABELS", "plot_contact_force", "plot_station_displacement", "plot_table2_contact_time",
+           "save_figure"]
 
 log = logging.getLogger(__name__)
 
 METHOD_LABELS = {
-    "sem": "SEM, implicit scheme (this work)",
+    "sem": "SEM, implicit scheme (this work; stations by d'Alembert)",
     "sem_paper": "SEM, the paper's explicit scheme",
     "fem1d": "FEM, 1D bar (this work)",
     "fem_axi": "FEM, axisymmetric continuum (this work)",
@@ -61,7 +62,7 @@ def plot_contact_force(records: Sequence[RunRecord], title: str = "") -> matplot
     records : sequence of RunRecord
         Runs of one case with the ``contact_force`` series.
     """
-    fig, ax = plt.subplots(figsize=(7.0, 4.2), layout="constrained")
+    fig, ax = plt.subplots(figsize=(7.0, 4.8), layout="constrained")
     for rec in _ordered(records):
         t_us = 1e6 * rec.series["time"]
         ax.plot(t_us, 1e-3 * rec.series["contact_force"], _STYLE.get(rec.method, "-"), lw=1.4,
@@ -75,7 +76,39 @@ def plot_contact_force(records: Sequence[RunRecord], title: str = "") -> matplot
     ax.set_xlim(left=0)
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="upper right")
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2, frameon=False)
+    if title:
+        ax.set_title(title, fontsize=10)
+    return fig
+
+
+def plot_station_displacement(records: Sequence[RunRecord], fraction: float,
+                              title: str = "") -> matplotlib.figure.Figure:
+    """Fig. 4: axial displacement of the cross-section at ``fraction`` of the rod length.
+
+    Parameters
+    ----------
+    records : sequence of RunRecord
+        Runs of one case with ``station_displacement`` and the summary's ``station_x_m``;
+        each contributes the station closest to ``fraction`` of its rod's length.
+    fraction : float
+        Station position as a fraction of the rod length from the struck end.
+    """
+    fig, ax = plt.subplots(figsize=(7.0, 4.8), layout="constrained")
+    for rec in _ordered(records):
+        xs = np.atleast_1d(rec.summary["station_x_m"])
+        length = rec.config["rod"]["length_m"]
+        column = int(np.argmin(np.abs(xs / length - fraction)))
+        history = np.asarray(rec.series["station_displacement"]).reshape(len(rec.series["time"]), -1)
+        ax.plot(1e6 * rec.series["time"], 1e6 * history[:, column], _STYLE.get(rec.method, "-"), lw=1.4,
+                label=f"{METHOD_LABELS.get(rec.method, rec.method)} (x = {xs[column]:.4g} m)")
+        ax.axvline(1e6 * rec.summary["contact_end_s"][0], color="0.6", lw=0.8, ls=":")
+    ax.axhline(0.0, color="0.3", lw=0.6)
+    ax.set_xlabel("time t, µs")
+    ax.set_ylabel("axial displacement u, µm")
+    ax.set_xlim(left=0)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2, frameon=False)
     if title:
         ax.set_title(title, fontsize=10)
     return fig

@@ -19,6 +19,7 @@ def script_logging(log_path: str | Path, level: int = logging.INFO) -> Iterator[
                                        logging.StreamHandler(sys.stderr)]
     logging.basicConfig(level=level, handlers=handlers, force=True,
                         format="%(asctime)s %(levelname)s %(name)s: %(message)s")
+    logging.getLogger("skfem").setLevel(logging.WARNING)  # per-assembly chatter
     logger = logging.getLogger("rodimpact.script")
     try:
         yield logger

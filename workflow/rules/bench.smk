@@ -15,3 +15,19 @@ rule bench_sem:
         "../envs/rodimpact.yaml"
     script:
         "../scripts/bench_sem.py"
+
+
+rule bench_fem:
+    """Wall time of fem1d on 'model' and its agreement with the SEM, per mesh and step."""
+    input:
+        code=SRC_BENCH,
+    output:
+        csv="results/benchmarks/fem.csv",
+    params:
+        case=lambda w: PROJECT.cases["model"],
+    log:
+        "logs/benchmarks/fem.log",
+    conda:
+        "../envs/rodimpact.yaml"
+    script:
+        "../scripts/bench_fem.py"

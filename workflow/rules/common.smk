@@ -69,6 +69,7 @@ def default_targets():
     targets = []
     if "model" in sets:
         targets += expand("results/figures/fig2_contact_force.{ext}", ext=["pdf", "png"])
+        targets += expand("results/figures/fig4_midrod_displacement.{ext}", ext=["pdf", "png"])
     if "table2" in sets:
         targets += expand("results/tables/table2_{variant}.{ext}", variant=TABLE2_VARIANTS,
                           ext=["csv", "md", "tex", "provenance.json"])

@@ -17,6 +17,24 @@ rule fig2:
         "../scripts/fig2.py"
 
 
+rule fig4:
+    """Fig. 4: displacement of the cross-section at half the rod length, case 'model'."""
+    input:
+        runs=lambda w: runs_of([PROJECT.cases["model"]]),
+        code=SRC_PRESENT,
+    output:
+        pdf="results/figures/fig4_midrod_displacement.pdf",
+        png="results/figures/fig4_midrod_displacement.png",
+    params:
+        fraction=0.5,
+    log:
+        "logs/figures/fig4_midrod_displacement.log",
+    conda:
+        "../envs/rodimpact.yaml"
+    script:
+        "../scripts/fig4.py"
+
+
 rule fig_table2:
     """Contact time against ball mass: measured, published and ours, per geometry variant."""
     input:

@@ -166,6 +166,7 @@ def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
     g = solve(e0)
     b_rod = g[bar.end]
     static_end = splu(K).solve(e0)[bar.end] if rod.far_end == "fixed" else math.inf
+    rod_momentum = M.T @ np.ones(M.shape[0])  # momentum of the rod = rod_momentum @ v
 
     d = M.shape[0]
     u, v, a = np.zeros(d), np.zeros(d), np.zeros(d)
@@ -206,7 +207,7 @@ def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
         e_rod_kin.append(0.5 * v @ (M @ v))
         e_rod_str.append(0.5 * u @ (K @ u))
         if not in_contact and ends and _no_further_contact(rod, x, w, e_rod_kin[-1] + e_rod_str[-1],
-                                                           static_end, t - ends[-1]):
+                                                           static_end, t - ends[-1], rod_momentum @ v):
             status, message = "completed", f"{len(ends)} contact(s); no further contact possible"
             break
         if len(starts) > options.max_contacts:
@@ -221,13 +222,14 @@ def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
 
 
 def _no_further_contact(rod, x: float, w: float, rod_energy: float, static_end: float,
-                        since_separation: float) -> bool:
+                        since_separation: float, rod_momentum: float) -> bool:
     """Fixed far end: the end can never be further out than sqrt(2 E_rod C_static), so an
     impactor moving away beyond that never returns (rigorous). Free far end: the impactor
-    moves away and has stayed clear for 8T (a heuristic)."""
+    is no faster than the rod's centre of mass and has stayed clear for 8T (a heuristic:
+    the end oscillates about the centre-of-mass motion)."""
     if rod.far_end == "fixed":
         return w <= 0.0 and x + math.sqrt(2.0 * rod_energy * static_end) < 0.0
-    return w <= 0.0 and since_separation >= 4.0 * rod.reflection_period
+    return w <= rod_momentum / rod.mass_kg and since_separation >= 4.0 * rod.reflection_period
 
 
 def _result(problem: ImpactProblem, options: FEM1DOptions, s: dict) -> ImpactResult:

@@ -1,0 +1,8 @@
+"""Snakemake adapter: Fig. 4 (displacement of a cross-section of the rod, case 'model')."""
+
+from rodimpact.artifacts import make_fig4
+from rodimpact.logs import script_logging
+
+with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
+    make_fig4(snakemake.input.runs, snakemake.params.fraction,  # noqa: F821
+              pdf=snakemake.output.pdf, png=snakemake.output.png)  # noqa: F821
