@@ -2,6 +2,7 @@
 #   make paper   build .venv from environment.lock if missing or stale, then snakemake -j2
 #   make test    same environment; snakemake --lint, a dry run, pytest
 #   make bench   benchmarks -> results/benchmarks/*.csv (one job at a time, for clean timings)
+#   make convergence   the fem_axi convergence study -> results/tables/fem_axi_convergence.csv
 
 PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV   := .venv
@@ -9,7 +10,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-from-lock
 CORES  ?= 2
 
-.PHONY: paper test bench env clean distclean
+.PHONY: paper test bench convergence env clean distclean
 
 $(STAMP): environment.lock pyproject.toml
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info[:2] == (3, 11) else "rodimpact needs Python 3.11 (environment.lock is for 3.11), found " + sys.version.split()[0])'
@@ -30,7 +31,11 @@ test: $(STAMP)
 	$(BIN)/python -m pytest
 
 bench: $(STAMP)
-	$(BIN)/snakemake -j1 --forcerun bench_sem bench_fem -- results/benchmarks/sem.csv results/benchmarks/fem.csv
+	$(BIN)/snakemake -j1 --forcerun bench_sem bench_fem bench_fem_axi -- results/benchmarks/sem.csv \
+		results/benchmarks/fem.csv results/benchmarks/fem_axi.csv
+
+convergence: $(STAMP)
+	$(BIN)/snakemake -j$(CORES) results/tables/fem_axi_convergence.csv
 
 clean:
 	rm -rf results logs .snakemake

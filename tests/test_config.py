@@ -88,13 +88,14 @@ def test_model_case_is_table1_model_column(shipped: Project) -> None:
         "mass_kg": 0.5,
         "radius_m": 0.01,
         "velocity_m_s": 1.0,
+        "body": "cap",
         "material": {"name": "steel", "youngs_modulus_pa": 2.1e11, "poisson_ratio": 0.3, "density_kg_m3": 7800.0},
     }
     assert case["rod"]["length_m"] == 0.5
     assert case["rod"]["area_m2"] == 5.0e-5
     assert case["rod"]["radius_m"] is None
     assert case["rod"]["far_end"] == "fixed"
-    assert case["methods"] == ["sem", "sem_paper", "fem1d"]
+    assert case["methods"] == ["sem", "sem_paper", "fem1d", "fem_axi"]
     assert case["stations"] == [0.5]
     assert case["outputs"] == list(OUTPUTS)
     assert case["measured"] is None
@@ -112,19 +113,22 @@ def test_table2_variants_set_rod_geometry(shipped: Project) -> None:
             assert case["rod"]["area_m2"] == pytest.approx(math.pi * radius**2, rel=1e-15)
             assert case["rod"]["material"]["name"] == "aluminium_table1"
             assert case["impactor"]["velocity_m_s"] == 0.3225
+            assert case["impactor"]["body"] == "sphere"
             assert case["impactor"]["material"]["name"] == "steel"
 
 
 def test_defaults_are_filled(shipped: Project) -> None:
     case = shipped.cases["ball_3.16mm-r10_l30"]
     assert case["rod"]["far_end"] == "fixed"
-    assert case["methods"] == ["sem", "fem1d"]
+    assert case["methods"] == ["sem", "fem1d", "fem_axi"]
     assert case["outputs"] == ["contact_force"]
     assert case["stations"] == []
     assert case["numerics"] == {
         "sem": {"dt_s": None, "steps_per_contact": 2000, "max_time_factor": 100.0, "max_contacts": 50},
         "fem1d": {"dt_s": None, "steps_per_contact": 2000, "max_time_factor": 100.0, "max_contacts": 50,
                   "element": "P2", "elements": None, "points_per_wavelength": 200.0},
+        "fem_axi": {"dt_s": None, "steps_per_contact": 300, "max_time_factor": 100.0, "max_contacts": 50,
+                    "element": "P2", "elements_across": 8, "contact_extent": 1.5, "cap_height": 1.0},
     }
     assert shipped.cases["model"]["numerics"]["sem_paper"]["steps_per_contact"] == 20000
     assert case["measured"]["source"].startswith("Table 2")
@@ -153,6 +157,7 @@ def test_global_config_defaults_are_filled(tmp_path: Path) -> None:
     assert config["numerics"]["sem"] == {
         "steps_per_contact": 2000, "dt_s": None, "max_time_factor": 100.0, "max_contacts": 50,
         "element": "P2", "elements": None, "points_per_wavelength": 200.0,
+        "elements_across": 8, "contact_extent": 1.5, "cap_height": 1.0,
     }
     assert config["numerics"]["sem_paper"]["steps_per_contact"] == 20000
 
@@ -312,7 +317,7 @@ MALFORMED = {
     ),
     "unknown method": (
         _set(MODEL, "cases", 0, "methods", ["sem", "fem2d"]),
-        f"{MODEL}: case 'model': field 'methods[1]': unknown method 'fem2d'; known: sem, sem_paper, fem1d",
+        f"{MODEL}: case 'model': field 'methods[1]': unknown method 'fem2d'; known: sem, sem_paper, fem1d, fem_axi",
     ),
     "repeated method": (
         _set(MODEL, "cases", 0, "methods", ["sem", "sem"]),
@@ -328,7 +333,7 @@ MALFORMED = {
     ),
     "unknown numerics method": (
         _set(MODEL, "cases", 0, "numerics", {"fem": {"dt_s": 1e-9}}),
-        f"{MODEL}: case 'model': field 'numerics.fem': unknown method 'fem'; known: sem, sem_paper, fem1d",
+        f"{MODEL}: case 'model': field 'numerics.fem': unknown method 'fem'; known: sem, sem_paper, fem1d, fem_axi",
     ),
     "numerics too few steps": (
         _set(MODEL, "cases", 0, "numerics", {"sem": {"steps_per_contact": 5}}),
@@ -358,7 +363,7 @@ MALFORMED = {
     "typo mas_kg": (
         _rename(TABLE2, ("cases", 0, "impactor"), "mass_kg", "mas_kg"),
         f"{TABLE2}: case 'ball_3.16mm': field 'impactor.mas_kg': unknown field (did you mean 'mass_kg'?); "
-        "allowed: mass_kg, radius_m, velocity_m_s, material",
+        "allowed: mass_kg, radius_m, velocity_m_s, material, body",
     ),
     "far end clamped": (
         _set(MODEL, "cases", 0, "rod", "far_end", "clamped"),
@@ -460,7 +465,7 @@ def test_global_config_typo(project_dir: Path) -> None:
         load_global_config(path)
     assert str(info.value) == (
         "config/config.yaml: field 'numerics.sem.step_per_contact': unknown field "
-        "(did you mean 'steps_per_contact'?); allowed: dt_s, steps_per_contact, max_time_factor, max_contacts, element, elements, points_per_wavelength"
+        "(did you mean 'steps_per_contact'?); allowed: dt_s, steps_per_contact, max_time_factor, max_contacts, element, elements, points_per_wavelength, elements_across, contact_extent, cap_height"
     )
 
 

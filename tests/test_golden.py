@@ -46,7 +46,7 @@ def test_numbers_match_the_golden_file(frames):
 def test_model_case_matches_the_papers_figure_2_shape(frames):
     """Fig. 2 of the paper: one contact with three maxima, the middle one the largest."""
     _, ours = frames
-    for method in ("sem", "sem_paper", "fem1d"):
+    for method in ("sem", "sem_paper", "fem1d", "fem_axi"):
         row = ours[(ours.case_id == "model") & (ours.method == method)].iloc[0]
         peaks = regenerate.parse_peaks(row.peak_force_N)
         assert row.n_contacts == 1 and len(peaks) == 3 and np.argmax(peaks) == 1

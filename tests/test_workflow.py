@@ -54,8 +54,16 @@ DRY_RUN_TIMEOUT_S = 120
 # --------------------------------------------------------------------------------------------
 
 
+COARSE_FEM_AXI = ("steps_per_contact: 300, max_time_factor: 100.0, max_contacts: 50,\n"
+                  "              element: P2, elements_across: 8")
+
+
 def copy_project(dest: Path) -> Path:
-    """A fresh, unbuilt copy of the project at ``dest``."""
+    """A fresh, unbuilt copy of the project at ``dest``.
+
+    These tests are about the workflow's mechanics, not its numerics (tested elsewhere and
+    regressed by test_golden.py): the copy runs fem_axi on a coarse mesh with few steps.
+    """
     dest.mkdir(parents=True, exist_ok=True)
     ignore = shutil.ignore_patterns("__pycache__", "*.pyc", "*.egg-info", "*.tmp*")
     for part in PROJECT_PARTS:
@@ -64,6 +72,11 @@ def copy_project(dest: Path) -> Path:
             shutil.copytree(source, dest / part, ignore=ignore)
         else:
             shutil.copy2(source, dest / part)
+    config = dest / "config" / "config.yaml"
+    text = config.read_text(encoding="utf-8")
+    assert text.count(COARSE_FEM_AXI) == 1, "the fem_axi numerics line of config.yaml moved"
+    config.write_text(text.replace(COARSE_FEM_AXI, COARSE_FEM_AXI.replace("300", "80").replace(
+        "elements_across: 8", "elements_across: 4")), encoding="utf-8")
     return dest
 
 
@@ -222,10 +235,10 @@ def expected(built: Path) -> dict:
     }
     runs = [run_path(c["id"], m) for name in ("model", "table2")
             for c in project.cases_in(name) for m in c["methods"]]  # fmt: skip
-    # The paper: 'model' with three methods, six balls x four rod readings with sem and fem1d.
+    # The paper: 'model' with four methods, six balls x four rod readings with three.
     assert sorted(project.variants["table2"]) == sorted(TABLE2_VARIANTS)
-    assert all(len(paths) == 12 for paths in by_variant.values())
-    assert len(runs) == 51
+    assert all(len(paths) == 18 for paths in by_variant.values())
+    assert len(runs) == 76
     return {
         "project": project,
         "runs": runs,
@@ -264,6 +277,7 @@ def test_full_build_produces_every_artifact(built: Path, expected: dict) -> None
         *(f"results/tables/table2_{v}.{ext}" for v in TABLE2_VARIANTS
           for ext in ("csv", "md", "tex", "provenance.json")),
         *(f"results/tables/table2_variants.{ext}" for ext in ("csv", "md", "provenance.json")),
+        *(f"results/tables/fig2_comparison.{ext}" for ext in ("csv", "md", "provenance.json")),
         *(f"results/figures/{name}.{ext}"
           for name in ("fig2_contact_force", "fig4_midrod_displacement", "table2_contact_time")
           for ext in ("pdf", "png")),
@@ -323,13 +337,15 @@ def test_table2_csvs(built: Path, expected: dict) -> None:
             assert row.fem1d_us == pytest.approx(row.sem_us, rel=1e-4)
             error = abs(row.fem1d_us - row.measured_us) / row.measured_us * 100
             assert row.fem1d_error_pct == pytest.approx(error, rel=1e-6)
+            # fem_axi, coarse in these copies: the continuum contact, close to the SEM
+            assert row.fem_axi_us == pytest.approx(row.sem_us, rel=0.1)
         assert table["mass_g"].is_monotonic_increasing
         assert table["sem_us"].is_monotonic_increasing, f"{variant}: heavier ball, longer contact"
         assert "ball_3.16mm" in (built / f"results/tables/table2_{variant}.md").read_text()
         assert r"\begin{tabular}" in (built / f"results/tables/table2_{variant}.tex").read_text()
     summary_table = pd.read_csv(built / "results/tables/table2_variants.csv")
     assert sorted(set(summary_table["variant"])) == sorted(TABLE2_VARIANTS)
-    assert sorted(set(summary_table["method"])) == ["fem1d", "sem"]
+    assert sorted(set(summary_table["method"])) == ["fem1d", "fem_axi", "sem"]
     assert (summary_table["n_cases"] == 6).all()
 
 
@@ -378,11 +394,11 @@ def test_target_plans_only_its_jobs(tmp_path: Path) -> None:
     target = "results/tables/table2_r1_l30.csv"
     run = snakemake(project, "-n", "-j2", target)
     assert run.returncode == 0, run.describe()
-    assert job_stats(run.output) == {"solve": 12, "table2": 1}, run.describe()
+    assert job_stats(run.output) == {"solve": 18, "table2": 1}, run.describe()
     # Which files: the six r1_l30 balls by both methods and the four outputs of the table2 job.
     rows = summary(project, target)
     balls = [c["id"] for c in project_cases(project).cases_in("table2", "r1_l30")]
-    assert pending(rows, "solve") == {run_path(ball, m) for ball in balls for m in ("sem", "fem1d")}
+    assert pending(rows, "solve") == {run_path(ball, m) for ball in balls for m in ("sem", "fem1d", "fem_axi")}
     assert pending(rows, "table2") == {
         f"results/tables/table2_r1_l30.{ext}" for ext in ("csv", "md", "tex", "provenance.json")
     }
@@ -424,7 +440,7 @@ def test_new_row_in_table2_yaml_is_computed(built: Path, tmp_path: Path) -> None
     run = snakemake(project, "-j2", "results/tables/table2_r10_l30.csv", timeout=BUILD_TIMEOUT_S)
     assert run.returncode == 0, run.describe()
     # The existing runs are reused: the new ball by both methods, then the table.
-    assert job_stats(run.output) == {"solve": 2, "table2": 1}, run.describe()
+    assert job_stats(run.output) == {"solve": 3, "table2": 1}, run.describe()
 
     record = read_run(project / run_path(new_case, "sem"))
     assert record.config["measured"]["contact_time_us"] == 75.0
@@ -482,9 +498,10 @@ def test_changed_case_value_reruns_only_that_case(built: Path, tmp_path: Path) -
 
     run = snakemake(project, "-n", "-j2")
     assert run.returncode == 0, run.describe()
-    assert job_stats(run.output) == {"solve": 3, "fig2": 1, "fig4": 1, "all": 1}, run.describe()
+    assert job_stats(run.output) == {"solve": 4, "fig2": 1, "fig4": 1, "fig2_comparison": 1, "all": 1}, \
+        run.describe()
     rows = summary(project)
-    assert pending(rows, "solve") == {run_path("model", m) for m in ("sem", "sem_paper", "fem1d")}
+    assert pending(rows, "solve") == {run_path("model", m) for m in ("sem", "sem_paper", "fem1d", "fem_axi")}
     assert pending(rows, "fig2") == {
         "results/figures/fig2_contact_force.pdf", "results/figures/fig2_contact_force.png",
     }  # fmt: skip
@@ -499,7 +516,7 @@ def test_code_change_reruns_the_solvers(built: Path, tmp_path: Path) -> None:
     run = snakemake(project, "-n", "-j2")
     assert run.returncode == 0, run.describe()
     stats = job_stats(run.output)
-    assert stats.get("solve") == 51, run.describe()
+    assert stats.get("solve") == 76, run.describe()
     assert "Updated input files: src/rodimpact/hertz.py" in run.output
     rows = summary(project)
     assert pending(rows, "solve") == {row["output_file"] for row in rows if row["rule"] == "solve"}
@@ -543,8 +560,9 @@ def _negative_mass(project: Path) -> None:
 def _unknown_method(project: Path) -> None:
     path = project / "config/cases/model.yaml"
     text = path.read_text(encoding="utf-8")
-    assert text.count("methods: [sem, sem_paper, fem1d]") == 1
-    path.write_text(text.replace("methods: [sem, sem_paper, fem1d]", "methods: [sem, fem2d]"), encoding="utf-8")
+    assert text.count("methods: [sem, sem_paper, fem1d, fem_axi]") == 1
+    path.write_text(text.replace("methods: [sem, sem_paper, fem1d, fem_axi]", "methods: [sem, fem2d]"),
+                    encoding="utf-8")
 
 
 def _unknown_variant(project: Path) -> None:

@@ -14,7 +14,7 @@ import pandas as pd
 from .fem import FEM1DOptions, solve_fem1d
 from .sem import ImpactProblem, SEMOptions, solve_sem
 
-__all__ = ["benchmark_fem1d", "benchmark_sem", "machine_info"]
+__all__ = ["benchmark_fem1d", "benchmark_fem_axi", "benchmark_sem", "machine_info"]
 
 log = logging.getLogger(__name__)
 
@@ -104,4 +104,48 @@ def benchmark_fem1d(case: Mapping[str, Any], *, settings: Sequence[tuple[str, in
                      "steps_per_contact": steps, "n_steps": result.n_steps, "wall_time_s": wall,
                      "contact_time_rel_diff": tc, "peak_force_rel_diff": peak, **machine_info()})
         log.info("fem1d %s n=%s steps=%d: %.3f s, diffs %.2e %.2e", element, n, steps, wall, tc, peak)
+    return pd.DataFrame(rows)
+
+
+def _fem_axi_task(case: Mapping[str, Any]) -> dict[str, Any]:
+    """One fem_axi run in a fresh process: its wall time and its own peak memory."""
+    import resource
+
+    from .fem.fem_axi import AxiImpact, FEMAxiOptions, solve_fem_axi
+
+    started = time.perf_counter()
+    result = solve_fem_axi(AxiImpact.from_case(case), FEMAxiOptions.from_mapping(case["numerics"]["fem_axi"]),
+                           stations=case.get("stations", ()))
+    wall = time.perf_counter() - started
+    sem = solve_sem(ImpactProblem.from_case(case), SEMOptions(steps_per_contact=4000))
+    return {"case": case["id"], "method": "fem_axi", "success": result.success,
+            "elements_across": case["numerics"]["fem_axi"]["elements_across"],
+            "steps_per_contact": case["numerics"]["fem_axi"]["steps_per_contact"],
+            "n_dofs": result.extra["rod_dofs"] + result.extra["impactor_dofs"], "n_steps": result.n_steps,
+            "wall_time_s": wall, "peak_memory_MiB": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+            "contact_time_us": 1e6 * result.contact_time_s,
+            "contact_time_vs_sem_pct": 100 * (result.contact_time_s / sem.contact_time_s - 1), **machine_info()}
+
+
+def benchmark_fem_axi(cases: Sequence[Mapping[str, Any]]) -> pd.DataFrame:
+    """fem_axi at each case's shipped numerics, one fresh process per run (one at a time).
+
+    Returns
+    -------
+    DataFrame
+        One row per case: DOFs (rod + impactor), steps, wall time, the process's peak
+        resident memory (MiB, includes the Python interpreter and libraries), contact time
+        and its difference from the SEM.
+    """
+    from concurrent.futures import ProcessPoolExecutor
+    from multiprocessing import get_context
+
+    rows = []
+    for case in cases:
+        # fork, not spawn: a spawned child would re-run the calling (snakemake) script
+        with ProcessPoolExecutor(max_workers=1, mp_context=get_context("fork")) as pool:
+            row = pool.submit(_fem_axi_task, dict(case)).result()
+        log.info("fem_axi %s: %.1f s, %d DOFs, %.0f MiB", row["case"], row["wall_time_s"], row["n_dofs"],
+                 row["peak_memory_MiB"])
+        rows.append(row)
     return pd.DataFrame(rows)

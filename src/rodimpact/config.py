@@ -36,7 +36,7 @@ from rodimpact._schema import (
 logger = logging.getLogger(__name__)
 
 #: Known computation methods (keep equal to ``$defs/method`` in config.schema.yaml).
-METHODS: tuple[str, ...] = ("sem", "sem_paper", "fem1d")
+METHODS: tuple[str, ...] = ("sem", "sem_paper", "fem1d", "fem_axi")
 #: Known output time series (keep equal to ``$defs/output`` in cases.schema.yaml).
 OUTPUTS: tuple[str, ...] = (
     "contact_force",
@@ -47,6 +47,7 @@ OUTPUTS: tuple[str, ...] = (
     "station_displacement",
     "station_strain",
     "energy",
+    "contact_radius",
 )
 #: The numerical settings each method has (a case setting another one is an error).
 _COMMON_SETTINGS = ("dt_s", "steps_per_contact", "max_time_factor", "max_contacts")
@@ -54,8 +55,9 @@ METHOD_SETTINGS: dict[str, tuple[str, ...]] = {
     "sem": _COMMON_SETTINGS,
     "sem_paper": _COMMON_SETTINGS,
     "fem1d": _COMMON_SETTINGS + ("element", "elements", "points_per_wavelength"),
+    "fem_axi": _COMMON_SETTINGS + ("element", "elements_across", "contact_extent", "cap_height"),
 }
-_INTEGER_SETTINGS = ("steps_per_contact", "max_contacts", "elements")
+_INTEGER_SETTINGS = ("steps_per_contact", "max_contacts", "elements", "elements_across")
 
 DEFAULT_SCHEMA_DIR = Path("workflow") / "schemas"
 DEFAULT_CONFIG_FILE = "config/config.yaml"
@@ -354,7 +356,7 @@ class _ProjectBuilder:
     def _impactor(self, impactor: dict, error: Callable[..., ConfigError]) -> dict:
         resolved = {key: float(impactor[key]) for key in ("mass_kg", "radius_m", "velocity_m_s")}
         material = self._material(impactor["material"], error, "impactor.material")
-        return {**resolved, "material": material}
+        return {**resolved, "body": impactor["body"], "material": material}
 
     def _rod(self, rod: dict, error: Callable[..., ConfigError]) -> dict:
         given = [key for key in ("area_m2", "radius_m") if key in rod]
@@ -393,6 +395,19 @@ class _ProjectBuilder:
             if name not in self.sets:
                 message = f"unknown case set {name!r}; known: {', '.join(self.sets)}"
                 raise self.config_source.error(message, field=f"targets.sets[{index}]")
+        for method, study in self.config.get("convergence", {}).items():
+            for index, case_id in enumerate(study["cases"]):
+                where = f"convergence.{method}.cases[{index}]"
+                if case_id not in self.cases:
+                    raise self.config_source.error(f"unknown case {case_id!r}", field=where)
+                if method not in self.cases[case_id]["methods"]:
+                    raise self.config_source.error(f"case {case_id!r} does not run {method!r}", field=where)
+            for index, level in enumerate(study["levels"]):
+                for name in level:
+                    if name not in METHOD_SETTINGS[method]:
+                        raise self.config_source.error(
+                            f"not a setting of method {method!r}; its settings: {', '.join(METHOD_SETTINGS[method])}",
+                            field=f"convergence.{method}.levels[{index}].{name}")
         return Project(cases=self.cases, sets=self.sets, variants=self.variants)
 
 

@@ -24,10 +24,10 @@ __all__ = ["METHOD_LABELS", "plot_contact_force", "plot_station_displacement", "
 log = logging.getLogger(__name__)
 
 METHOD_LABELS = {
-    "sem": "SEM, implicit scheme (this work; stations by d'Alembert)",
+    "sem": "SEM, implicit scheme",
     "sem_paper": "SEM, the paper's explicit scheme",
-    "fem1d": "FEM, 1D bar (this work)",
-    "fem_axi": "FEM, axisymmetric continuum (this work)",
+    "fem1d": "FEM, 1D bar",
+    "fem_axi": "FEM, axisymmetric continuum",
 }
 _STYLE = {"sem": "-", "sem_paper": "--", "fem1d": "-.", "fem_axi": ":"}
 
@@ -62,21 +62,23 @@ def plot_contact_force(records: Sequence[RunRecord], title: str = "") -> matplot
     records : sequence of RunRecord
         Runs of one case with the ``contact_force`` series.
     """
-    fig, ax = plt.subplots(figsize=(7.0, 4.8), layout="constrained")
+    fig, ax = plt.subplots(figsize=(7.0, 5.0), layout="constrained")
+    last_end = 0.0
     for rec in _ordered(records):
         t_us = 1e6 * rec.series["time"]
         ax.plot(t_us, 1e-3 * rec.series["contact_force"], _STYLE.get(rec.method, "-"), lw=1.4,
                 label=f"{METHOD_LABELS.get(rec.method, rec.method)}: "
                       f"contact {1e6 * rec.summary['contact_time_s']:.1f} µs")
+        last_end = max(last_end, float(np.atleast_1d(rec.summary["contact_end_s"])[-1]))
         peaks_t = 1e6 * np.asarray(rec.summary["peak_time_s"])
         ax.plot(peaks_t, 1e-3 * np.asarray(rec.summary["peak_force_N"]), "o", ms=3.5,
                 color=ax.lines[-1].get_color())
     ax.set_xlabel("time t, µs")
     ax.set_ylabel("contact force P, kN")
-    ax.set_xlim(left=0)
+    ax.set_xlim(0, 1.05e6 * last_end)
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2, frameon=False)
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=1, frameon=False)
     if title:
         ax.set_title(title, fontsize=10)
     return fig
@@ -94,21 +96,23 @@ def plot_station_displacement(records: Sequence[RunRecord], fraction: float,
     fraction : float
         Station position as a fraction of the rod length from the struck end.
     """
-    fig, ax = plt.subplots(figsize=(7.0, 4.8), layout="constrained")
+    fig, ax = plt.subplots(figsize=(7.0, 5.0), layout="constrained")
     for rec in _ordered(records):
         xs = np.atleast_1d(rec.summary["station_x_m"])
         length = rec.config["rod"]["length_m"]
         column = int(np.argmin(np.abs(xs / length - fraction)))
         history = np.asarray(rec.series["station_displacement"]).reshape(len(rec.series["time"]), -1)
         ax.plot(1e6 * rec.series["time"], 1e6 * history[:, column], _STYLE.get(rec.method, "-"), lw=1.4,
-                label=f"{METHOD_LABELS.get(rec.method, rec.method)} (x = {xs[column]:.4g} m)")
+                label=f"{METHOD_LABELS.get(rec.method, rec.method)}"
+                      + (" (d'Alembert, from its contact force)" if rec.method.startswith("sem") else "")
+                      + (" (cross-section mean)" if rec.method == "fem_axi" else ""))
         ax.axvline(1e6 * rec.summary["contact_end_s"][0], color="0.6", lw=0.8, ls=":")
     ax.axhline(0.0, color="0.3", lw=0.6)
     ax.set_xlabel("time t, µs")
-    ax.set_ylabel("axial displacement u, µm")
+    ax.set_ylabel(f"axial displacement u at x = {xs[column]:.4g} m, µm")
     ax.set_xlim(left=0)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2, frameon=False)
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=1, frameon=False)
     if title:
         ax.set_title(title, fontsize=10)
     return fig

@@ -7,9 +7,10 @@ from dataclasses import dataclass, field
 from typing import Any, Iterable
 
 import numpy as np
+from scipy.signal import peak_prominences
 from numpy.typing import NDArray
 
-__all__ = ["ImpactResult", "OUTPUT_DATASETS", "SERIES", "local_maxima"]
+__all__ = ["ImpactResult", "OUTPUT_DATASETS", "SERIES", "local_maxima", "limit_reached"]
 
 #: Histories every solver fills: dataset name -> (units, description).
 SERIES: dict[str, tuple[str, str]] = {
@@ -25,14 +26,31 @@ SERIES: dict[str, tuple[str, str]] = {
 OUTPUT_DATASETS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
     **{name: ((name,), ()) for name in SERIES},
     "station_displacement": (("station_displacement",), ()),
+    "contact_radius": (("contact_radius",), ()),
     "station_strain": (("station_strain",), ()),
     "energy": (("impactor_kinetic_energy", "contact_energy", "rod_energy"),
                ("rod_kinetic_energy", "rod_strain_energy")),
 }
 
 
+def limit_reached(starts: list[float], ends: list[float], t: float, t_max: float,
+                  max_contacts: int) -> tuple[str, str] | None:
+    """The limits a time-stepping solver shares: too many contacts, or the time horizon.
+
+    Returns (status, message) when a limit is reached (dropping the contact start beyond
+    ``max_contacts``), else None.
+    """
+    if len(starts) > max_contacts:
+        starts.pop()
+        return "truncated", f"stopped at max_contacts={max_contacts}; later contacts not computed"
+    if t >= t_max:
+        status = "truncated" if ends else "failed"
+        return status, f"time horizon {t_max:.6g} s reached" + ("" if ends else " before the first contact ended")
+    return None
+
+
 def local_maxima(
-    time: NDArray[np.float64], force: NDArray[np.float64]
+    time: NDArray[np.float64], force: NDArray[np.float64], min_prominence: float = 0.0
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Every strict local maximum of a sampled force, refined by a parabola.
 
@@ -40,6 +58,10 @@ def local_maxima(
     ----------
     time, force : ndarray, shape (n,)
         Nodes (increasing times, s) and force values, N.
+    min_prominence : float
+        Keep only maxima that rise at least this much (N) above the higher of the two
+        minima that separate them from higher ground (``scipy.signal`` prominence); 0
+        keeps every maximum.
 
     Returns
     -------
@@ -52,6 +74,8 @@ def local_maxima(
     if len(p) < 3:
         return np.empty(0), np.empty(0)
     i = np.flatnonzero((p[1:-1] > p[:-2]) & (p[1:-1] >= p[2:]) & (p[1:-1] > 0)) + 1
+    if min_prominence > 0 and len(i):
+        i = i[peak_prominences(p, i)[0] >= min_prominence]
     times, values = [], []
     for k in i:
         t0, t1, t2 = t[k - 1], t[k], t[k + 1]

@@ -8,10 +8,11 @@ from pathlib import Path
 from typing import Any, Callable, Mapping
 
 from .fem import FEM1DOptions, solve_fem1d
+from .fem.fem_axi import AxiImpact, FEMAxiOptions, solve_fem_axi
 from .sem import ImpactProblem, SEMOptions, solve_sem
 from .store import write_run
 
-__all__ = ["RUNNERS", "SolverFailed", "run_case", "run_to_file", "run_config"]
+__all__ = ["RUNNERS", "SolverFailed", "case_at_level", "run_case", "run_to_file", "run_config"]
 
 log = logging.getLogger(__name__)
 
@@ -39,12 +40,23 @@ RUNNERS: dict[str, Callable[[Mapping[str, Any], Mapping[str, Any]], Any]] = {
     "sem": _sem("implicit"),
     "sem_paper": _sem("paper"),
     "fem1d": _fem1d,
+    "fem_axi": lambda case, numerics: solve_fem_axi(AxiImpact.from_case(case), FEMAxiOptions.from_mapping(numerics),
+                                                    stations=case.get("stations", ())),
 }
 
 
-def run_config(case: Mapping[str, Any], method: str) -> dict[str, Any]:
+def run_config(case: Mapping[str, Any], method: str, level: int | None = None) -> dict[str, Any]:
     """The configuration a run is stored and hashed with: the resolved case plus the run."""
-    return {**case, "run": {"method": method, "numerics": case["numerics"][method]}}
+    run = {"method": method, "numerics": case["numerics"][method]}
+    if level is not None:
+        run["level"] = level
+    return {**case, "run": run}
+
+
+def case_at_level(case: Mapping[str, Any], method: str, overrides: Mapping[str, Any]) -> dict[str, Any]:
+    """The case with ``overrides`` on its numerics for ``method`` (a convergence level)."""
+    numerics = {**case["numerics"], method: {**case["numerics"][method], **overrides}}
+    return {**case, "numerics": numerics}
 
 
 def run_case(case: Mapping[str, Any], method: str) -> Any:
@@ -67,7 +79,7 @@ def run_case(case: Mapping[str, Any], method: str) -> Any:
     return result
 
 
-def run_to_file(case: Mapping[str, Any], method: str, path: str | Path) -> Path:
+def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: int | None = None) -> Path:
     """Solve and write ``path`` (HDF5, atomically); returns the path.
 
     Only the outputs the case lists are stored.
@@ -78,7 +90,7 @@ def run_to_file(case: Mapping[str, Any], method: str, path: str | Path) -> Path:
     log.info("case %s, method %s: %s in %.3f s", case["id"], method, result.message, wall)
     return write_run(
         path,
-        config=run_config(case, method),
+        config=run_config(case, method, level),
         method=method,
         series=result.series(case["outputs"]),
         summary=result.summary(),

@@ -21,6 +21,8 @@ from .store import RunRecord, read_summary
 
 __all__ = [
     "METHOD_ORDER",
+    "comparison_frame",
+    "convergence_frame",
     "PUBLISHED_FAMILY",
     "load_records",
     "provenance_record",
@@ -140,6 +142,72 @@ def variants_summary(frames: dict[str, pd.DataFrame]) -> pd.DataFrame:
                 "paper_max_error_pct": float(np.nanmax(paper)),
             })
     return pd.DataFrame(rows)
+
+
+def _first_contact_maxima(rec: RunRecord) -> np.ndarray:
+    peaks_t = np.atleast_1d(rec.summary["peak_time_s"])
+    peaks = np.atleast_1d(rec.summary["peak_force_N"])
+    end = np.atleast_1d(rec.summary["contact_end_s"])
+    return peaks[peaks_t <= end[0]] if len(end) else peaks
+
+
+def comparison_frame(records: Sequence[RunRecord], reference: str = "sem") -> pd.DataFrame:
+    """Contact time and every force maximum of one case, per method, with each method's
+    relative difference from ``reference`` and the paper's published FEM-SEM differences.
+
+    Returns
+    -------
+    DataFrame
+        Columns ``method, contact_time_us, n_maxima, max_1_kN, ..., contact_time_vs_{ref}_pct,
+        maxima_vs_{ref}_pct`` (largest |difference| over the maxima, NaN when the numbers of
+        maxima differ), ``paper_fem_vs_sem_contact_time_pct, paper_fem_vs_sem_extrema_pct``.
+    """
+    by_method = {r.method: r for r in records}
+    if reference not in by_method:
+        raise ValueError(f"records: no run of the reference method {reference!r}")
+    ref = by_method[reference]
+    ref_tc, ref_max = float(ref.summary["contact_time_s"]), _first_contact_maxima(ref)
+    published = (ref.config.get("published") or {}).get("fem_vs_sem") or {}
+    rows = []
+    for method in _methods(records):
+        rec = by_method[method]
+        tc, maxima = float(rec.summary["contact_time_s"]), _first_contact_maxima(rec)
+        row: dict[str, Any] = {"case_id": rec.case_id, "method": method, "contact_time_us": 1e6 * tc,
+                               "n_maxima": len(maxima)}
+        for i, value in enumerate(maxima, start=1):
+            row[f"max_{i}_kN"] = 1e-3 * value
+        row[f"contact_time_vs_{reference}_pct"] = (tc / ref_tc - 1.0) * 100.0
+        row[f"maxima_vs_{reference}_pct"] = (float(np.max(np.abs(maxima / ref_max - 1.0))) * 100.0
+                                             if len(maxima) == len(ref_max) else math.nan)
+        row["paper_fem_vs_sem_contact_time_pct"] = published.get("contact_time_difference_pct", math.nan)
+        row["paper_fem_vs_sem_extrema_pct"] = published.get("extrema_difference_pct", math.nan)
+        rows.append(row)
+    frame = pd.DataFrame(rows)
+    maxima_columns = sorted((c for c in frame.columns if c.startswith("max_")), key=lambda c: int(c.split("_")[1]))
+    head = ["case_id", "method", "contact_time_us", "n_maxima", *maxima_columns]
+    return frame[head + [c for c in frame.columns if c not in head]]
+
+
+def convergence_frame(records: Sequence[RunRecord]) -> pd.DataFrame:
+    """A convergence study: one row per (case, level), with the change of the contact time
+    and of the first force maximum from the finest level of the same case, in %."""
+    rows = []
+    for rec in records:
+        run = rec.config["run"]
+        maxima = _first_contact_maxima(rec)
+        rows.append({"case_id": rec.case_id, "method": rec.method, "level": run.get("level"),
+                     **{k: v for k, v in run["numerics"].items() if k in ("elements_across", "steps_per_contact",
+                                                                         "elements", "element")},
+                     "dofs": rec.summary.get("rod_dofs", 0) + rec.summary.get("impactor_dofs", 0),
+                     "n_steps": rec.summary.get("n_steps"), "wall_time_s": rec.wall_time_s,
+                     "contact_time_us": 1e6 * float(rec.summary["contact_time_s"]),
+                     "first_max_kN": 1e-3 * float(maxima[0]) if len(maxima) else math.nan,
+                     "energy_error": float(rec.summary["energy_error"])})
+    frame = pd.DataFrame(rows).sort_values(["case_id", "level"]).reset_index(drop=True)
+    for column in ("contact_time_us", "first_max_kN"):
+        finest = frame.groupby("case_id")[column].transform("last")
+        frame[f"{column.rsplit('_', 1)[0]}_vs_finest_pct"] = (frame[column] / finest - 1.0) * 100.0
+    return frame
 
 
 def write_table(frame: pd.DataFrame, *, csv: str | Path, md: str | Path | None = None,

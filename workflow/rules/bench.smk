@@ -31,3 +31,19 @@ rule bench_fem:
         "../envs/rodimpact.yaml"
     script:
         "../scripts/bench_fem.py"
+
+
+rule bench_fem_axi:
+    """fem_axi on 'model' and every Table 2 row at the shipped level: time, DOFs, memory."""
+    input:
+        code=SRC_BENCH,
+    output:
+        csv="results/benchmarks/fem_axi.csv",
+    params:
+        cases=lambda w: [PROJECT.cases["model"], *PROJECT.cases_in("table2")],
+    log:
+        "logs/benchmarks/fem_axi.log",
+    conda:
+        "../envs/rodimpact.yaml"
+    script:
+        "../scripts/bench_fem_axi.py"

@@ -15,6 +15,7 @@ sys.path.insert(0, SRC_DIR)
 os.environ.update(PYTHONPATH=os.pathsep.join(filter(None, [SRC_DIR, os.environ.get("PYTHONPATH")])))
 
 from rodimpact.config import METHODS, ConfigError, load_project
+from rodimpact.runner import case_at_level
 from rodimpact.sources import module_sources
 
 validate(config, "../schemas/config.schema.yaml")
@@ -43,6 +44,7 @@ wildcard_constraints:
     case="[A-Za-z0-9][A-Za-z0-9_.\-]*",
     method=one_of(METHODS),
     variant=one_of(TABLE2_VARIANTS),
+    level="[0-9]+",
 
 
 def runs_of(cases):
@@ -60,6 +62,22 @@ def case_of_run(wildcards):
     return case
 
 
+def convergence_level(method, level):
+    """Numerics overrides of one level of the method's convergence study."""
+    levels = config.get("convergence", {}).get(method, {}).get("levels", [])
+    if not 0 <= level < len(levels):
+        raise ValueError(f"no level {level} in the convergence study of {method!r} ({len(levels)} levels)")
+    return dict(levels[level])
+
+
+def convergence_runs(method):
+    study = config.get("convergence", {}).get(method)
+    if study is None:
+        raise ValueError(f"no convergence study of {method!r} in config.yaml")
+    return [f"results/convergence/{c}/{method}_level{k}.h5" for c in study["cases"]
+            for k in range(len(study["levels"]))]
+
+
 def table2_runs(variant):
     return runs_of(PROJECT.cases_in("table2", variant))
 
@@ -70,6 +88,7 @@ def default_targets():
     if "model" in sets:
         targets += expand("results/figures/fig2_contact_force.{ext}", ext=["pdf", "png"])
         targets += expand("results/figures/fig4_midrod_displacement.{ext}", ext=["pdf", "png"])
+        targets += expand("results/tables/fig2_comparison.{ext}", ext=["csv", "md", "provenance.json"])
     if "table2" in sets:
         targets += expand("results/tables/table2_{variant}.{ext}", variant=TABLE2_VARIANTS,
                           ext=["csv", "md", "tex", "provenance.json"])

@@ -38,3 +38,37 @@ rule table2_variants:
         "../envs/rodimpact.yaml"
     script:
         "../scripts/table2_variants.py"
+
+
+rule fig2_comparison:
+    """Fig. 2's numbers: contact time and maxima per method against the SEM and the paper's."""
+    input:
+        runs=lambda w: runs_of([PROJECT.cases["model"]]),
+        code=SRC_PRESENT,
+    output:
+        csv="results/tables/fig2_comparison.csv",
+        md="results/tables/fig2_comparison.md",
+        provenance="results/tables/fig2_comparison.provenance.json",
+    log:
+        "logs/tables/fig2_comparison.log",
+    conda:
+        "../envs/rodimpact.yaml"
+    script:
+        "../scripts/fig2_comparison.py"
+
+
+rule convergence_table:
+    """A convergence study over the levels of config.yaml's `convergence` (not in `all`)."""
+    input:
+        runs=lambda w: convergence_runs(w.method),
+        code=SRC_PRESENT,
+    output:
+        csv="results/tables/{method}_convergence.csv",
+        md="results/tables/{method}_convergence.md",
+        provenance="results/tables/{method}_convergence.provenance.json",
+    log:
+        "logs/tables/{method}_convergence.log",
+    conda:
+        "../envs/rodimpact.yaml"
+    script:
+        "../scripts/convergence_table.py"

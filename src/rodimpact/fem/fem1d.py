@@ -25,7 +25,7 @@ from scipy.optimize import brentq
 from scipy.sparse.linalg import splu
 
 from ..hertz import solve_hertz_step
-from ..result import ImpactResult, local_maxima
+from ..result import ImpactResult, limit_reached, local_maxima
 from ..sem.problem import ImpactProblem
 from .bar import bar_model, end_vector
 
@@ -210,13 +210,9 @@ def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
                                                            static_end, t - ends[-1], rod_momentum @ v):
             status, message = "completed", f"{len(ends)} contact(s); no further contact possible"
             break
-        if len(starts) > options.max_contacts:
-            starts.pop()
-            status, message = "truncated", f"stopped at max_contacts={options.max_contacts}"
-            break
-        if t >= t_max:
-            status = "truncated" if ends else "failed"
-            message = f"time horizon {t_max:.6g} s reached" + ("" if ends else " before the first contact ended")
+        limit = limit_reached(starts, ends, t, t_max, options.max_contacts)
+        if limit:
+            status, message = limit
             break
     return _result(problem, options, locals())
 
@@ -253,6 +249,9 @@ def _result(problem: ImpactProblem, options: FEM1DOptions, s: dict) -> ImpactRes
         "rod_kinetic_energy": (rod_kin, "J", "kinetic energy of the rod, v^T M v / 2"),
         "rod_strain_energy": (rod_str, "J", "strain energy of the rod, u^T K u / 2"),
     }
+    if problem.sphere_radius_m is not None:
+        series["contact_radius"] = (np.sqrt(problem.sphere_radius_m * np.maximum(alpha, 0.0)), "m",
+                                    "contact radius, Hertz: sqrt(R alpha)")
     extra: dict[str, Any] = {"n_elements": int(s["n_el"]), "element": options.element,
                              "n_dofs": int(s["d"]), "warnings": "; ".join(s["warnings"])}
     if s["xs"]:

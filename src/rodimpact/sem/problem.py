@@ -31,12 +31,16 @@ class ImpactProblem:
         Hertz constant k in P = k alpha^(3/2), N/m^(3/2).
     rod : Rod
         The struck rod.
+    sphere_radius_m : float, optional
+        Radius R of the spherical profile; when given, the contact radius is reported
+        (Hertz: a = sqrt(R alpha)).
     """
 
     mass_kg: float
     velocity_m_s: float
     hertz_k: float
     rod: Rod
+    sphere_radius_m: float | None = None
 
     def __post_init__(self) -> None:
         for name in ("mass_kg", "velocity_m_s", "hertz_k"):
@@ -60,6 +64,7 @@ class ImpactProblem:
                 material=rod_mat,
                 far_end=rod.get("far_end", "fixed"),
             ),
+            sphere_radius_m=float(imp["radius_m"]),
         )
 
     @property

@@ -243,6 +243,9 @@ def _histories(st: _Stepper, stations: tuple[float, ...], rod_energy: np.ndarray
         "rod_energy": (rod_energy, "J", "energy in the rod: work done on it by the contact force"),
     }
     extra = {}
+    if st.problem.sphere_radius_m is not None:
+        series["contact_radius"] = (np.sqrt(st.problem.sphere_radius_m * np.maximum(alpha, 0.0)), "m",
+                                    "contact radius, Hertz: sqrt(R alpha)")
     if stations:
         length = st.problem.rod.length_m
         xs = [s * length for s in stations]

@@ -1,0 +1,8 @@
+"""Snakemake adapter: the numbers of Fig. 2 per method, against the SEM and the paper."""
+
+from rodimpact.artifacts import make_comparison
+from rodimpact.logs import script_logging
+
+with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
+    out = snakemake.output  # noqa: F821
+    make_comparison(snakemake.input.runs, csv=out.csv, md=out.md, provenance=out.provenance)  # noqa: F821
