@@ -31,8 +31,7 @@ test: $(STAMP)
 	$(BIN)/python -m pytest
 
 bench: $(STAMP)
-	$(BIN)/snakemake -j1 --forcerun bench_sem bench_fem bench_fem_axi -- results/benchmarks/sem.csv \
-		results/benchmarks/fem.csv results/benchmarks/fem_axi.csv
+	$(BIN)/snakemake -j1 --forcerun bench_sem bench_fem -- results/benchmarks/sem.csv results/benchmarks/fem.csv
 
 convergence: $(STAMP)
 	$(BIN)/snakemake -j$(CORES) results/tables/fem_axi_convergence.csv

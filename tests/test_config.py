@@ -128,7 +128,7 @@ def test_defaults_are_filled(shipped: Project) -> None:
         "fem1d": {"dt_s": None, "steps_per_contact": 2000, "max_time_factor": 100.0, "max_contacts": 50,
                   "element": "P2", "elements": None, "points_per_wavelength": 200.0},
         "fem_axi": {"dt_s": None, "steps_per_contact": 300, "max_time_factor": 100.0, "max_contacts": 50,
-                    "element": "P2", "elements_across": 8, "contact_extent": 1.5, "cap_height": 1.0},
+                    "element": "P2", "elements_across": 10, "contact_extent": 1.5, "cap_height": 1.0},
     }
     assert shipped.cases["model"]["numerics"]["sem_paper"]["steps_per_contact"] == 20000
     assert case["measured"]["source"].startswith("Table 2")
@@ -157,7 +157,7 @@ def test_global_config_defaults_are_filled(tmp_path: Path) -> None:
     assert config["numerics"]["sem"] == {
         "steps_per_contact": 2000, "dt_s": None, "max_time_factor": 100.0, "max_contacts": 50,
         "element": "P2", "elements": None, "points_per_wavelength": 200.0,
-        "elements_across": 8, "contact_extent": 1.5, "cap_height": 1.0,
+        "elements_across": 10, "contact_extent": 1.5, "cap_height": 1.0,
     }
     assert config["numerics"]["sem_paper"]["steps_per_contact"] == 20000
 

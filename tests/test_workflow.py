@@ -55,7 +55,7 @@ DRY_RUN_TIMEOUT_S = 120
 
 
 COARSE_FEM_AXI = ("steps_per_contact: 300, max_time_factor: 100.0, max_contacts: 50,\n"
-                  "              element: P2, elements_across: 8")
+                  "              element: P2, elements_across: 10")
 
 
 def copy_project(dest: Path) -> Path:
@@ -76,7 +76,7 @@ def copy_project(dest: Path) -> Path:
     text = config.read_text(encoding="utf-8")
     assert text.count(COARSE_FEM_AXI) == 1, "the fem_axi numerics line of config.yaml moved"
     config.write_text(text.replace(COARSE_FEM_AXI, COARSE_FEM_AXI.replace("300", "80").replace(
-        "elements_across: 8", "elements_across: 4")), encoding="utf-8")
+        "elements_across: 10", "elements_across: 4")), encoding="utf-8")
     return dest
 
 

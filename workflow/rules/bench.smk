@@ -18,13 +18,15 @@ rule bench_sem:
 
 
 rule bench_fem:
-    """Wall time of fem1d on 'model' and its agreement with the SEM, per mesh and step."""
+    """fem1d on 'model' (time and agreement with the SEM per mesh and step), and fem_axi on
+    'model' and every Table 2 row at the shipped level (time, DOFs, steps, peak memory)."""
     input:
         code=SRC_BENCH,
     output:
         csv="results/benchmarks/fem.csv",
     params:
         case=lambda w: PROJECT.cases["model"],
+        axi_cases=lambda w: [PROJECT.cases["model"], *PROJECT.cases_in("table2")],
     log:
         "logs/benchmarks/fem.log",
     conda:
@@ -32,18 +34,3 @@ rule bench_fem:
     script:
         "../scripts/bench_fem.py"
 
-
-rule bench_fem_axi:
-    """fem_axi on 'model' and every Table 2 row at the shipped level: time, DOFs, memory."""
-    input:
-        code=SRC_BENCH,
-    output:
-        csv="results/benchmarks/fem_axi.csv",
-    params:
-        cases=lambda w: [PROJECT.cases["model"], *PROJECT.cases_in("table2")],
-    log:
-        "logs/benchmarks/fem_axi.log",
-    conda:
-        "../envs/rodimpact.yaml"
-    script:
-        "../scripts/bench_fem_axi.py"

@@ -1,10 +1,13 @@
-"""Snakemake adapter: fem1d wall time against agreement with the SEM on the case 'model'."""
+"""Snakemake adapter: fem1d and fem_axi benchmarks into one table."""
+
+import pandas as pd
 
 from rodimpact.atomic import atomic_output
-from rodimpact.bench import benchmark_fem1d
+from rodimpact.bench import benchmark_fem1d, benchmark_fem_axi
 from rodimpact.logs import script_logging
 
 with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
-    frame = benchmark_fem1d(snakemake.params.case)  # noqa: F821
+    frame = pd.concat([benchmark_fem1d(snakemake.params.case),  # noqa: F821
+                       benchmark_fem_axi(snakemake.params.axi_cases)], ignore_index=True)  # noqa: F821
     with atomic_output(snakemake.output.csv) as tmp:  # noqa: F821
         frame.to_csv(tmp, index=False, float_format="%.6g")

@@ -39,6 +39,8 @@ log = logging.getLogger(__name__)
 
 #: Force maxima must stand out by this fraction of the largest force (see _result).
 PEAK_PROMINENCE = 0.02
+#: Elements across the largest (Hertz-estimated) contact radius below which a run warns.
+RECOMMENDED_ELEMENTS_ACROSS = 10
 
 
 @dataclass(frozen=True)
@@ -112,7 +114,7 @@ class FEMAxiOptions:
     """
 
     element: Literal["P1", "P2"] = "P2"
-    elements_across: int = 8
+    elements_across: int = 10
     contact_extent: float = 1.5
     cap_height: float = 1.0
     dt_s: float | None = None
@@ -159,6 +161,10 @@ def _volume(basis: Basis) -> float:
 
 def _build(problem: AxiImpact, options: FEMAxiOptions):
     t_hertz, a_hertz = problem.hertz_estimates()
+    if options.elements_across < RECOMMENDED_ELEMENTS_ACROSS:
+        log.warning("elements_across=%d: fewer than %d elements across the largest contact radius "
+                    "(a convergence-study level, not a result)", options.elements_across,
+                    RECOMMENDED_ELEMENTS_ACROSS)
     fine = a_hertz / options.elements_across
     extent = options.contact_extent * a_hertz
     R = problem.sphere_radius_m
