@@ -60,13 +60,27 @@ def make_table2_variants(runs: Sequence[str | Path], variants: Sequence[str], *,
     write_provenance(provenance, records, [csv, md])
 
 
+def _one_case(records: Sequence, what: str) -> str:
+    """The single case id of ``records`` (a figure of one case)."""
+    cases = sorted({r.case_id for r in records})
+    if len(cases) != 1:
+        raise ValueError(f"runs: {what} shows one case, got {cases}")
+    return cases[0]
+
+
+def _table_artifact(runs: Sequence[str | Path], build, *, csv: str | Path, md: str | Path,
+                    provenance: str | Path, caption: str, digits: int) -> None:
+    """Read the runs, build a frame from them, write it as CSV and Markdown with provenance."""
+    records = load_records(runs)
+    write_table(build(records), csv=csv, md=md, digits=digits, caption=caption)
+    write_provenance(provenance, records, [csv, md])
+
+
 def make_fig2(runs: Sequence[str | Path], *, pdf: str | Path, png: str | Path) -> None:
     """Fig. 2: contact force against time for one case, every method stored."""
     records = [read_run(p) for p in runs]
-    cases = sorted({r.case_id for r in records})
-    if len(cases) != 1:
-        raise ValueError(f"runs: Fig. 2 shows one case, got {cases}")
-    fig = plot_contact_force(records, title=f"Contact force, case {cases[0]!r} (Fig. 2 of the paper)")
+    case = _one_case(records, "Fig. 2")
+    fig = plot_contact_force(records, title=f"Contact force, case {case!r} (Fig. 2 of the paper)")
     save_figure(fig, pdf=pdf, png=png, provenance=provenance_record(records, [pdf, png]),
                 title="Fig. 2: contact force against time")
 
@@ -76,11 +90,9 @@ def make_fig4(runs: Sequence[str | Path], fraction: float, *, pdf: str | Path, p
     stored run of one case that recorded stations."""
     records = [read_run(p) for p in runs]
     records = [r for r in records if "station_displacement" in r.series]
-    cases = sorted({r.case_id for r in records})
-    if len(cases) != 1:
-        raise ValueError(f"runs: Fig. 4 shows one case with station histories, got {cases}")
+    case = _one_case(records, "Fig. 4 (runs with station histories)")
     fig = plot_station_displacement(records, fraction, title=(
-        f"Displacement at {fraction:g} of the rod length, case {cases[0]!r} (Fig. 4 of the paper)"))
+        f"Displacement at {fraction:g} of the rod length, case {case!r} (Fig. 4 of the paper)"))
     save_figure(fig, pdf=pdf, png=png, provenance=provenance_record(records, [pdf, png]),
                 title="Fig. 4: displacement of a cross-section of the rod against time")
 
@@ -98,20 +110,14 @@ def make_comparison(runs: Sequence[str | Path], *, csv: str | Path, md: str | Pa
                     provenance: str | Path) -> None:
     """Fig. 2's numbers: contact time and each maximum per method, differences from the SEM,
     and the paper's 11 % and 9 % beside them."""
-    records = load_records(runs)
-    frame = comparison_frame(records)
-    write_table(frame, csv=csv, md=md, digits=3, caption=(
+    _table_artifact(runs, comparison_frame, csv=csv, md=md, provenance=provenance, digits=3, caption=(
         "Fig. 2, case 'model': contact time (us) and force maxima (kN) of the first contact per "
         "method; differences from our SEM (%), next to the paper's FEM-SEM differences (%)."))
-    write_provenance(provenance, records, [csv, md])
 
 
 def make_convergence(runs: Sequence[str | Path], *, csv: str | Path, md: str | Path,
                      provenance: str | Path) -> None:
     """A convergence study over numerics levels."""
-    records = load_records(runs)
-    frame = convergence_frame(records)
-    write_table(frame, csv=csv, md=md, digits=4, caption=(
+    _table_artifact(runs, convergence_frame, csv=csv, md=md, provenance=provenance, digits=4, caption=(
         "Convergence study: contact time and first force maximum per level, and their change "
         "from the finest level (%)."))
-    write_provenance(provenance, records, [csv, md])

@@ -49,6 +49,15 @@ def save_figure(fig: matplotlib.figure.Figure, *, pdf: str | Path, png: str | Pa
     plt.close(fig)
 
 
+def _finish(fig: matplotlib.figure.Figure, ax: matplotlib.axes.Axes, title: str) -> matplotlib.figure.Figure:
+    """Grid, a legend below the axes, and the title: the look every time plot shares."""
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=1, frameon=False)
+    if title:
+        ax.set_title(title, fontsize=10)
+    return fig
+
+
 def _ordered(records: Sequence[RunRecord]) -> list[RunRecord]:
     rank = {m: i for i, m in enumerate(METHOD_ORDER)}
     return sorted(records, key=lambda r: rank.get(r.method, len(rank)))
@@ -77,11 +86,7 @@ def plot_contact_force(records: Sequence[RunRecord], title: str = "") -> matplot
     ax.set_ylabel("contact force P, kN")
     ax.set_xlim(0, 1.05e6 * last_end)
     ax.set_ylim(bottom=0)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=1, frameon=False)
-    if title:
-        ax.set_title(title, fontsize=10)
-    return fig
+    return _finish(fig, ax, title)
 
 
 def plot_station_displacement(records: Sequence[RunRecord], fraction: float,
@@ -111,11 +116,7 @@ def plot_station_displacement(records: Sequence[RunRecord], fraction: float,
     ax.set_xlabel("time t, µs")
     ax.set_ylabel(f"axial displacement u at x = {xs[column]:.4g} m, µm")
     ax.set_xlim(left=0)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=1, frameon=False)
-    if title:
-        ax.set_title(title, fontsize=10)
-    return fig
+    return _finish(fig, ax, title)
 
 
 def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame]) -> matplotlib.figure.Figure:
