@@ -2,7 +2,8 @@
 #   make paper   build .venv from environment.lock if missing or stale, then snakemake -j2
 #   make test    same environment; snakemake --lint, a dry run, pytest
 #   make bench   benchmarks -> results/benchmarks/*.csv (one job at a time, for clean timings)
-#   make convergence   the fem_axi convergence study -> results/tables/fem_axi_convergence.csv
+#   make convergence   only the error-against-run-time study -> results/tables/work_precision.csv
+#   make stability     only the stress cases and the stability map -> results/tables/stability.csv
 
 PYTHON ?= $(shell command -v python3.11 || command -v python3)
 VENV   := .venv
@@ -10,7 +11,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-from-lock
 CORES  ?= 2
 
-.PHONY: paper test bench convergence env clean distclean
+.PHONY: paper test bench convergence stability env clean distclean
 
 $(STAMP): environment.lock pyproject.toml
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info[:2] == (3, 11) else "rodimpact needs Python 3.11 (environment.lock is for 3.11), found " + sys.version.split()[0])'
@@ -34,7 +35,10 @@ bench: $(STAMP)
 	$(BIN)/snakemake -j1 --forcerun bench_sem bench_fem -- results/benchmarks/sem.csv results/benchmarks/fem.csv
 
 convergence: $(STAMP)
-	$(BIN)/snakemake -j$(CORES) results/tables/fem_axi_convergence.csv
+	$(BIN)/snakemake -j$(CORES) results/tables/work_precision.csv results/tables/work_precision_orders.md
+
+stability: $(STAMP)
+	$(BIN)/snakemake -j$(CORES) results/tables/stability.csv results/figures/stability_map.png
 
 clean:
 	rm -rf results logs .snakemake

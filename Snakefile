@@ -1,6 +1,7 @@
 # rodimpact: rebuild Belyaev, Shurpatov & Ma (2018) from configuration alone.
 #   snakemake -j2                       the whole paper (the sets in config.yaml: targets)
 #   snakemake -j2 results/tables/table2_r1_l30.csv   only what that table needs
+#   snakemake -j2 results/tables/stability.csv       one study (also work_precision.csv)
 from snakemake.utils import min_version
 
 min_version("9.0")
@@ -13,6 +14,7 @@ include: "workflow/rules/common.smk"
 include: "workflow/rules/solve.smk"
 include: "workflow/rules/tables.smk"
 include: "workflow/rules/figures.smk"
+include: "workflow/rules/studies.smk"
 include: "workflow/rules/bench.smk"
 
 

@@ -72,10 +72,15 @@ def shipped() -> Project:
 # --------------------------------------------------------------------------- shipped config
 
 
+STRESS = ["microgram_fast", "heavy_slow", "thin_wire", "long_rod_heavy", "short_rod", "rubber_on_steel",
+          "steel_on_rubber", "seconds_contact"]
+
+
 def test_shipped_config_loads_all_cases(shipped: Project) -> None:
     expected = ["model"] + [f"{row}-{variant}" for row in ROWS for variant in VARIANTS]
-    assert list(shipped.cases) == expected  # 1 + 6 rows x 4 variants, in file order
-    assert shipped.sets == {"model": ["model"], "table2": expected[1:]}
+    # 1 + 6 rows x 4 variants, in file order (files sorted by name: model, stress, table2)
+    assert [c for c in shipped.cases if shipped.cases[c]["set"] != "stress"] == expected
+    assert shipped.sets == {"model": ["model"], "table2": expected[1:], "stress": STRESS}
     assert list(shipped.variants["table2"]) == list(VARIANTS)
     assert shipped.variants["model"] == {}
 
@@ -124,7 +129,8 @@ def test_defaults_are_filled(shipped: Project) -> None:
     assert case["outputs"] == ["contact_force"]
     assert case["stations"] == []
     assert case["numerics"] == {
-        "sem": {"dt_s": None, "steps_per_contact": 2000, "max_time_factor": 100.0, "max_contacts": 50},
+        "sem": {"dt_s": None, "steps_per_contact": None, "max_time_factor": 100.0, "max_contacts": 50,
+                "tolerance": 1e-6, "energy_tolerance": 0.01, "max_steps": 5_000_000},
         "fem1d": {"dt_s": None, "steps_per_contact": 2000, "max_time_factor": 100.0, "max_contacts": 50,
                   "element": "P2", "elements": None, "points_per_wavelength": 200.0},
         "fem_axi": {"dt_s": None, "steps_per_contact": 300, "max_time_factor": 100.0, "max_contacts": 50,
@@ -155,9 +161,10 @@ def test_global_config_defaults_are_filled(tmp_path: Path) -> None:
     assert config["cases_dir"] == "config/cases"
     assert config["materials"] == "config/materials.yaml"
     assert config["numerics"]["sem"] == {
-        "steps_per_contact": 2000, "dt_s": None, "max_time_factor": 100.0, "max_contacts": 50,
-        "element": "P2", "elements": None, "points_per_wavelength": 200.0,
+        "steps_per_contact": None, "tolerance": 1e-6, "dt_s": None, "max_time_factor": 100.0,
+        "max_contacts": 50, "element": "P2", "elements": None, "points_per_wavelength": 200.0,
         "elements_across": 10, "contact_extent": 1.5, "cap_height": 1.0,
+        "energy_tolerance": 0.01, "max_steps": 5_000_000, "allow_unstable": False,
     }
     assert config["numerics"]["sem_paper"]["steps_per_contact"] == 20000
 
@@ -196,13 +203,18 @@ def test_case_numerics_override_global(project_dir: Path) -> None:
     edit(project_dir / "config/cases/model.yaml",
          lambda d: d["cases"][0].update(numerics={"sem_paper": {"dt_s": 1e-8}, "sem": {"max_contacts": 3}}))
     numerics = load(project_dir).cases["model"]["numerics"]
-    assert numerics["sem"] == {"dt_s": None, "steps_per_contact": 2000, "max_time_factor": 100.0, "max_contacts": 3}
+    assert numerics["sem"] == {"dt_s": None, "steps_per_contact": None, "max_time_factor": 100.0, "max_contacts": 3,
+                               "tolerance": 1e-6, "energy_tolerance": 0.01, "max_steps": 5_000_000}
     assert numerics["sem_paper"] == {"dt_s": 1e-8, "steps_per_contact": 20000, "max_time_factor": 100.0,
-                                     "max_contacts": 50}
+                                     "max_contacts": 50, "energy_tolerance": 0.01, "max_steps": 5_000_000,
+                                     "allow_unstable": False}
 
 
 def test_case_variants_list_selects_variants(project_dir: Path) -> None:
     edit(project_dir / "config/cases/table2.yaml", lambda d: d["cases"][0].update(variants=["r1_l301"]))
+    # the work-precision sweep names ball_3.16mm-r1_l30, which this edit removes
+    assert "unknown case 'ball_3.16mm-r1_l30'" in error_of(project_dir)
+    edit(project_dir / "config/config.yaml", lambda d: d.pop("work_precision"))
     project = load(project_dir)
     assert [c["id"] for c in project.cases_in("table2")][:2] == ["ball_3.16mm-r1_l301", "ball_4.75mm-r10_l30"]
     assert len(project.cases_in("table2")) == 21
@@ -350,7 +362,7 @@ MALFORMED = {
     ),
     "unknown material name": (
         _set(MODEL, "cases", 0, "rod", "material", "steal"),
-        f"{MODEL}: case 'model': field 'rod.material': unknown material 'steal'; known: steel, aluminium_table1",
+        f"{MODEL}: case 'model': field 'rod.material': unknown material 'steal'; known: steel, aluminium_table1, rubber",
     ),
     "both area and radius": (
         _set(MODEL, "cases", 0, "rod", "radius_m", 0.004),
@@ -399,7 +411,39 @@ MALFORMED = {
     ),
     "unknown target set": (
         _set("config/config.yaml", "targets", "sets", ["model", "tabel2"]),
-        "config/config.yaml: field 'targets.sets[1]': unknown case set 'tabel2'; known: model, table2",
+        "config/config.yaml: field 'targets.sets[1]': unknown case set 'tabel2'; known: model, stress, table2",
+    ),
+    "work precision on an unknown case": (
+        _set("config/config.yaml", "work_precision", "cases", ["model", "modle"]),
+        "config/config.yaml: field 'work_precision.cases[1]': unknown case 'modle'",
+    ),
+    "work precision level with another method's setting": (
+        _set("config/config.yaml", "work_precision", "methods", "sem", "levels", 0, "elements_across", 4),
+        "config/config.yaml: field 'work_precision.methods.sem.levels[0].elements_across': not a setting of "
+        "method 'sem'; its settings: dt_s, steps_per_contact, max_time_factor, max_contacts, tolerance, "
+        "energy_tolerance, max_steps",
+    ),
+    "work precision levels that do not refine": (
+        _set("config/config.yaml", "work_precision", "methods", "sem", "levels", 1, "steps_per_contact", 25),
+        "config/config.yaml: field 'work_precision.methods.sem.levels': levels must refine: steps_per_contact = "
+        "[25, 25, 100, 200, 400, 800, 1600, 3200, 6400, 12800]",
+    ),
+    "work precision level beyond the paper scheme's stability limit": (
+        _set("config/config.yaml", "work_precision", "methods", "sem_paper", "levels", 0, "steps_per_contact", 10),
+        "config/config.yaml: field 'work_precision.methods.sem_paper.levels[0]': case 'ball_12.73mm-r1_l30': "
+        "steps_per_contact: dt_s=7.109e-06 s exceeds the paper scheme's stability limit 2 Z / k_c = 3.252e-06 s "
+        "(rod impedance Z = 44.2 kg/s, contact stiffness k_c = 3/2 k alpha^(1/2) at the rigid-rod Hertz approach "
+        "7.79e-06 m); take dt_s <= 3.252e-06 s (steps_per_contact >= 22), or set allow_unstable: true to run it "
+        "anyway",
+    ),
+    "stability on an unknown set": (
+        _set("config/config.yaml", "stability", "sets", ["stres"]),
+        "config/config.yaml: field 'stability.sets[0]': unknown case set 'stres'; known: model, stress, table2",
+    ),
+    "stability without a method's tolerances": (
+        _set("config/config.yaml", "stability", "tolerances", "fem1d", None),
+        "config/config.yaml: field 'stability.tolerances': no tolerances for method 'fem1d' (run by case "
+        "'microgram_fast')",
     ),
 }
 
@@ -465,7 +509,7 @@ def test_global_config_typo(project_dir: Path) -> None:
         load_global_config(path)
     assert str(info.value) == (
         "config/config.yaml: field 'numerics.sem.step_per_contact': unknown field "
-        "(did you mean 'steps_per_contact'?); allowed: dt_s, steps_per_contact, max_time_factor, max_contacts, element, elements, points_per_wavelength, elements_across, contact_extent, cap_height"
+        "(did you mean 'steps_per_contact'?); allowed: dt_s, steps_per_contact, tolerance, energy_tolerance, max_steps, allow_unstable, max_time_factor, max_contacts, element, elements, points_per_wavelength, elements_across, contact_extent, cap_height"
     )
 
 
@@ -491,7 +535,7 @@ def test_setting_of_another_method_is_refused(project_dir: Path) -> None:
     edit(project_dir / MODEL, lambda d: d["cases"][0].update(numerics={"sem": {"elements": 10}}))
     assert error_of(project_dir) == (
         f"{MODEL}: case 'model': field 'numerics.sem.elements': not a setting of "
-        "method 'sem'; its settings: dt_s, steps_per_contact, max_time_factor, max_contacts")
+        "method 'sem'; its settings: dt_s, steps_per_contact, max_time_factor, max_contacts, tolerance, energy_tolerance, max_steps")
 
 
 def test_station_output_needs_stations(project_dir: Path) -> None:

@@ -26,6 +26,7 @@ from pathlib import Path
 import h5py
 import pandas as pd
 import pytest
+import yaml
 from PIL import Image
 
 from rodimpact.config import load_global_config, load_project
@@ -77,7 +78,32 @@ def copy_project(dest: Path) -> Path:
     assert text.count(COARSE_FEM_AXI) == 1, "the fem_axi numerics line of config.yaml moved"
     config.write_text(text.replace(COARSE_FEM_AXI, COARSE_FEM_AXI.replace("300", "80").replace(
         "elements_across: 10", "elements_across: 4")), encoding="utf-8")
+    _small_studies(dest)
     return dest
+
+
+#: The studies of a copy: work precision of the three 1-D methods on 'model' (coarsest three
+#: levels, timed once), two stress cases without fem_axi, a 2 x 2 stability map.
+SMALL_STRESS = ("short_rod", "rubber_on_steel")
+
+
+def _small_studies(project: Path) -> None:
+    """Shrink config.yaml's studies and the stress cases (comments are lost: copies only)."""
+    config = project / "config" / "config.yaml"
+    document = yaml.safe_load(config.read_text(encoding="utf-8"))
+    study = document["work_precision"]
+    study["cases"] = ["model"]
+    study["timing"] = {"min_repeats": 1, "min_total_s": 0.0, "max_total_s": 0.0}
+    study["methods"] = {m: {**spec, "levels": spec["levels"][:3]}
+                        for m, spec in study["methods"].items() if m != "fem_axi"}
+    document["stability"]["map"].update(mass_kg=[1.0e-3, 1.0e-2], impedance_kg_s=[3.0, 1000.0])
+    config.write_text(yaml.safe_dump(document, sort_keys=False), encoding="utf-8")
+    stress = project / "config" / "cases" / "stress.yaml"
+    document = yaml.safe_load(stress.read_text(encoding="utf-8"))
+    document["cases"] = [c for c in document["cases"] if c["id"] in SMALL_STRESS]
+    for case in document["cases"]:
+        case["methods"] = ["sem", "sem_paper", "fem1d"]
+    stress.write_text(yaml.safe_dump(document, sort_keys=False), encoding="utf-8")
 
 
 def clone_built(built: Path, dest: Path) -> Path:
@@ -282,6 +308,11 @@ def test_full_build_produces_every_artifact(built: Path, expected: dict) -> None
           for name in ("fig2_contact_force", "fig4_midrod_displacement", "table2_contact_time")
           for ext in ("pdf", "png")),
         *expected["runs"],
+        *(f"results/tables/{name}" for name in ("work_precision.csv", "work_precision_orders.csv",
+                                                 "work_precision_orders.md", "stability.csv", "stability.md",
+                                                 "stability_map.csv")),
+        *(f"results/figures/{name}.{ext}" for name in ("work_precision_model", "stability_map")
+          for ext in ("pdf", "png")),
     ]  # fmt: skip
     missing = [a for a in artifacts if not (built / a).is_file() or (built / a).stat().st_size == 0]
     assert not missing, f"missing or empty: {missing}"
@@ -315,6 +346,21 @@ def test_every_run_file_has_provenance_and_summary(built: Path, expected: dict) 
         assert max(record.summary["peak_force_N"]) > 0
         assert math.isfinite(record.summary["energy_error"])
         assert "contact_force" in record.series and len(record.series["time"]) > 10
+
+
+def test_study_tables(built: Path) -> None:
+    """The studies of the copy: every stress run ok or failed with a message, each level of the
+    sweep with its errors and timing, and the map with one class per point and method."""
+    stability = pd.read_csv(built / "results/tables/stability.csv")
+    assert sorted(set(stability["case_id"])) == sorted(SMALL_STRESS)
+    assert len(stability) == 2 * 3
+    assert all(v == "ok" or v.startswith("failed: ") for v in stability["verdict"]), stability["verdict"]
+    sweep = pd.read_csv(built / "results/tables/work_precision.csv")
+    assert sorted(Counter(sweep["method"]).items()) == [("fem1d", 3), ("sem", 3), ("sem_paper", 3)]
+    assert (sweep["wall_time_s"] > 0).all() and sweep["err_contact_time"].notna().all()
+    assert sweep["machine"].str.contains("logical CPUs").all()
+    stability_map = pd.read_csv(built / "results/tables/stability_map.csv")
+    assert len(stability_map) == 4 * 2 and stability_map["class"].notna().all()
 
 
 def test_table2_csvs(built: Path, expected: dict) -> None:
@@ -498,8 +544,11 @@ def test_changed_case_value_reruns_only_that_case(built: Path, tmp_path: Path) -
 
     run = snakemake(project, "-n", "-j2")
     assert run.returncode == 0, run.describe()
-    assert job_stats(run.output) == {"solve": 4, "fig2": 1, "fig4": 1, "fig2_comparison": 1, "all": 1}, \
-        run.describe()
+    # model's runs and what shows them, and the studies built on model: its work-precision
+    # levels (3 methods x 3 levels in the copy) and the stability map, whose base case it is
+    assert job_stats(run.output) == {"solve": 4, "fig2": 1, "fig4": 1, "fig2_comparison": 1, "all": 1,
+                                     "solve_level": 9, "work_precision_table": 1, "work_precision_figure": 1,
+                                     "solve_map_point": 12, "stability_map": 1}, run.describe()
     rows = summary(project)
     assert pending(rows, "solve") == {run_path("model", m) for m in ("sem", "sem_paper", "fem1d", "fem_axi")}
     assert pending(rows, "fig2") == {

@@ -7,13 +7,14 @@ from __future__ import annotations
 
 import logging
 from pathlib import Path
-from typing import Sequence
+from typing import Any, Mapping, Sequence
 
 from .figures import plot_contact_force, plot_station_displacement, plot_table2_contact_time, save_figure
 from .store import read_run
+from .stress import StudyViolation, map_frame, stability_frame, violations
+from .study_figures import plot_stability_map, plot_work_precision
 from .tables import (
     comparison_frame,
-    convergence_frame,
     load_records,
     provenance_record,
     table2_frame,
@@ -21,9 +22,11 @@ from .tables import (
     write_provenance,
     write_table,
 )
+from .work_precision import observed_orders, work_precision_frame
 
-__all__ = ["make_comparison", "make_convergence", "make_fig2", "make_fig4", "make_fig_table2", "make_table2",
-           "make_table2_variants"]
+__all__ = ["make_comparison", "make_fig2", "make_fig4", "make_fig_table2", "make_stability",
+           "make_stability_map", "make_table2", "make_table2_variants", "make_work_precision",
+           "make_work_precision_figure"]
 
 log = logging.getLogger(__name__)
 
@@ -115,9 +118,69 @@ def make_comparison(runs: Sequence[str | Path], *, csv: str | Path, md: str | Pa
         "method; differences from our SEM (%), next to the paper's FEM-SEM differences (%)."))
 
 
-def make_convergence(runs: Sequence[str | Path], *, csv: str | Path, md: str | Path,
-                     provenance: str | Path) -> None:
-    """A convergence study over numerics levels."""
-    _table_artifact(runs, convergence_frame, csv=csv, md=md, provenance=provenance, digits=4, caption=(
-        "Convergence study: contact time and first force maximum per level, and their change "
-        "from the finest level (%)."))
+WORK_PRECISION_CAPTION = (
+    "Error against run time: relative errors of each method's levels against the reference (the "
+    "Richardson extrapolation of the reference method's finest two levels; ref_err_* is its own "
+    "error estimate), wall time of one solve (median of the repeats) on the machine named.")
+
+
+def make_work_precision(runs: Sequence[str | Path], methods: Mapping[str, Any], fit_levels: int, *,
+                        csv: str | Path, orders_csv: str | Path, orders_md: str | Path,
+                        provenance: str | Path) -> None:
+    """The work-precision table and the fitted orders (with theory) of every method and case."""
+    records = [read_run(p) for p in runs]
+    frame = work_precision_frame(records, methods)
+    orders = observed_orders(frame, methods, fit_levels)
+    write_table(frame, csv=csv)
+    write_table(orders, csv=orders_csv, md=orders_md, digits=2, caption=(
+        f"Observed orders of convergence (log-log fit of the error against h = 1/resolution on the "
+        f"finest {fit_levels} levels whose error exceeds 10x the reference's), next to the theory."))
+    write_provenance(provenance, records, [csv, orders_csv, orders_md])
+    log.info("work precision: %d runs, %d cases", len(records), frame["case_id"].nunique())
+
+
+def make_work_precision_figure(runs: Sequence[str | Path], methods: Mapping[str, Any], fit_levels: int, *,
+                               pdf: str | Path, png: str | Path) -> None:
+    """Error against wall time for one case: every method and quantity, orders in the legend."""
+    records = [read_run(p) for p in runs]
+    case = _one_case(records, "a work-precision figure")
+    frame = work_precision_frame(records, methods)
+    fig = plot_work_precision(frame, observed_orders(frame, methods, fit_levels), case)
+    save_figure(fig, pdf=pdf, png=png, provenance=provenance_record(records, [pdf, png]),
+                title=f"Error against run time, case {case}")
+
+
+def make_stability(runs: Sequence[str | Path], references: Sequence[str | Path],
+                   tolerances: Mapping[str, Mapping[str, float]], *, csv: str | Path, md: str | Path,
+                   provenance: str | Path) -> None:
+    """The stress runs checked against the stated tolerances; raises when one is a violation
+    (a silent wrong answer), after logging the whole table."""
+    records = [read_run(p) for p in runs]
+    refs = {r.case_id: r for r in (read_run(p) for p in references)}
+    frame = stability_frame(records, refs, tolerances)
+    bad = violations(frame)
+    if bad:
+        log.error("stability table:\n%s", frame.to_string())
+        raise StudyViolation("stability study: runs that neither met their tolerances nor failed clearly:\n  "
+                           + "\n  ".join(bad))
+    write_table(frame, csv=csv, md=md, digits=6, caption=(
+        "Stress cases: every method's result checked (finite, force >= 0, energy balance and first "
+        "contact time within the method's stated tolerances against a sem reference at tolerance "
+        "1e-8), or its failure message."))
+    write_provenance(provenance, [*records, *refs.values()], [csv, md])
+    log.info("stability: %d runs, %d ok, %d failed clearly", len(frame), (frame["verdict"] == "ok").sum(),
+             frame["verdict"].str.startswith("failed").sum())
+
+
+def make_stability_map(runs: Sequence[str | Path], references: Sequence[str | Path],
+                       spec: Mapping[str, Any], *, csv: str | Path,
+                       pdf: str | Path, png: str | Path, provenance: str | Path) -> None:
+    """The stability map: the table of its points and the figure."""
+    records = [read_run(p) for p in runs]
+    refs = {r.config["row"]: r for r in (read_run(p) for p in references)}
+    frame = map_frame(records, refs, float(spec["accuracy"]))
+    write_table(frame, csv=csv)
+    fig = plot_stability_map(frame, int(spec["steps_per_contact"]), float(spec["accuracy"]))
+    prov = provenance_record([*records, *refs.values()], [csv, pdf, png])
+    save_figure(fig, pdf=pdf, png=png, provenance=prov, title="Stability map of the SEM schemes")
+    write_provenance(provenance, [*records, *refs.values()], [csv, pdf, png])

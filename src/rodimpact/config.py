@@ -52,12 +52,12 @@ OUTPUTS: tuple[str, ...] = (
 #: The numerical settings each method has (a case setting another one is an error).
 _COMMON_SETTINGS = ("dt_s", "steps_per_contact", "max_time_factor", "max_contacts")
 METHOD_SETTINGS: dict[str, tuple[str, ...]] = {
-    "sem": _COMMON_SETTINGS,
-    "sem_paper": _COMMON_SETTINGS,
+    "sem": _COMMON_SETTINGS + ("tolerance", "energy_tolerance", "max_steps"),
+    "sem_paper": _COMMON_SETTINGS + ("energy_tolerance", "max_steps", "allow_unstable"),
     "fem1d": _COMMON_SETTINGS + ("element", "elements", "points_per_wavelength"),
     "fem_axi": _COMMON_SETTINGS + ("element", "elements_across", "contact_extent", "cap_height"),
 }
-_INTEGER_SETTINGS = ("steps_per_contact", "max_contacts", "elements", "elements_across")
+_INTEGER_SETTINGS = ("steps_per_contact", "max_contacts", "elements", "elements_across", "max_steps")
 
 DEFAULT_SCHEMA_DIR = Path("workflow") / "schemas"
 DEFAULT_CONFIG_FILE = "config/config.yaml"
@@ -341,6 +341,7 @@ class _ProjectBuilder:
             "measured": with_floats(case["measured"]),
             "published": with_floats(case["published"]),
         }
+        self._check_runs(self.cases[case_id], source)
         self.sets[set_name].append(case_id)
 
     def _material(self, value: str | dict, error: Callable[..., ConfigError], field: str) -> dict:
@@ -390,24 +391,29 @@ class _ProjectBuilder:
             resolved[method] = {name: _setting(name, fields.get(name)) for name in allowed}
         return resolved
 
+    def _check_runs(self, case: dict, source: _File) -> None:
+        """Each method's options can be built and (sem_paper) its step is stable."""
+        from .runner import check_run  # the solvers' own validation
+
+        for method in case["methods"]:
+            try:
+                check_run(case, method)
+            except ValueError as error:
+                reason = str(error)
+                name = reason.split(" ", 1)[0].rstrip(":")
+                field = f"numerics.{method}" + (f".{name}" if name in METHOD_SETTINGS[method] else "")
+                raise source.error(reason, case=case["id"], field=field) from None
+
     def build(self) -> Project:
         for index, name in enumerate(self.config["targets"]["sets"]):
             if name not in self.sets:
                 message = f"unknown case set {name!r}; known: {', '.join(self.sets)}"
                 raise self.config_source.error(message, field=f"targets.sets[{index}]")
-        for method, study in self.config.get("convergence", {}).items():
-            for index, case_id in enumerate(study["cases"]):
-                where = f"convergence.{method}.cases[{index}]"
-                if case_id not in self.cases:
-                    raise self.config_source.error(f"unknown case {case_id!r}", field=where)
-                if method not in self.cases[case_id]["methods"]:
-                    raise self.config_source.error(f"case {case_id!r} does not run {method!r}", field=where)
-            for index, level in enumerate(study["levels"]):
-                for name in level:
-                    if name not in METHOD_SETTINGS[method]:
-                        raise self.config_source.error(
-                            f"not a setting of method {method!r}; its settings: {', '.join(METHOD_SETTINGS[method])}",
-                            field=f"convergence.{method}.levels[{index}].{name}")
+        from .studies import check_stability, check_work_precision
+
+        check_work_precision(self.config.get("work_precision"), self.cases, self.config["numerics"],
+                             self.config_source.error)
+        check_stability(self.config.get("stability"), self.cases, self.sets, self.config_source.error)
         return Project(cases=self.cases, sets=self.sets, variants=self.variants)
 
 
@@ -452,6 +458,6 @@ class Project:
 
 def _setting(name: str, value: Any) -> Any:
     """A numerical setting as a plain Python value (ints for counts, floats for numbers)."""
-    if value is None or isinstance(value, str):
+    if value is None or isinstance(value, (str, bool)):
         return value
     return int(value) if name in _INTEGER_SETTINGS else float(value)

@@ -22,7 +22,6 @@ from .store import RunRecord, read_summary
 __all__ = [
     "METHOD_ORDER",
     "comparison_frame",
-    "convergence_frame",
     "PUBLISHED_FAMILY",
     "load_records",
     "provenance_record",
@@ -186,28 +185,6 @@ def comparison_frame(records: Sequence[RunRecord], reference: str = "sem") -> pd
     maxima_columns = sorted((c for c in frame.columns if c.startswith("max_")), key=lambda c: int(c.split("_")[1]))
     head = ["case_id", "method", "contact_time_us", "n_maxima", *maxima_columns]
     return frame[head + [c for c in frame.columns if c not in head]]
-
-
-def convergence_frame(records: Sequence[RunRecord]) -> pd.DataFrame:
-    """A convergence study: one row per (case, level), with the change of the contact time
-    and of the first force maximum from the finest level of the same case, in %."""
-    rows = []
-    for rec in records:
-        run = rec.config["run"]
-        maxima = _first_contact_maxima(rec)
-        rows.append({"case_id": rec.case_id, "method": rec.method, "level": run.get("level"),
-                     **{k: v for k, v in run["numerics"].items() if k in ("elements_across", "steps_per_contact",
-                                                                         "elements", "element")},
-                     "dofs": rec.summary.get("rod_dofs", 0) + rec.summary.get("impactor_dofs", 0),
-                     "n_steps": rec.summary.get("n_steps"), "wall_time_s": rec.wall_time_s,
-                     "contact_time_us": 1e6 * float(rec.summary["contact_time_s"]),
-                     "first_max_kN": 1e-3 * float(maxima[0]) if len(maxima) else math.nan,
-                     "energy_error": float(rec.summary["energy_error"])})
-    frame = pd.DataFrame(rows).sort_values(["case_id", "level"]).reset_index(drop=True)
-    for column in ("contact_time_us", "first_max_kN"):
-        finest = frame.groupby("case_id")[column].transform("last")
-        frame[f"{column.rsplit('_', 1)[0]}_vs_finest_pct"] = (frame[column] / finest - 1.0) * 100.0
-    return frame
 
 
 def write_table(frame: pd.DataFrame, *, csv: str | Path, md: str | Path | None = None,

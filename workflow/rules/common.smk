@@ -15,7 +15,7 @@ sys.path.insert(0, SRC_DIR)
 os.environ.update(PYTHONPATH=os.pathsep.join(filter(None, [SRC_DIR, os.environ.get("PYTHONPATH")])))
 
 from rodimpact.config import METHODS, ConfigError, load_project
-from rodimpact.runner import case_at_level
+from rodimpact.studies import level_case, map_point_case, map_point_names, reference_case
 from rodimpact.sources import module_sources
 
 validate(config, "../schemas/config.schema.yaml")
@@ -45,6 +45,8 @@ wildcard_constraints:
     method=one_of(METHODS),
     variant=one_of(TABLE2_VARIANTS),
     level="[0-9]+",
+    point="m[0-9]+_z[0-9]+",
+    map_method=one_of(["sem", "sem_paper", "reference"]),
 
 
 def runs_of(cases):
@@ -62,20 +64,33 @@ def case_of_run(wildcards):
     return case
 
 
-def convergence_level(method, level):
-    """Numerics overrides of one level of the method's convergence study."""
-    levels = config.get("convergence", {}).get(method, {}).get("levels", [])
+WORK_PRECISION = config.get("work_precision", {})
+STABILITY = config.get("stability", {})
+MAP = STABILITY.get("map", {})
+MAP_POINTS = map_point_names(MAP) if MAP else []
+STRESS_CASES = [c for name in STABILITY.get("sets", []) for c in PROJECT.cases_in(name)]
+
+
+def sweep_level(method, level):
+    """Numerics overrides of one level of the method's work-precision sweep."""
+    levels = WORK_PRECISION.get("methods", {}).get(method, {}).get("levels", [])
     if not 0 <= level < len(levels):
-        raise ValueError(f"no level {level} in the convergence study of {method!r} ({len(levels)} levels)")
+        raise ValueError(f"no level {level} in the work-precision sweep of {method!r} ({len(levels)} levels)")
     return dict(levels[level])
 
 
-def convergence_runs(method):
-    study = config.get("convergence", {}).get(method)
-    if study is None:
-        raise ValueError(f"no convergence study of {method!r} in config.yaml")
-    return [f"results/convergence/{c}/{method}_level{k}.h5" for c in study["cases"]
-            for k in range(len(study["levels"]))]
+def sweep_case(case_id, method, level):
+    """The case of one sweep level (the method need not be among the case's own)."""
+    if case_id not in PROJECT.cases:
+        raise ValueError(f"unknown case {case_id!r}")
+    return level_case(PROJECT.cases[case_id], method, config["numerics"], sweep_level(method, level))
+
+
+def sweep_runs(cases=None):
+    """HDF5 files of every level of every swept method on ``cases`` (default: all swept)."""
+    cases = WORK_PRECISION.get("cases", []) if cases is None else cases
+    return [f"results/convergence/{c}/{m}_level{k}.h5" for c in cases
+            for m, sweep in WORK_PRECISION.get("methods", {}).items() for k in range(len(sweep["levels"]))]
 
 
 def table2_runs(variant):
@@ -96,4 +111,12 @@ def default_targets():
         targets += expand("results/figures/table2_contact_time.{ext}", ext=["pdf", "png"])
     for name in sets:
         targets += runs_of(PROJECT.cases_in(name))
+    if WORK_PRECISION:
+        targets += ["results/tables/work_precision.csv", "results/tables/work_precision_orders.md"]
+        targets += expand("results/figures/work_precision_{case}.{ext}", case=WORK_PRECISION["cases"],
+                          ext=["pdf", "png"])
+    if STABILITY:
+        targets += ["results/tables/stability.csv"]
+    if MAP:
+        targets += expand("results/figures/stability_map.{ext}", ext=["pdf", "png"])
     return targets

@@ -55,20 +55,3 @@ rule fig2_comparison:
         "../envs/rodimpact.yaml"
     script:
         "../scripts/fig2_comparison.py"
-
-
-rule convergence_table:
-    """A convergence study over the levels of config.yaml's `convergence` (not in `all`)."""
-    input:
-        runs=lambda w: convergence_runs(w.method),
-        code=SRC_PRESENT,
-    output:
-        csv="results/tables/{method}_convergence.csv",
-        md="results/tables/{method}_convergence.md",
-        provenance="results/tables/{method}_convergence.provenance.json",
-    log:
-        "logs/tables/{method}_convergence.log",
-    conda:
-        "../envs/rodimpact.yaml"
-    script:
-        "../scripts/convergence_table.py"

@@ -1,8 +1,9 @@
-"""Snakemake adapter: one level of a convergence study, written to its HDF5 file."""
+"""Snakemake adapter: one level of a work-precision sweep, timed, written to its HDF5 file."""
 
 from rodimpact.logs import script_logging
-from rodimpact.runner import run_to_file
+from rodimpact.runner import Timing, run_to_file
 
 with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
-    run_to_file(snakemake.params.case, snakemake.params.method, snakemake.output.h5,  # noqa: F821
-                level=snakemake.params.level)  # noqa: F821
+    params = snakemake.params  # noqa: F821
+    run_to_file(params.case, params.method, snakemake.output.h5, level=params.level,  # noqa: F821
+                timing=Timing(**params.timing), study=params.study)

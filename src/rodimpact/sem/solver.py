@@ -18,159 +18,29 @@ at the zero of the approach interpolated linearly between nodes.
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
 import time as _time
 from typing import Sequence
 
 import numpy as np
-from scipy.optimize import brentq
 
-from ..hertz import solve_hertz_step
-from .history import ForceHistory
+from ..result import ImpactResult
 from .problem import ImpactProblem, SEMOptions
-from ..result import ImpactResult, local_maxima
+from .stability import paper_step_limit
+from .stepper import run_fixed_step
 
-__all__ = ["solve_sem"]
+__all__ = ["UnstableStepError", "check_paper_step", "solve_sem"]
 
 log = logging.getLogger(__name__)
 
-_MAX_WINDOW_SAMPLES = 400_000
+#: Step doublings the automatic step may take after its first choice.
+_MAX_REFINEMENTS = 8
 
 
-class _Stepper:
-    """State of one run; the scheme-specific part is ``step``."""
-
-    def __init__(self, problem: ImpactProblem, options: SEMOptions) -> None:
-        self.problem = problem
-        self.options = options
-        self.m = problem.mass_kg
-        self.k = problem.hertz_k
-        self.h = options.step(problem)
-        self.implicit = options.scheme == "implicit"
-        self.hist = ForceHistory(problem.rod, linear=self.implicit)
-        self.x, self.v, self.u, self.alpha = [0.0], [problem.velocity_m_s], [0.0], [0.0]
-        self.starts: list[float] = [0.0]
-        self.ends: list[float] = []
-        self.in_contact = True
-        self.n_newton = 0
-        self.n_events = 0
-
-    # -- kinematics over a step with the scheme's force representation -------------------
-    def _impactor(self, h: float, p_new: float) -> tuple[float, float]:
-        x, v, p = self.x[-1], self.v[-1], self.hist.P[-1]
-        if self.implicit:
-            return (x + v * h - h * h * (p / 3.0 + p_new / 6.0) / self.m,
-                    v - 0.5 * h * (p + p_new) / self.m)
-        return x + v * h - 0.5 * h * h * p / self.m, v - h * p / self.m
-
-    def _free_approach(self, h: float) -> float:
-        """Approach at t_last + h if the force reached zero there (implicit scheme)."""
-        x_new, _ = self._impactor(h, 0.0)
-        known, _ = self.hist.rod_step_terms(h)
-        return x_new - known
-
-    def _accept(self, h: float, p_new: float, u_new: float, x_new: float, v_new: float) -> None:
-        self.hist.append(self.hist.t[-1] + h, p_new)
-        self.x.append(x_new)
-        self.v.append(v_new)
-        self.u.append(u_new)
-        self.alpha.append(x_new - u_new)
-
-    # -- one step ------------------------------------------------------------------------
-    def step(self) -> None:
-        if self.implicit:
-            self._step_implicit()
-        else:
-            self._step_paper()
-
-    def _step_implicit(self) -> None:
-        h, m, k = self.h, self.m, self.k
-        p_n, alpha_n = self.hist.P[-1], self.alpha[-1]
-        known, coef = self.hist.rod_step_terms(h)
-        x_pred, _ = self._impactor(h, 0.0)
-        a = x_pred - known
-        b = h * h / (6.0 * m) + coef
-        if a > 0.0 and not self.in_contact and alpha_n < 0.0:
-            # a new contact begins inside this step: its start becomes a node
-            h = brentq(self._free_approach, 0.0, h, xtol=1e-15 * self.hist.t[-1] + 1e-300, rtol=8.9e-16)
-            self.n_events += 1
-            self._event_node(h)
-            self.in_contact = True
-            self.starts.append(self.hist.t[-1])
-            return
-        if a > 0.0:
-            guess = 2.0 * alpha_n - self.alpha[-2] if len(self.alpha) > 1 else a
-            alpha_new, iterations = solve_hertz_step(a, b, k, guess)
-            self.n_newton += iterations
-            p_new = k * alpha_new**1.5
-            x_new, v_new = self._impactor(h, p_new)
-            self._accept(h, p_new, known + coef * p_new, x_new, v_new)
-            if not self.in_contact:
-                self.in_contact = True
-                self.starts.append(self.hist.t[-2])
-            return
-        if self.in_contact and alpha_n > 0.0:
-            # the contact ends inside this step: locate the zero of the approach
-            h = brentq(self._free_approach, 0.0, h, xtol=1e-15 * self.hist.t[-1] + 1e-300, rtol=8.9e-16)
-            self.n_events += 1
-            self._event_node(h)
-        else:
-            x_new, v_new = self._impactor(h, 0.0)
-            self._accept(h, 0.0, known, x_new, v_new)
-        if self.in_contact:
-            self.in_contact = False
-            self.ends.append(self.hist.t[-1])
-
-    def _event_node(self, h: float) -> None:
-        x_new, v_new = self._impactor(h, 0.0)
-        known, _ = self.hist.rod_step_terms(h)
-        self._accept(h, 0.0, known, x_new, v_new)
-
-    def _step_paper(self) -> None:
-        h = self.h
-        x_new, v_new = self._impactor(h, self.hist.P[-1])
-        known, _ = self.hist.rod_step_terms(h)
-        alpha_new = x_new - known
-        p_new = self.k * alpha_new**1.5 if alpha_new > 0.0 else 0.0
-        alpha_n, t_n = self.alpha[-1], self.hist.t[-1]
-        self._accept(h, p_new, known, x_new, v_new)
-        if self.in_contact and alpha_new <= 0.0:
-            self.in_contact = False
-            frac = alpha_n / (alpha_n - alpha_new) if alpha_n > alpha_new else 1.0
-            self.ends.append(t_n + frac * h)
-        elif not self.in_contact and alpha_new > 0.0:
-            self.in_contact = True
-            frac = -alpha_n / (alpha_new - alpha_n) if alpha_new > alpha_n else 0.0
-            self.starts.append(t_n + frac * h)
-
-    # -- termination -----------------------------------------------------------------------
-    def rod_mean_velocity(self) -> float:
-        """Mean velocity of the rod end after the force stopped (free end: rigid drift)."""
-        rod = self.problem.rod
-        if rod.far_end == "free" and math.isfinite(rod.length_m):
-            return self.hist.Q[-1] / rod.mass_kg
-        return 0.0
-
-    def no_further_contact(self) -> bool:
-        """True when, with no force, the impactor can never reach the rod again.
-
-        After the force stops the fixed rod's end motion is periodic (period 4T) from 4T
-        on, the free rod's is a drift plus a 2T-periodic motion. If the impactor moves away
-        at least as fast as that mean motion and stays clear over a window of 8T, it stays
-        clear for ever.
-        """
-        if self.v[-1] > self.rod_mean_velocity():
-            return False
-        period = self.problem.rod.reflection_period
-        if not math.isfinite(period):
-            return True
-        window = 4.0 * period
-        n = min(_MAX_WINDOW_SAMPLES, max(2, int(math.ceil(window / self.h)) + 1))
-        t0 = self.hist.t[-1]
-        times = t0 + np.linspace(0.0, window, n)[1:]
-        x = self.x[-1] + self.v[-1] * (times - t0)
-        return bool(np.all(x - self.hist.rod_displacement(times) < 0.0))
+class UnstableStepError(ValueError):
+    """The paper scheme was asked for a step beyond its stability limit."""
 
 
 def solve_sem(problem: ImpactProblem, options: SEMOptions | None = None,
@@ -182,7 +52,8 @@ def solve_sem(problem: ImpactProblem, options: SEMOptions | None = None,
     problem : ImpactProblem
         The impact.
     options : SEMOptions, optional
-        Scheme and step; defaults to ``SEMOptions()`` (implicit scheme).
+        Scheme and step; defaults to ``SEMOptions()``: implicit scheme, step chosen from
+        the case for ``tolerance`` and checked by step doubling.
     stations : sequence of float
         Positions along the rod as fractions of its length from the struck end (0..1);
         the displacement and strain there are computed from the force by d'Alembert's
@@ -192,36 +63,87 @@ def solve_sem(problem: ImpactProblem, options: SEMOptions | None = None,
     -------
     ImpactResult
         Histories, contact intervals, force maxima, energy balance and cost counters.
-        ``success`` is False (and ``status`` ``failed``) when the first contact did not
-        end within the time horizon.
+        ``success`` is False (``status`` ``failed``) when the first contact did not end
+        within the time horizon or the step budget, when the energy balance is off by more
+        than ``energy_tolerance``, or when an automatic step did not reach ``tolerance``.
+        ``extra`` says how the step was chosen (``step_choice``) and, for an automatic
+        step, the ``tolerance`` and the step-doubling ``error_estimate``.
+
+    Raises
+    ------
+    UnstableStepError
+        The paper scheme's step exceeds :func:`~rodimpact.sem.stability.paper_step_limit`
+        and ``options.allow_unstable`` is False.
     """
     options = SEMOptions() if options is None else options
     stations = _check_stations(stations, problem)
     started = _time.perf_counter()
-    st = _Stepper(problem, options)
-    t_max = options.max_time_factor * problem.contact_time_estimate()
-    status, message = "failed", ""
-    checked_end = 0
-    while True:
-        st.step()
-        if len(st.ends) > checked_end and not st.in_contact:
-            checked_end = len(st.ends)
-            if st.no_further_contact():
-                status, message = "completed", f"{len(st.ends)} contact(s); no further contact possible"
-                break
-        if len(st.starts) > options.max_contacts:
-            status = "truncated"
-            message = f"stopped at max_contacts={options.max_contacts}; later contacts not computed"
-            st.starts.pop()
+    h = options.step(problem)
+    if options.scheme == "paper":
+        check_paper_step(problem, options, h)
+    if not (options.automatic_step and options.scheme == "implicit"):
+        choice = "dt_s" if options.dt_s is not None else "steps_per_contact"
+        return run_fixed_step(problem, options, h, stations, started, {"step_choice": choice})
+    coarse = run_fixed_step(problem, options, 2.0 * h, stations, started, {})
+    checks = coarse.n_steps
+    for refinement in range(_MAX_REFINEMENTS + 1):
+        fine = run_fixed_step(problem, options, h, stations, started, {})
+        if not (fine.success and coarse.success):
+            return fine if not fine.success else _with_extra(fine, {"step_choice": "auto"})
+        estimate = _doubling_estimate(fine, coarse)
+        if refinement == 0 and 4.0 * estimate <= 0.5 * options.tolerance:
+            # the first guess was finer than needed: the run at twice the step meets the
+            # tolerance with its own (Richardson) estimate, 4 times the fine run's
+            checks, fine, estimate, h = fine.n_steps, coarse, 4.0 * estimate, 2.0 * h
             break
-        if st.hist.t[-1] >= t_max:
-            status = "truncated" if st.ends else "failed"
-            message = (f"time horizon {t_max:.6g} s (max_time_factor={options.max_time_factor}) reached"
-                       + ("" if st.ends else " before the first contact ended"))
+        if estimate <= options.tolerance or refinement == _MAX_REFINEMENTS:
             break
-    if st.in_contact:
-        st.starts = st.starts[: len(st.ends)]
-    return _result(st, status, message, _time.perf_counter() - started, stations)
+        log.info("SEM auto step %.4g s: error estimate %.2g > tolerance %.2g, halving", h, estimate,
+                 options.tolerance)
+        checks += fine.n_steps
+        coarse, h = fine, 0.5 * h
+    extra = {"step_choice": "auto", "tolerance": options.tolerance, "error_estimate": estimate,
+             "error_estimate_basis": "step doubling (Richardson, order 2): first contact time and its largest force",
+             "n_steps_error_check": checks}
+    if estimate > options.tolerance:
+        return _with_extra(fine, extra, status="failed", message=(
+            f"automatic step: error estimate {estimate:.3g} still above tolerance {options.tolerance:.3g} "
+            f"after {_MAX_REFINEMENTS} halvings (dt_s={h:.4g} s)"))
+    return _with_extra(fine, extra, message=f"{fine.message}; step {h:.4g} s chosen for tolerance "
+                       f"{options.tolerance:.3g} (estimated error {estimate:.2g})")
+
+
+def check_paper_step(problem: ImpactProblem, options: SEMOptions, h: float) -> None:
+    limit = paper_step_limit(problem)
+    if h <= limit:
+        return
+    message = (f"dt_s={h:.4g} s exceeds the paper scheme's stability limit 2 Z / k_c = {limit:.4g} s "
+               f"(rod impedance Z = {problem.rod.impedance:.4g} kg/s, contact stiffness k_c = 3/2 k alpha^(1/2) "
+               f"at the rigid-rod Hertz approach {problem.rigid_hertz.max_approach_m:.4g} m)")
+    if not options.allow_unstable:
+        needed = math.ceil(problem.rigid_hertz.contact_time_s / limit)
+        raise UnstableStepError(f"{message}; take dt_s <= {limit:.4g} s (steps_per_contact >= {needed}), "
+                                "or set allow_unstable: true to run it anyway")
+    log.warning("%s; running anyway (allow_unstable)", message)
+
+
+def _doubling_estimate(fine: ImpactResult, coarse: ImpactResult) -> float:
+    """Richardson error estimate of ``fine`` from a run at twice its step (order 2)."""
+    def first_peak(result: ImpactResult) -> float:
+        inside = result.peak_time_s <= result.contact_end_s[0]
+        return float(np.max(result.peak_force_N[inside], initial=np.max(result.contact_force)))
+
+    tc = abs(fine.contact_time_s - coarse.contact_time_s) / fine.contact_time_s
+    peak = abs(first_peak(fine) - first_peak(coarse)) / first_peak(fine)
+    return max(tc, peak) / 3.0
+
+
+def _with_extra(result: ImpactResult, extra: dict, status: str | None = None,
+                message: str | None = None) -> ImpactResult:
+    status = result.status if status is None else status
+    return dataclasses.replace(result, extra={**result.extra, **extra}, status=status,
+                               success=status != "failed",
+                               message=result.message if message is None else message)
 
 
 def _check_stations(stations: Sequence[float], problem: ImpactProblem) -> tuple[float, ...]:
@@ -233,76 +155,3 @@ def _check_stations(stations: Sequence[float], problem: ImpactProblem) -> tuple[
     return stations
 
 
-def _histories(st: _Stepper, stations: tuple[float, ...], rod_energy: np.ndarray) -> tuple[dict, dict]:
-    """Station histories (d'Alembert) and energies as extra series; station positions."""
-    t = np.asarray(st.hist.t)
-    alpha = np.asarray(st.alpha)
-    series = {
-        "impactor_kinetic_energy": (0.5 * st.m * np.asarray(st.v) ** 2, "J", "kinetic energy of the impactor"),
-        "contact_energy": (0.4 * st.k * np.maximum(alpha, 0.0) ** 2.5, "J", "Hertz energy stored in the contact"),
-        "rod_energy": (rod_energy, "J", "energy in the rod: work done on it by the contact force"),
-    }
-    extra = {}
-    if st.problem.sphere_radius_m is not None:
-        series["contact_radius"] = (np.sqrt(st.problem.sphere_radius_m * np.maximum(alpha, 0.0)), "m",
-                                    "contact radius, Hertz: sqrt(R alpha)")
-    if stations:
-        length = st.problem.rod.length_m
-        xs = [s * length for s in stations]
-        series["station_displacement"] = (
-            np.column_stack([st.hist.displacement_at(x, t) for x in xs]), "m",
-            "axial displacement of the cross-sections at station_x_m (d'Alembert, from the contact force)")
-        series["station_strain"] = (
-            np.column_stack([st.hist.strain_at(x, t) for x in xs]), "1",
-            "axial strain du/dx at station_x_m (negative in compression; d'Alembert)")
-        extra["station_x_m"] = np.asarray(xs)
-    return series, extra
-
-
-def _result(st: _Stepper, status: str, message: str, wall: float,
-            stations: tuple[float, ...] = ()) -> ImpactResult:
-    t = np.asarray(st.hist.t)
-    p = np.asarray(st.hist.P)
-    u = np.asarray(st.u)
-    alpha = np.asarray(st.alpha)
-    # work done on the rod, with the scheme's own force representation
-    mean_force = 0.5 * (p[1:] + p[:-1]) if st.implicit else p[:-1]
-    rod_work = np.concatenate([[0.0], np.cumsum(mean_force * np.diff(u))])
-    rod_energy = float(rod_work[-1])
-    series, extra = _histories(st, stations, rod_work)
-    problem = st.problem
-    ke_in = problem.kinetic_energy_J
-    ke_out = 0.5 * problem.mass_kg * st.v[-1] ** 2
-    hertz_left = 0.4 * problem.hertz_k * max(alpha[-1], 0.0) ** 2.5
-    energy_error = (ke_in - ke_out - rod_energy - hertz_left) / ke_in
-    peak_t, peak_p = local_maxima(t, p)
-    if status != "failed" and not math.isfinite(energy_error):
-        status, message = "failed", "non-finite energy balance"
-    log.info("SEM %s: %s (%s), %d steps, contact time %.6g s", st.options.scheme, status, message,
-             len(t) - 1, (st.ends[0] - st.starts[0]) if st.ends else math.nan)
-    return ImpactResult(
-        success=status != "failed",
-        status=status,
-        message=message,
-        scheme=st.options.scheme,
-        dt_s=st.h,
-        time=t,
-        contact_force=p,
-        approach=alpha,
-        impactor_displacement=np.asarray(st.x),
-        impactor_velocity=np.asarray(st.v),
-        rod_end_displacement=u,
-        contact_start_s=np.asarray(st.starts[: len(st.ends)]),
-        contact_end_s=np.asarray(st.ends),
-        peak_time_s=peak_t,
-        peak_force_N=peak_p,
-        rebound_velocity_m_s=float(st.v[-1]),
-        rod_energy_J=rod_energy,
-        energy_error=float(energy_error),
-        n_steps=len(t) - 1,
-        n_newton_iterations=st.n_newton,
-        n_events=st.n_events,
-        wall_time_s=wall,
-        extra=extra,
-        extra_series=series,
-    )

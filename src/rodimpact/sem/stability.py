@@ -1,0 +1,168 @@
+"""Step size of the SEM: the paper scheme's stability limit and the implicit scheme's choice.
+
+The paper's scheme (``scheme="paper"``) holds the contact force constant over a step at
+its value from the previous step. Linearise it about a state of the contact, P = k_c alpha
+with the contact stiffness k_c = dP/dalpha = 3/2 k alpha^(1/2), for a step h shorter than
+the wave round trip 2T (the rod end then answers a force held over a step with the
+displacement h P / Z, Z = S sqrt(E rho) the rod's impedance). A perturbation
+(e_n of the approach, w_n of the impactor's velocity) obeys
+
+    e_{n+1} = (1 - a - b/2) e_n + h w_n,     w_{n+1} = w_n - (b/h) e_n,
+    a = h k_c / Z,   b = h^2 k_c / m,
+
+with characteristic polynomial lambda^2 - (2 - a - b/2) lambda + (1 - a + b/2). By the
+Jury conditions its roots lie in the unit disc if and only if
+    (i)  1 + tr + det = 4 - 2a > 0     i.e.  h < 2 Z / k_c,
+    (ii) det = 1 - a + b/2 < 1         i.e.  h < 2 m / Z,
+    (1 - tr + det = b > 0 always holds).
+(i) is the limit that matters: beyond it a root crosses -1 and a step-to-step sawtooth of
+the force grows geometrically: the lagged force overshoots the rod's instantaneous
+answer. (ii) only separates growth from decay of the slow mode at the rate
+h k_c (h/2m - 1/Z) per step, an O(h) drift over a contact that vanishes as h -> 0 (on a
+rigid rod, Z -> oo, the scheme is never unstable, only first order).
+
+k_c is largest where the approach is; the approach never exceeds the rigid-rod Hertz
+approach alpha_H = (5 m v0^2 / (4 k))^(2/5) (all the kinetic energy in the contact), so
+
+    h_limit = 2 Z / (3/2 k alpha_H^(1/2))
+
+is a step below which the scheme is stable throughout any contact of the case.
+:func:`paper_step_limit` returns it; ``tests/test_sem_stability.py`` verifies the sharp
+threshold with the run's actual largest approach (stable at 0.9, unstable at 1.1 of it).
+
+The implicit scheme has no such limit. :func:`implicit_step` chooses its step from the
+case's time scales; :mod:`.solver` then checks the choice by step doubling.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from .problem import ImpactProblem
+
+__all__ = [
+    "AUTO_ERROR_CONSTANT",
+    "AUTO_STEPS",
+    "ZIGZAG_UNSTABLE",
+    "contact_stiffness",
+    "contact_time_scale",
+    "implicit_step",
+    "paper_step_limit",
+    "sawtooth_amplitude",
+    "zigzag_steps",
+]
+
+#: Error constant C of the implicit scheme, err ~ C (h / tau)^2 with tau from
+#: :func:`contact_time_scale`; measured <= 1 on the shipped cases (first contact time and
+#: largest force at 100 steps per tau), taken 4 for margin.
+AUTO_ERROR_CONSTANT = 4.0
+#: A force alternating up and down at every step over this many steps (:func:`zigzag_steps`)
+#: marks an unstable step.
+ZIGZAG_UNSTABLE = 10
+#: Fewest steps over the estimated contact time the first guess of the automatic step takes.
+AUTO_STEPS = 20_000
+
+
+def contact_stiffness(hertz_k: float, approach_m: float) -> float:
+    """Tangent stiffness of the Hertz contact, k_c = dP/dalpha = 3/2 k alpha^(1/2), N/m."""
+    return 1.5 * hertz_k * math.sqrt(max(approach_m, 0.0))
+
+
+def paper_step_limit(problem: ImpactProblem, approach_m: float | None = None) -> float:
+    """Largest stable step of the paper's lagged explicit scheme, s: 2 Z / k_c.
+
+    Parameters
+    ----------
+    problem : ImpactProblem
+        The impact.
+    approach_m : float, optional
+        The largest approach alpha at which to evaluate k_c, m; defaults to the rigid-rod
+        Hertz approach, an upper bound for every rod, so that the limit holds for the case.
+
+    Returns
+    -------
+    float
+        The step limit, s (``inf`` for a rod of infinite impedance). Derived for steps
+        shorter than the wave round trip 2T (see the module docstring).
+    """
+    alpha = problem.rigid_hertz.max_approach_m if approach_m is None else approach_m
+    kc = contact_stiffness(problem.hertz_k, alpha)
+    impedance = problem.rod.impedance
+    if kc == 0.0 or not math.isfinite(impedance):
+        return math.inf
+    return 2.0 * impedance / kc
+
+
+def contact_time_scale(problem: ImpactProblem) -> float:
+    """The time scale of the contact force's rise and fall, s.
+
+    The rigid-rod Hertz time t_H = 2.94 alpha_H / v0, with the approach alpha_H replaced
+    by alpha_Z = (Z v0 / k)^(2/3) when that is smaller: the approach at which the force
+    reaches Z v0, where a force fed through the rod's impedance Z levels off (thin rods),
+    long before t_H.
+    """
+    hertz = problem.rigid_hertz
+    impedance = problem.rod.impedance
+    if not math.isfinite(impedance):
+        return hertz.contact_time_s
+    alpha_z = (impedance * problem.velocity_m_s / problem.hertz_k) ** (2.0 / 3.0)
+    return hertz.contact_time_s * min(1.0, alpha_z / hertz.max_approach_m)
+
+
+def implicit_step(problem: ImpactProblem, tolerance: float) -> float:
+    """First guess of the implicit (second-order) scheme's step for ``tolerance``, s.
+
+    h = tau sqrt(tolerance / C) with tau = :func:`contact_time_scale` and C =
+    :data:`AUTO_ERROR_CONSTANT`, and at most a 20th of the wave round trip 2T, so that the
+    reflections' kinks in the force fall on a resolved history; but no finer than
+    :data:`AUTO_STEPS` steps over the estimated contact time (a long contact on a thin
+    rod varies slowly after its rise). The solver checks the guess by step doubling and
+    halves it until the estimate meets the tolerance.
+    """
+    if not (0.0 < tolerance < 1.0):
+        raise ValueError(f"tolerance must be in (0, 1), got {tolerance!r}")
+    step = contact_time_scale(problem) * math.sqrt(tolerance / AUTO_ERROR_CONSTANT)
+    period = problem.rod.reflection_period
+    if math.isfinite(period):
+        step = min(step, period / 20.0)
+    duration = problem.contact_time_estimate()
+    if math.isfinite(period):
+        duration -= period  # the estimate's round trip: an upper bound, not a time scale
+    return max(step, duration / AUTO_STEPS)
+
+
+def sawtooth_amplitude(force: ArrayLike) -> float:
+    """Largest step-to-step zig-zag of a force history, relative to its largest value.
+
+    max |P_{n+1} - 2 P_n + P_{n-1}| / (4 max P): about h^2 |P''| / (4 max P) on a smooth
+    history, close to 1 when the force alternates between zero and its peak (the paper
+    scheme's instability).
+    """
+    p = np.asarray(force, dtype=float)
+    if len(p) < 3 or not np.max(p) > 0:
+        return 0.0
+    return float(np.max(np.abs(p[2:] - 2.0 * p[1:-1] + p[:-2])) / (4.0 * np.max(p)))
+
+
+def zigzag_steps(force: ArrayLike, threshold: float = 0.05) -> int:
+    """Longest run of steps over which the force alternates up, down, up, ...
+
+    Counts consecutive increments dP_n that change sign at every step while each exceeds
+    ``threshold`` times the largest force. The paper scheme's instability (a root of its
+    step below -1) makes such a run as long as the contact; a smooth but under-resolved
+    force (a few steps per rise) does not alternate at every step.
+    """
+    p = np.asarray(force, dtype=float)
+    if len(p) < 3 or not np.max(p) > 0:
+        return 0
+    d = np.diff(p)
+    big = np.abs(d) > threshold * np.max(p)
+    alternating = big[1:] & big[:-1] & (np.sign(d[1:]) == -np.sign(d[:-1]))
+    longest = run = 0
+    for flag in alternating:
+        run = run + 1 if flag else 0
+        longest = max(longest, run)
+    return int(longest + 1 if longest else 0)

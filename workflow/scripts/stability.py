@@ -1,0 +1,9 @@
+"""Snakemake adapter: the stress runs checked against their stated tolerances."""
+
+from rodimpact.artifacts import make_stability
+from rodimpact.logs import script_logging
+
+with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
+    out = snakemake.output  # noqa: F821
+    make_stability(snakemake.input.runs, snakemake.input.references,  # noqa: F821
+                   snakemake.params.tolerances, csv=out.csv, md=out.md, provenance=out.provenance)  # noqa: F821

@@ -1,0 +1,9 @@
+"""Snakemake adapter: the stability map of the SEM schemes (table and figure)."""
+
+from rodimpact.artifacts import make_stability_map
+from rodimpact.logs import script_logging
+
+with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
+    out, params = snakemake.output, snakemake.params  # noqa: F821
+    make_stability_map(snakemake.input.runs, snakemake.input.references, params.spec,  # noqa: F821
+                       csv=out.csv, pdf=out.pdf, png=out.png, provenance=out.provenance)

@@ -1,0 +1,9 @@
+"""Snakemake adapter: the work-precision table and the fitted orders."""
+
+from rodimpact.artifacts import make_work_precision
+from rodimpact.logs import script_logging
+
+with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
+    out, params = snakemake.output, snakemake.params  # noqa: F821
+    make_work_precision(snakemake.input.runs, params.methods, params.fit_levels, csv=out.csv,  # noqa: F821
+                        orders_csv=out.orders_csv, orders_md=out.orders_md, provenance=out.provenance)
