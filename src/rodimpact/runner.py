@@ -162,7 +162,7 @@ def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: i
     study : mapping, optional
         The study this run belongs to and its sweep parameters, stored in the config.
     """
-    timing = Timing() if timing is None else timing
+    timed, timing = timing is not None, Timing() if timing is None else timing
     config = run_config(case, method, level)
     if study is not None:
         config["run"]["study"] = dict(study)
@@ -187,7 +187,7 @@ def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: i
     else:
         log.info("case %s, method %s: %s: %s in %.3f s", case["id"], method, result.status, result.message, wall)
         series, summary = result.series(case["outputs"]), result.summary()
-    if timing.min_repeats > 1 or timing.min_total_s > 0:
+    if timed:
         summary.update(wall_time_repeats=len(walls), wall_time_min_s=min(walls), wall_time_median_s=wall,
                        wall_time_max_s=max(walls), machine=machine_description())
     return write_run(path, config=config, method=method, series=series, summary=summary, wall_time_s=wall)

@@ -146,13 +146,14 @@ def observed_orders(frame: pd.DataFrame, methods: Mapping[str, Mapping[str, Any]
 
     The fit (``np.polyfit`` of log error against log h, h = 1 / resolution) takes the
     finest ``fit_levels`` levels whose error is finite and above ten times the
-    reference's error estimate (below that the reference's error would be measured).
+    reference's error estimate (below that the reference's error would be measured), and at
+    least three of them.
 
     Returns
     -------
     DataFrame
         ``case_id, method, quantity, observed_order, theoretical_order, fitted_levels``
-        (the levels used, e.g. ``3-6``; empty and order NaN when fewer than two qualify).
+        (the levels used, e.g. ``3-6``; empty and order NaN when fewer than three qualify).
     """
     rows = []
     for (case_id, method), group in frame.groupby(["case_id", "method"], sort=False):
@@ -162,7 +163,7 @@ def observed_orders(frame: pd.DataFrame, methods: Mapping[str, Mapping[str, Any]
             usable = np.isfinite(err) & (err > 10.0 * np.nan_to_num(floor, nan=np.inf)) & (err > 0)
             index = np.flatnonzero(usable)[-fit_levels:]
             order, levels = math.nan, ""
-            if len(index) >= 2:
+            if len(index) >= 3:  # two points give a ratio, not a range
                 h = 1.0 / group["resolution_value"].to_numpy(float)[index]
                 order = float(np.polyfit(np.log(h), np.log(err[index]), 1)[0])
                 levels = f"{group['level'].iloc[index[0]]}-{group['level'].iloc[index[-1]]}"
