@@ -10,7 +10,12 @@ import numpy as np
 from scipy.signal import peak_prominences
 from numpy.typing import NDArray
 
-__all__ = ["ImpactResult", "OUTPUT_DATASETS", "SERIES", "local_maxima", "limit_reached"]
+__all__ = ["ImpactResult", "OUTPUT_DATASETS", "SERIES", "ZIGZAG_UNSTABLE", "check_stepping", "first_contact_maxima",
+           "limit_reached", "local_maxima", "sawtooth_amplitude", "zigzag_steps"]
+
+#: A force alternating up and down at every step over this many steps (:func:`zigzag_steps`)
+#: marks an unstable step.
+ZIGZAG_UNSTABLE = 10
 
 #: Histories every solver fills: dataset name -> (units, description).
 SERIES: dict[str, tuple[str, str]] = {
@@ -31,6 +36,69 @@ OUTPUT_DATASETS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
     "energy": (("impactor_kinetic_energy", "contact_energy", "rod_energy"),
                ("rod_kinetic_energy", "rod_strain_energy")),
 }
+
+
+def check_stepping(dt_s: float | None, steps_per_contact: int | None, min_steps: int,
+                   max_time_factor: float, max_contacts: int, *, steps_optional: bool = False) -> None:
+    """Validate the time-stepping settings every solver's options share.
+
+    Raises
+    ------
+    ValueError
+        Naming the first offending setting.
+    """
+    if dt_s is not None and not (math.isfinite(dt_s) and dt_s > 0):
+        raise ValueError(f"dt_s must be > 0 or None, got {dt_s!r}")
+    if steps_per_contact is None:
+        if not steps_optional:
+            raise ValueError("steps_per_contact must be given")
+    elif int(steps_per_contact) != steps_per_contact or steps_per_contact < min_steps:
+        extra = " or None" if steps_optional else ""
+        raise ValueError(f"steps_per_contact must be an integer >= {min_steps}{extra}, got {steps_per_contact!r}")
+    if not max_time_factor > 1:
+        raise ValueError(f"max_time_factor must be > 1, got {max_time_factor!r}")
+    if int(max_contacts) != max_contacts or max_contacts < 1:
+        raise ValueError(f"max_contacts must be an integer >= 1, got {max_contacts!r}")
+
+
+def first_contact_maxima(peak_time_s: Any, peak_force_N: Any, contact_end_s: Any) -> NDArray[np.float64]:
+    """The force maxima (N) that fall within the first contact (all of them if none ended)."""
+    times, peaks = np.atleast_1d(peak_time_s), np.atleast_1d(peak_force_N)
+    ends = np.atleast_1d(contact_end_s)
+    return peaks[times <= ends[0]] if len(ends) else peaks
+
+
+def sawtooth_amplitude(force: Any) -> float:
+    """Largest step-to-step zig-zag of a force history, relative to its largest value.
+
+    max |P_{n+1} - 2 P_n + P_{n-1}| / (4 max P): about h^2 |P''| / (4 max P) on a smooth
+    history, close to 1 when the force alternates between zero and its peak.
+    """
+    p = np.asarray(force, dtype=float)
+    if len(p) < 3 or not np.max(p) > 0:
+        return 0.0
+    return float(np.max(np.abs(p[2:] - 2.0 * p[1:-1] + p[:-2])) / (4.0 * np.max(p)))
+
+
+def zigzag_steps(force: Any, threshold: float = 0.05) -> int:
+    """Longest run of steps over which the force alternates up, down, up, ...
+
+    Counts consecutive increments dP_n that change sign at every step while each exceeds
+    ``threshold`` times the largest force. An explicit scheme's instability (a root of its
+    step below -1) makes such a run as long as the contact; a smooth but under-resolved
+    force (a few steps per rise) does not alternate at every step.
+    """
+    p = np.asarray(force, dtype=float)
+    if len(p) < 3 or not np.max(p) > 0:
+        return 0
+    d = np.diff(p)
+    big = np.abs(d) > threshold * np.max(p)
+    alternating = big[1:] & big[:-1] & (np.sign(d[1:]) == -np.sign(d[:-1]))
+    if not alternating.any():
+        return 0
+    # longest run of True: the distance between the falses around it
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], alternating.astype(np.int8), [0]])))
+    return int(np.max(edges[1::2] - edges[::2]) + 1)
 
 
 def limit_reached(starts: list[float], ends: list[float], t: float, t_max: float,

@@ -93,8 +93,10 @@ def run_config(case: Mapping[str, Any], method: str, level: int | None = None) -
     return {**case, "run": run}
 
 
-def run_case(case: Mapping[str, Any], method: str) -> Any:
+def run_case(case: Mapping[str, Any], method: str, *, keep_failed: bool = False) -> Any:
     """Solve ``case`` with ``method`` and return the solver's result object.
+
+    ``keep_failed=True`` returns a failed result instead of raising (a study run).
 
     Raises
     ------
@@ -108,7 +110,7 @@ def run_case(case: Mapping[str, Any], method: str) -> Any:
     if method not in case["methods"]:
         raise ValueError(f"method: case {case['id']!r} does not list {method!r} (it lists {case['methods']})")
     result = RUNNERS[method](case, case["numerics"][method])
-    if not result.success:
+    if not (result.success or keep_failed):
         raise SolverFailed(f"case {case['id']!r}, method {method!r}: {result.status}: {result.message}")
     return result
 
@@ -171,7 +173,7 @@ def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: i
     while True:
         started = time.perf_counter()
         try:
-            result = run_case(case, method) if not keep_failed else _study_run(case, method)
+            result = run_case(case, method, keep_failed=keep_failed)
         except _STUDY_ERRORS as caught:
             if not keep_failed:
                 raise
@@ -191,13 +193,6 @@ def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: i
         summary.update(wall_time_repeats=len(walls), wall_time_min_s=min(walls), wall_time_median_s=wall,
                        wall_time_max_s=max(walls), machine=machine_description())
     return write_run(path, config=config, method=method, series=series, summary=summary, wall_time_s=wall)
-
-
-def _study_run(case: Mapping[str, Any], method: str) -> Any:
-    """Like :func:`run_case`, but a failed result is returned, not raised."""
-    if method not in case["methods"]:
-        raise ValueError(f"method: case {case['id']!r} does not list {method!r} (it lists {case['methods']})")
-    return RUNNERS[method](case, case["numerics"][method])
 
 
 def machine_description() -> str:

@@ -9,15 +9,11 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 import pandas as pd
 
+from .result import ZIGZAG_UNSTABLE
 from .store import RunRecord
 
 __all__ = ["MAP_CLASSES", "StudyViolation", "ZIGZAG_UNSTABLE", "enforced_limit_line", "map_frame",
            "stability_frame", "violations"]
-
-#: A force alternating up and down at every step over this many steps marks an unstable
-#: step (keep equal to rodimpact.sem.stability.ZIGZAG_UNSTABLE, which the SEM stores the
-#: count for; this module reads runs and does not import the solvers).
-ZIGZAG_UNSTABLE = 10
 
 class StudyViolation(RuntimeError):
     """A study run gave a wrong answer without saying so."""

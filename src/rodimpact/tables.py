@@ -17,6 +17,7 @@ import pandas as pd
 
 from .atomic import atomic_output
 from .provenance import code_version
+from .result import first_contact_maxima
 from .store import RunRecord, read_summary
 
 __all__ = [
@@ -144,10 +145,8 @@ def variants_summary(frames: dict[str, pd.DataFrame]) -> pd.DataFrame:
 
 
 def _first_contact_maxima(rec: RunRecord) -> np.ndarray:
-    peaks_t = np.atleast_1d(rec.summary["peak_time_s"])
-    peaks = np.atleast_1d(rec.summary["peak_force_N"])
-    end = np.atleast_1d(rec.summary["contact_end_s"])
-    return peaks[peaks_t <= end[0]] if len(end) else peaks
+    summary = rec.summary
+    return first_contact_maxima(summary["peak_time_s"], summary["peak_force_N"], summary["contact_end_s"])
 
 
 def comparison_frame(records: Sequence[RunRecord], reference: str = "sem") -> pd.DataFrame:

@@ -23,6 +23,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 import pandas as pd
 
+from .result import first_contact_maxima
 from .store import RunRecord
 
 __all__ = ["HISTORY_SAMPLES", "observed_orders", "work_precision_frame"]
@@ -31,15 +32,11 @@ __all__ = ["HISTORY_SAMPLES", "observed_orders", "work_precision_frame"]
 HISTORY_SAMPLES = 20_001
 
 
-def _first_contact_maxima(rec: RunRecord) -> np.ndarray:
-    peaks, times = np.asarray(rec.summary["peak_force_N"]), np.asarray(rec.summary["peak_time_s"])
-    ends = np.asarray(rec.summary["contact_end_s"])
-    return peaks[times <= ends[0]] if len(ends) else peaks
-
-
 def _scalars(rec: RunRecord) -> dict[str, float]:
-    out = {"contact_time": float(rec.summary["contact_time_s"])}
-    for k, value in enumerate(_first_contact_maxima(rec), start=1):
+    summary = rec.summary
+    out = {"contact_time": float(summary["contact_time_s"])}
+    maxima = first_contact_maxima(summary["peak_time_s"], summary["peak_force_N"], summary["contact_end_s"])
+    for k, value in enumerate(maxima, start=1):
         out[f"max_{k}"] = float(value)
     return out
 

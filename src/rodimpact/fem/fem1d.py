@@ -25,7 +25,7 @@ from scipy.optimize import brentq
 from scipy.sparse.linalg import splu
 
 from ..hertz import solve_hertz_step
-from ..result import ImpactResult, limit_reached, local_maxima
+from ..result import ImpactResult, check_stepping, limit_reached, local_maxima
 from ..sem.problem import ImpactProblem
 from .bar import bar_model, end_vector
 
@@ -79,14 +79,7 @@ class FEM1DOptions:
             raise ValueError(f"elements must be a positive integer or None, got {self.elements!r}")
         if not self.points_per_wavelength > 0:
             raise ValueError(f"points_per_wavelength must be > 0, got {self.points_per_wavelength!r}")
-        if self.dt_s is not None and not (math.isfinite(self.dt_s) and self.dt_s > 0):
-            raise ValueError(f"dt_s must be > 0 or None, got {self.dt_s!r}")
-        if int(self.steps_per_contact) != self.steps_per_contact or self.steps_per_contact < 1:
-            raise ValueError(f"steps_per_contact must be a positive integer, got {self.steps_per_contact!r}")
-        if not self.max_time_factor > 1:
-            raise ValueError(f"max_time_factor must be > 1, got {self.max_time_factor!r}")
-        if int(self.max_contacts) != self.max_contacts or self.max_contacts < 1:
-            raise ValueError(f"max_contacts must be an integer >= 1, got {self.max_contacts!r}")
+        check_stepping(self.dt_s, self.steps_per_contact, 1, self.max_time_factor, self.max_contacts)
 
     @classmethod
     def from_mapping(cls, data: Mapping[str, Any]) -> "FEM1DOptions":

@@ -28,7 +28,7 @@ from skfem import Basis, ElementTriP1, ElementTriP2, ElementVector
 
 from ..hertz import effective_modulus
 from ..materials import Material
-from ..result import ImpactResult, limit_reached, local_maxima
+from ..result import ImpactResult, check_stepping, limit_reached, local_maxima
 from .axibody import AxiBody, dofs_of
 from .axisym import axis_dofs, axisym_mass, axisym_stiffness, cross_section_mean_uz
 from .meshes import ball_mesh, cap_mesh, rod_mesh
@@ -131,14 +131,7 @@ class FEMAxiOptions:
             raise ValueError(f"contact_extent must be > 1 (Hertz contact radii), got {self.contact_extent!r}")
         if not 0 < self.cap_height <= 1:
             raise ValueError(f"cap_height must lie in (0, 1] (sphere radii), got {self.cap_height!r}")
-        if self.dt_s is not None and not (math.isfinite(self.dt_s) and self.dt_s > 0):
-            raise ValueError(f"dt_s must be > 0 or None, got {self.dt_s!r}")
-        if int(self.steps_per_contact) != self.steps_per_contact or self.steps_per_contact < 20:
-            raise ValueError(f"steps_per_contact must be an integer >= 20, got {self.steps_per_contact!r}")
-        if not self.max_time_factor > 1:
-            raise ValueError(f"max_time_factor must be > 1, got {self.max_time_factor!r}")
-        if int(self.max_contacts) != self.max_contacts or self.max_contacts < 1:
-            raise ValueError(f"max_contacts must be an integer >= 1, got {self.max_contacts!r}")
+        check_stepping(self.dt_s, self.steps_per_contact, 20, self.max_time_factor, self.max_contacts)
 
     @classmethod
     def from_mapping(cls, data: Mapping[str, Any]) -> "FEMAxiOptions":

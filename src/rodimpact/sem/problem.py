@@ -8,6 +8,7 @@ from typing import Any, Literal, Mapping
 
 from ..hertz import HertzImpact, hertz_constant, hertz_rigid_impact
 from ..materials import Material
+from ..result import check_stepping
 from ..responses import Rod
 
 __all__ = ["ImpactProblem", "SEMOptions", "SCHEMES"]
@@ -143,21 +144,14 @@ class SEMOptions:
     def __post_init__(self) -> None:
         if self.scheme not in SCHEMES:
             raise ValueError(f"scheme must be one of {SCHEMES}, got {self.scheme!r}")
-        if self.dt_s is not None and not (math.isfinite(self.dt_s) and self.dt_s > 0):
-            raise ValueError(f"dt_s must be > 0 or None, got {self.dt_s!r}")
-        if self.steps_per_contact is not None and (
-                int(self.steps_per_contact) != self.steps_per_contact or self.steps_per_contact < 10):
-            raise ValueError(f"steps_per_contact must be an integer >= 10 or None, got {self.steps_per_contact!r}")
+        check_stepping(self.dt_s, self.steps_per_contact, 10, self.max_time_factor, self.max_contacts,
+                       steps_optional=True)
         if self.scheme == "paper" and self.dt_s is None and self.steps_per_contact is None:
             raise ValueError("the paper scheme needs dt_s or steps_per_contact (it has no automatic step)")
         if not (0.0 < self.tolerance < 1.0):
             raise ValueError(f"tolerance must be in (0, 1), got {self.tolerance!r}")
         if not (self.energy_tolerance > 0.0):
             raise ValueError(f"energy_tolerance must be > 0, got {self.energy_tolerance!r}")
-        if not (self.max_time_factor > 1):
-            raise ValueError(f"max_time_factor must be > 1, got {self.max_time_factor!r}")
-        if int(self.max_contacts) != self.max_contacts or self.max_contacts < 1:
-            raise ValueError(f"max_contacts must be an integer >= 1, got {self.max_contacts!r}")
         if int(self.max_steps) != self.max_steps or self.max_steps < 10:
             raise ValueError(f"max_steps must be an integer >= 10, got {self.max_steps!r}")
 

@@ -38,9 +38,7 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-from numpy.typing import ArrayLike
-
+from ..result import ZIGZAG_UNSTABLE, sawtooth_amplitude, zigzag_steps
 from .problem import ImpactProblem
 
 __all__ = [
@@ -59,9 +57,6 @@ __all__ = [
 #: :func:`contact_time_scale`; measured <= 1 on the shipped cases (first contact time and
 #: largest force at 100 steps per tau), taken 4 for margin.
 AUTO_ERROR_CONSTANT = 4.0
-#: A force alternating up and down at every step over this many steps (:func:`zigzag_steps`)
-#: marks an unstable step.
-ZIGZAG_UNSTABLE = 10
 #: Fewest steps over the estimated contact time the first guess of the automatic step takes.
 AUTO_STEPS = 20_000
 
@@ -132,37 +127,3 @@ def implicit_step(problem: ImpactProblem, tolerance: float) -> float:
     if math.isfinite(period):
         duration -= period  # the estimate's round trip: an upper bound, not a time scale
     return max(step, duration / AUTO_STEPS)
-
-
-def sawtooth_amplitude(force: ArrayLike) -> float:
-    """Largest step-to-step zig-zag of a force history, relative to its largest value.
-
-    max |P_{n+1} - 2 P_n + P_{n-1}| / (4 max P): about h^2 |P''| / (4 max P) on a smooth
-    history, close to 1 when the force alternates between zero and its peak (the paper
-    scheme's instability).
-    """
-    p = np.asarray(force, dtype=float)
-    if len(p) < 3 or not np.max(p) > 0:
-        return 0.0
-    return float(np.max(np.abs(p[2:] - 2.0 * p[1:-1] + p[:-2])) / (4.0 * np.max(p)))
-
-
-def zigzag_steps(force: ArrayLike, threshold: float = 0.05) -> int:
-    """Longest run of steps over which the force alternates up, down, up, ...
-
-    Counts consecutive increments dP_n that change sign at every step while each exceeds
-    ``threshold`` times the largest force. The paper scheme's instability (a root of its
-    step below -1) makes such a run as long as the contact; a smooth but under-resolved
-    force (a few steps per rise) does not alternate at every step.
-    """
-    p = np.asarray(force, dtype=float)
-    if len(p) < 3 or not np.max(p) > 0:
-        return 0
-    d = np.diff(p)
-    big = np.abs(d) > threshold * np.max(p)
-    alternating = big[1:] & big[:-1] & (np.sign(d[1:]) == -np.sign(d[:-1]))
-    longest = run = 0
-    for flag in alternating:
-        run = run + 1 if flag else 0
-        longest = max(longest, run)
-    return int(longest + 1 if longest else 0)
