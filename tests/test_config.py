@@ -445,7 +445,38 @@ MALFORMED = {
         "config/config.yaml: field 'stability.tolerances': no tolerances for method 'fem1d' (run by case "
         "'microgram_fast')",
     ),
+    "unknown sweep parameter": (
+        _set(TABLE2, "cases", 6, "sweep", "parameters", "diameter", [1e-3]),
+        f"{TABLE2}: case 'ball_sweep': field 'sweep.parameters.diameter': unknown field (did you mean "
+        "'ball_diameter_m'?); allowed: ball_diameter_m, mass_kg, radius_m, velocity_m_s, rod_length_m",
+    ),
+    "negative sweep start": (
+        _set(TABLE2, "cases", 6, "sweep", "parameters", "ball_diameter_m", {"start": -1e-3, "stop": 2e-2, "num": 5}),
+        f"{TABLE2}: case 'ball_sweep': field 'sweep.parameters.ball_diameter_m.start': must be > 0, got -0.001",
+    ),
+    "unknown sweep method": (
+        _set(TABLE2, "cases", 6, "sweep", "methods", ["semm"]),
+        f"{TABLE2}: case 'ball_sweep': field 'sweep.methods[0]': unknown method 'semm'; known: sem, sem_paper, "
+        "fem1d, fem_axi",
+    ),
+    "sweep values that name the same file": (
+        _set(TABLE2, "cases", 6, "sweep", "parameters", "ball_diameter_m", [1e-3, 1.0000001e-3]),
+        f"{TABLE2}: case 'ball_sweep-r10_l30': field 'sweep.parameters.ball_diameter_m': values coincide after "
+        "rounding to 6 digits: [0.001, 0.001]",
+    ),
 }
+
+
+def test_unstable_sweep_point_is_refused_naming_the_point(project_dir: Path) -> None:
+    def change(document: dict) -> None:
+        document["cases"][6]["sweep"]["methods"] = ["sem_paper"]
+        document["cases"][6]["numerics"] = {"sem_paper": {"steps_per_contact": 10}}
+
+    edit(project_dir / TABLE2, change)
+    message = error_of(project_dir)
+    assert message.startswith(f"{TABLE2}: case 'ball_sweep-r1_l301': field 'numerics.sem_paper.steps_per_contact': "
+                              "at ball_diameter_m = "), message
+    assert "stability limit" in message
 
 
 @pytest.mark.parametrize("change, expected", MALFORMED.values(), ids=MALFORMED.keys())

@@ -122,8 +122,9 @@ def test_schema_on_disk(tmp_path: Path) -> None:
     with h5py.File(path, "r") as h5:
         assert set(h5.attrs) == {
             "case_id", "method", "config_json", "config_sha256", "code_version",
-            "library_versions", "wall_time_s", "created_utc", "schema_version",
+            "library_versions", "wall_time_s", "created_utc", "schema_version", "data_sha256",
         }  # fmt: skip
+        assert len(h5.attrs["data_sha256"]) == 64
         assert h5.attrs["schema_version"] == 1
         assert json.loads(h5.attrs["library_versions"]) == provenance.library_versions()
         assert h5.attrs["config_json"] == provenance.canonical_json(make_config())

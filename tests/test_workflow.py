@@ -13,6 +13,8 @@ install (``test_jobs_run_the_checkouts_own_code``).
 
 from __future__ import annotations
 
+import ast
+import html
 import json
 import math
 import os
@@ -21,15 +23,18 @@ import shutil
 import subprocess
 import sys
 from collections import Counter
+from html.parser import HTMLParser
 from pathlib import Path
 
 import h5py
+import numpy as np
 import pandas as pd
 import pytest
 import yaml
 from PIL import Image
 
-from rodimpact.config import load_global_config, load_project
+from rodimpact.audit import audit
+from rodimpact.config import METHOD_SETTINGS, load_global_config, load_project
 from rodimpact.store import REQUIRED_SUMMARY, read_run
 
 pytestmark = pytest.mark.workflow
@@ -39,14 +44,14 @@ PROJECT_PARTS = ("Snakefile", "config", "workflow", "src")
 TABLE2_VARIANTS = ("r10_l30", "r1_l301", "r1_l30", "r10_l301")
 ROOT_ATTRS = (
     "case_id", "method", "config_json", "config_sha256", "code_version", "library_versions",
-    "wall_time_s",
+    "wall_time_s", "data_sha256",
 )  # fmt: skip
 SUMMARY_ATTRS = ("contact_time_s", "peak_force_N", "peak_time_s", "rebound_velocity_m_s", "energy_error")
 TABLE2_COLUMNS = (
     "diameter_mm", "mass_g", "measured_us", "published_fem_us", "published_sem_us", "sem_us",
     "sem_error_pct",
 )  # fmt: skip
-BUILD_TIMEOUT_S = 600
+BUILD_TIMEOUT_S = 1200  # the shared build takes 3-4 min idle; a loaded machine doubles it
 DRY_RUN_TIMEOUT_S = 120
 
 
@@ -79,16 +84,29 @@ def copy_project(dest: Path) -> Path:
     config.write_text(text.replace(COARSE_FEM_AXI, COARSE_FEM_AXI.replace("300", "80").replace(
         "elements_across: 10", "elements_across: 4")), encoding="utf-8")
     _small_studies(dest)
+    _git_commit(dest)
     return dest
+
+
+def _git_commit(project: Path) -> None:
+    """Make the copy a git repository with everything committed: its runs then record an
+    exact code version (``make provenance`` refuses ``+unknown`` and ``.dirty``)."""
+    (project / ".gitignore").write_text("__pycache__/\n*.pyc\n.snakemake/\nresults/\nlogs/\n", encoding="utf-8")
+    git = ["git", "-C", str(project), "-c", "user.name=rodimpact tests", "-c", "user.email=tests@localhost"]
+    for args in (["init", "-q"], ["add", "-A"], ["commit", "-q", "-m", "copy of the project"]):
+        subprocess.run([*git, *args], check=True, capture_output=True)
 
 
 #: The studies of a copy: work precision of the three 1-D methods on 'model' (coarsest three
 #: levels, timed once), two stress cases without fem_axi, a 2 x 2 stability map.
 SMALL_STRESS = ("short_rod", "rubber_on_steel")
+#: Points of the Table 2 ball sweep in a copy (per rod geometry variant).
+SMALL_SWEEP = 3
 
 
 def _small_studies(project: Path) -> None:
-    """Shrink config.yaml's studies and the stress cases (comments are lost: copies only)."""
+    """Shrink config.yaml's studies, the stress cases and the Table 2 sweep (comments are
+    lost: copies only)."""
     config = project / "config" / "config.yaml"
     document = yaml.safe_load(config.read_text(encoding="utf-8"))
     study = document["work_precision"]
@@ -104,6 +122,11 @@ def _small_studies(project: Path) -> None:
     for case in document["cases"]:
         case["methods"] = ["sem", "sem_paper", "fem1d"]
     stress.write_text(yaml.safe_dump(document, sort_keys=False), encoding="utf-8")
+    table2 = project / "config" / "cases" / "table2.yaml"  # edited as text: tests add rows to it
+    text = table2.read_text(encoding="utf-8")
+    sweep = "ball_diameter_m: {start: 1.0e-3, stop: 20.0e-3, num: 25, spacing: log}"
+    assert text.count(sweep) == 1, "the ball sweep's line of table2.yaml moved"
+    table2.write_text(text.replace(sweep, sweep.replace("num: 25", f"num: {SMALL_SWEEP}")), encoding="utf-8")
 
 
 def clone_built(built: Path, dest: Path) -> Path:
@@ -420,14 +443,78 @@ def test_figures_carry_provenance(
         png.load()
         assert png.size[0] > 100 and png.size[1] > 100
         from_png = json.loads(png.info["Description"])
+    sweeps = [entry for entry in from_png["inputs"] if entry["path"].startswith("results/sweeps/")]
+    if figure == "table2_contact_time":  # and the curves of the ball sweep, every variant
+        assert len(sweeps) == SMALL_SWEEP * len(TABLE2_VARIANTS)
+    else:
+        assert not sweeps
+    from_png["inputs"] = [entry for entry in from_png["inputs"] if entry not in sweeps]
     assert_inputs_match(from_png["inputs"], runs, stored_hashes)
+    sidecar = json.loads((built / f"results/figures/{figure}.provenance.json").read_text())
+    assert all(re.fullmatch(r"[0-9a-f]{64}", entry["data_sha256"]) for entry in sidecar["inputs"])
+    assert set(sidecar["sha256"]) == {f"results/figures/{figure}.pdf", f"results/figures/{figure}.png"}
 
     raw = (built / f"results/figures/{figure}.pdf").read_bytes()
     assert raw.startswith(b"%PDF-")
     for run in runs:
         assert stored_hashes[run].encode() in raw, f"{figure}.pdf lacks the hash of {run}"
     from_pdf = json.loads(pdf_info_string(raw, "Subject"))
-    assert_inputs_match(from_pdf["inputs"], runs, stored_hashes)
+    assert_inputs_match([e for e in from_pdf["inputs"] if e not in sweeps], runs, stored_hashes)
+
+
+def test_sweep_points_are_runs_and_a_table(built: Path, expected: dict) -> None:
+    """The Table 2 ball sweep: one HDF5 run per point and variant, named by its Paramspace
+    instance, and a table whose contact times grow with the ball's mass along each curve."""
+    project = expected["project"]
+    files = sorted(p.relative_to(built).as_posix() for p in (built / "results/sweeps").rglob("*.h5"))
+    assert len(files) == SMALL_SWEEP * len(TABLE2_VARIANTS)
+    assert all(re.fullmatch(r"results/sweeps/ball_sweep-\w+/sem/ball_diameter_m~[0-9.e-]+\.h5", f) for f in files)
+    table = pd.read_csv(built / "results/tables/sweep_table2.csv")
+    assert len(table) == len(files) and set(table["variant"]) == set(TABLE2_VARIANTS)
+    for variant, curve in table.groupby("variant"):
+        assert curve["mass_g"].is_monotonic_increasing and curve["contact_time_us"].is_monotonic_increasing, variant
+        rho = project.sweeps[f"ball_sweep-{variant}"]["impactor"]["material"]["density_kg_m3"]
+        mass = rho * math.pi * curve["ball_diameter_m"] ** 3 / 6 * 1000
+        np.testing.assert_allclose(curve["mass_g"], mass, rtol=1e-9)  # the CSV keeps 10 digits
+    record = read_run(built / files[0])
+    assert record.config["run"]["study"]["name"] == "sweep" and "sweep_point" in record.config
+
+
+def test_provenance_audit_passes_on_a_fresh_build(built: Path) -> None:
+    result = audit(built)
+    assert result.success, [f for f in result.findings if not f.ok][:5]
+    kinds = Counter(f.kind for f in result.findings)
+    assert kinds["run"] >= 76 and kinds["artifact"] >= 20 and not kinds["unknown"], kinds
+    assert all(v.startswith("0.1.0+g") and not v.endswith(".dirty") for f in result.findings for v in f.code_versions)
+
+
+def test_provenance_audit_fails_on_hand_edits_and_stale_artifacts(built: Path, tmp_path: Path) -> None:
+    project = clone_built(built, tmp_path / "project")
+    table = project / "results/tables/table2_r1_l30.csv"
+    table.write_text(table.read_text().replace("ball_3.16mm", "ball_3.16mm ", 1))
+    with h5py.File(project / "results/runs/model/fem1d.h5", "r+") as h5:
+        h5["contact_force"][5] *= 1.01
+    (project / "results/tables/old_table.csv").write_text("a,b\n1,2\n")
+    model_yaml = project / "config/cases/model.yaml"
+    model_yaml.write_text(model_yaml.read_text().replace("velocity_m_s: 1.0\n", "velocity_m_s: 1.1\n"))
+
+    proc = subprocess.run([sys.executable, "-m", "rodimpact.audit", "--root", str(project)],
+                          capture_output=True, text=True, check=False)
+    assert proc.returncode == 1, proc.stdout + proc.stderr
+    failed = {}
+    for line in proc.stdout.splitlines():
+        if line.startswith("FAIL "):
+            path, problem = line[5:].split(": ", 1)
+            failed.setdefault(path, []).append(problem)
+    assert "bytes differ from those recorded" in " ".join(failed["results/tables/table2_r1_l30.csv"])
+    assert "content differs from its digest" in " ".join(failed["results/runs/model/fem1d.h5"])
+    assert "no provenance record lists it" in " ".join(failed["results/tables/old_table.csv"])
+    assert "not an output of the current workflow" in " ".join(failed["results/tables/old_table.csv"])
+    assert "snakemake: params changed" in " ".join(failed["results/runs/model/sem.h5"])
+    # what was made from the changed case's runs is planned again
+    assert "snakemake: an input is out of date" in " ".join(failed["results/figures/fig2_contact_force.png"])
+    untouched = "results/runs/ball_3.16mm-r1_l30/sem.h5"
+    assert untouched not in failed and "results/tables/table2_r10_l30.csv" not in failed
 
 
 # --------------------------------------------------------------------------------------------
@@ -553,6 +640,7 @@ def test_changed_case_value_reruns_only_that_case(built: Path, tmp_path: Path) -
     assert pending(rows, "solve") == {run_path("model", m) for m in ("sem", "sem_paper", "fem1d", "fem_axi")}
     assert pending(rows, "fig2") == {
         "results/figures/fig2_contact_force.pdf", "results/figures/fig2_contact_force.png",
+        "results/figures/fig2_contact_force.provenance.json",
     }  # fmt: skip
     assert not {p for p in pending(rows) if "table2" in p or "ball_" in p}
 
@@ -677,3 +765,183 @@ def test_failing_solver_leaves_no_file(tmp_path: Path) -> None:
     leftovers = [p.name for p in run_dir.iterdir()] if run_dir.exists() else []
     assert not [name for name in leftovers if ".tmp" in name], leftovers
     assert leftovers == [], leftovers
+
+
+# --------------------------------------------------------------------------------------------
+# 7. the HTML report
+# --------------------------------------------------------------------------------------------
+
+REPORT_TIMEOUT_S = 120
+REPORT_MAX_BYTES = 20 * 2**20
+REPORT_CATEGORIES = {"Paper, Table 2", "Paper, Fig. 2 and Fig. 4", "Error against run time", "Stability"}
+REPORT_MIME = {".csv": "text/csv", ".png": "image/png", ".pdf": "application/pdf"}
+#: The attribute through which each tag makes a browser fetch something as the page renders.
+FETCHING = {"script": "src", "link": "href", "img": "src", "iframe": "src", "frame": "src",
+            "embed": "src", "source": "src", "track": "src", "video": "src", "audio": "src",
+            "object": "data", "input": "src"}  # fmt: skip
+
+
+class _Fetches(HTMLParser):
+    """What a page or an HTML fragment makes the browser fetch: (tag, address) pairs that
+    are not embedded data. Script bodies are not markup (they hold the embedded libraries)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.fetched: list[tuple[str, str]] = []
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        values = dict(attrs)
+        address = values.get(FETCHING.get(tag, ""))
+        if address is not None and not address.startswith("data:"):
+            self.fetched.append((tag, address))
+        style = values.get("style") or ""
+        self.fetched += [(tag, url) for url in re.findall(r"url\(\s*['\"]?([^'\")]+)", style)
+                         if not url.startswith("data:")]
+
+
+def _fetched(markup: str) -> list[tuple[str, str]]:
+    parser = _Fetches()
+    parser.feed(markup)
+    parser.close()
+    return parser.fetched
+
+
+def _report_variable(page: str, name: str):
+    """The JSON value of ``var <name> = ...;`` in its own script element of snakemake's
+    report page (``<script id="<name, with - for _>">``, the value on one line)."""
+    script = name.replace("_", "-")
+    match = re.search(rf'<script id="{script}">\s*var {name} = (.*);\s*</script>', page)
+    assert match, f"no variable {name} in the report"
+    return json.loads(match.group(1))
+
+
+def _text(fragment: str) -> str:
+    """The words of an HTML fragment, whitespace collapsed."""
+    return " ".join(html.unescape(re.sub(r"<[^>]+>", "", fragment)).split())
+
+
+def _settings_line(config: dict, method: str) -> str:
+    """How a caption states a method's settings: its own settings, from config.yaml."""
+    block = config["numerics"][method]
+    values = ("null" if block.get(key) is None else block[key] for key in METHOD_SETTINGS[method])
+    return f"{method}: " + ", ".join(f"{key} = {value}" for key, value in zip(METHOD_SETTINGS[method], values))
+
+
+def _expected_report(project_dir: Path) -> dict[str, list[str]]:
+    """Each report item of the default target, with what its caption must say: key text of
+    its template, and values of the copy's own configuration (whose fem_axi level and studies
+    differ from the repository's)."""
+    config = load_global_config(project_dir / "config" / "config.yaml")
+    project = load_project(config, root=project_dir)
+    settings = {m: _settings_line(config, m) for m in METHOD_SETTINGS}
+    model, table2 = project.cases["model"]["methods"], project.cases_in("table2")[0]["methods"]
+    expected: dict[str, list[str]] = {}
+    for variant in TABLE2_VARIANTS:
+        expected[f"results/tables/table2_{variant}.csv"] = [
+            f"Table 2 of the paper, rod geometry reading {variant}", "41.66 % to 57.93 %",
+            "9.54 % to 49.42 %", "(NOTES item 1)", "(item 4)", "table2_variants.csv",
+            *(case["id"] for case in project.cases_in("table2", variant)), *(settings[m] for m in table2)]
+    expected["results/tables/table2_variants.csv"] = [
+        "Error against the measurements, per rod geometry reading and method", "paper_mean_error_pct",
+        *TABLE2_VARIANTS, *(settings[m] for m in table2)]
+    sweeps = project.sweeps_in("table2") if hasattr(project, "sweeps_in") else []
+    sweep_text = ["The continuous curve", *(c["id"] for c in sweeps)] if sweeps else ["No sweep is configured"]
+    for name in config["targets"]["sets"]:
+        swept = project.sweeps_in(name) if hasattr(project, "sweeps_in") else []
+        if swept:
+            expected[f"results/tables/sweep_{name}.csv"] = [
+                f"Parameter sweeps of the case set {name}", *(c["id"] for c in swept),
+                *(settings[m] for m in sorted({m for c in swept for m in c["sweep"]["methods"]}))]
+    for ext in ("png", "pdf"):
+        expected[f"results/figures/table2_contact_time.{ext}"] = [
+            "Contact time against ball mass", *TABLE2_VARIANTS, *sweep_text, "41.66 % to 57.93 %",
+            *(settings[m] for m in table2)]
+        expected[f"results/figures/fig2_contact_force.{ext}"] = [
+            "Fig. 2 of the paper: the contact force P(t)", "11 % in contact time", "9 % in the local extrema",
+            "300,000 nodes", "fig2_comparison.csv", *(settings[m] for m in model)]
+        expected[f"results/figures/fig4_midrod_displacement.{ext}"] = [
+            "Fig. 4 of the paper: the axial displacement of the cross-section at 0.5 of the rod length",
+            *(settings[m] for m in model)]
+        for case in config["work_precision"]["cases"]:
+            expected[f"results/figures/work_precision_{case}.{ext}"] = [
+                f"Error against run time, case {case}", "The paper has no such study",
+                *(f"{m}: {len(spec['levels'])} levels" for m, spec in config["work_precision"]["methods"].items())]
+        spec = config["stability"]["map"]
+        expected[f"results/figures/stability_map.{ext}"] = [
+            "Stability map of the SEM schemes", f"{spec['steps_per_contact']} steps per Hertz time",
+            ", ".join(map(str, spec["mass_kg"])) + " kg",
+            f"{len(spec['mass_kg']) * len(spec['impedance_kg_s'])} points",
+            "2 Z / k_c(alpha_H)"]
+    expected["results/tables/stability_map.csv"] = expected["results/figures/stability_map.png"]
+    expected["results/tables/fig2_comparison.csv"] = [
+        "Fig. 2's numbers", "paper_fem_vs_sem_contact_time_pct", "11 % and 9 %", *(settings[m] for m in model)]
+    levels = [f"{m}: {len(spec['levels'])} levels" for m, spec in config["work_precision"]["methods"].items()]
+    expected["results/tables/work_precision.csv"] = ["Every level of the error-against-run-time study", *levels]
+    expected["results/tables/work_precision_orders.csv"] = ["Observed orders of convergence", *levels]
+    stress = [c for name in config["stability"]["sets"] for c in project.cases_in(name)]
+    expected["results/tables/stability.csv"] = [
+        "Stability on stiff and extreme cases", "verdict", *(c["id"] for c in stress),
+        *(f"{m}: relative contact-time error {tolerance['contact_time']}"
+          for m, tolerance in config["stability"]["tolerances"].items()),
+        *(settings[m] for m in sorted({m for c in stress for m in c["methods"]}))]
+    return expected
+
+
+def test_report_captions_know_each_methods_settings() -> None:
+    """The captions cannot import Python: each carries a copy of the settings each method
+    uses (config.yaml's numerics blocks hold every field); every copy is METHOD_SETTINGS."""
+    copies = 0
+    for path in sorted((REPO_ROOT / "workflow" / "report").glob("*.rst")):
+        match = re.search(r"\{% set own_settings = (\{.*?\}) %\}", path.read_text(encoding="utf-8"), re.S)
+        if match:
+            copies += 1
+            assert ast.literal_eval(match.group(1)) == {m: list(s) for m, s in METHOD_SETTINGS.items()}, path.name
+    assert copies >= 10
+
+
+def test_report_is_self_contained_and_captioned(built: Path, tmp_path: Path) -> None:
+    """``snakemake --report``: one HTML file that fetches nothing, with every table and figure
+    of the default target, each captioned from the live configuration, and the description."""
+    project = clone_built(built, tmp_path / "p")
+    run = snakemake(project, "--report", "report.html", timeout=REPORT_TIMEOUT_S)
+    assert run.returncode == 0, run.describe()
+    report = project / "report.html"
+    assert 0 < report.stat().st_size < REPORT_MAX_BYTES, report.stat().st_size
+    page = report.read_text(encoding="utf-8")
+    # Self-contained: no element fetches anything (snakemake inlines its libraries and styles
+    # and embeds every result as a data: URI), and no stylesheet imports one.
+    assert _fetched(page) == []
+    assert not re.search(r"@import\s+(url\()?\s*['\"]?(https?:)?//", page)
+
+    results = _report_variable(page, "results")
+    expected = _expected_report(project)
+    assert sorted(results) == sorted(expected)
+    categories = _report_variable(page, "categories")
+    swept = any(path.startswith("results/tables/sweep_") for path in expected)
+    assert set(categories) == REPORT_CATEGORIES | ({"Parameter sweeps"} if swept else set())
+    for path, result in results.items():
+        assert result["name"] == Path(path).name
+        assert result["data_uri"].startswith(f"data:{result['mime_type']};")
+        assert result["mime_type"] == REPORT_MIME[Path(path).suffix]
+        assert "system-message" not in result["caption"], f"{path}: reStructuredText error in its caption"
+        assert _fetched(result["caption"]) == [], path
+        caption = _text(result["caption"])
+        missing = [phrase for phrase in expected[path] if phrase not in caption]
+        assert not missing, f"{path}: caption lacks {missing}:\n{caption}"
+    # the tables shown in their captions are the artifacts' own Markdown, rounded
+    shown = [*(f"table2_{v}" for v in TABLE2_VARIANTS), "table2_variants", "fig2_comparison",
+             *(Path(p).stem for p in expected if p.startswith("results/tables/sweep_"))]
+    for stem in shown:
+        markdown = (project / f"results/tables/{stem}.md").read_text(encoding="utf-8")
+        assert " ".join(markdown.split()) in _text(results[f"results/tables/{stem}.csv"]["caption"]), stem
+    markdown = (project / "results/tables/work_precision_orders.md").read_text(encoding="utf-8")
+    assert " ".join(markdown.split()) in _text(results["results/tables/work_precision_orders.csv"]["caption"])
+
+    description = _report_variable(page, "workflow_desc")
+    assert "system-message" not in description and _fetched(description) == []
+    text = _text(description)
+    config = load_global_config(project / "config" / "config.yaml")
+    for phrase in ["rodimpact: the axial impact of a rigid body on an elastic rod", "DOI 10.18721/JPM.11115",
+                   "r10_l30 (the text), r1_l301 (Table 1)", *REPORT_CATEGORIES,
+                   *(_settings_line(config, m).split(": ", 1)[1] for m in config["numerics"])]:
+        assert phrase in text, f"the description lacks {phrase!r}:\n{text}"

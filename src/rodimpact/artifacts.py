@@ -17,6 +17,7 @@ from .tables import (
     comparison_frame,
     load_records,
     provenance_record,
+    sweep_results_frame,
     table2_frame,
     variants_summary,
     write_provenance,
@@ -25,7 +26,7 @@ from .tables import (
 from .work_precision import observed_orders, work_precision_frame
 
 __all__ = ["make_comparison", "make_fig2", "make_fig4", "make_fig_table2", "make_stability",
-           "make_stability_map", "make_table2", "make_table2_variants", "make_work_precision",
+           "make_stability_map", "make_sweep_table", "make_table2", "make_table2_variants", "make_work_precision",
            "make_work_precision_figure"]
 
 log = logging.getLogger(__name__)
@@ -71,6 +72,13 @@ def _one_case(records: Sequence, what: str) -> str:
     return cases[0]
 
 
+def _save_figure(fig, records: Sequence, *, pdf: str | Path, png: str | Path, provenance: str | Path,
+                 title: str) -> None:
+    """Save a figure (its provenance in the PDF/PNG metadata) and its provenance sidecar."""
+    save_figure(fig, pdf=pdf, png=png, provenance=provenance_record(records, [pdf, png]), title=title)
+    write_provenance(provenance, records, [pdf, png])
+
+
 def _table_artifact(runs: Sequence[str | Path], build, *, csv: str | Path, md: str | Path,
                     provenance: str | Path, caption: str, digits: int) -> None:
     """Read the runs, build a frame from them, write it as CSV and Markdown with provenance."""
@@ -79,16 +87,17 @@ def _table_artifact(runs: Sequence[str | Path], build, *, csv: str | Path, md: s
     write_provenance(provenance, records, [csv, md])
 
 
-def make_fig2(runs: Sequence[str | Path], *, pdf: str | Path, png: str | Path) -> None:
+def make_fig2(runs: Sequence[str | Path], *, pdf: str | Path, png: str | Path, provenance: str | Path) -> None:
     """Fig. 2: contact force against time for one case, every method stored."""
     records = [read_run(p) for p in runs]
     case = _one_case(records, "Fig. 2")
     fig = plot_contact_force(records, title=f"Contact force, case {case!r} (Fig. 2 of the paper)")
-    save_figure(fig, pdf=pdf, png=png, provenance=provenance_record(records, [pdf, png]),
-                title="Fig. 2: contact force against time")
+    _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance,
+                 title="Fig. 2: contact force against time")
 
 
-def make_fig4(runs: Sequence[str | Path], fraction: float, *, pdf: str | Path, png: str | Path) -> None:
+def make_fig4(runs: Sequence[str | Path], fraction: float, *, pdf: str | Path, png: str | Path,
+              provenance: str | Path) -> None:
     """Fig. 4: displacement of the cross-section at ``fraction`` of the rod length, every
     stored run of one case that recorded stations."""
     records = [read_run(p) for p in runs]
@@ -96,17 +105,25 @@ def make_fig4(runs: Sequence[str | Path], fraction: float, *, pdf: str | Path, p
     case = _one_case(records, "Fig. 4 (runs with station histories)")
     fig = plot_station_displacement(records, fraction, title=(
         f"Displacement at {fraction:g} of the rod length, case {case!r} (Fig. 4 of the paper)"))
-    save_figure(fig, pdf=pdf, png=png, provenance=provenance_record(records, [pdf, png]),
-                title="Fig. 4: displacement of a cross-section of the rod against time")
+    _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance,
+                 title="Fig. 4: displacement of a cross-section of the rod against time")
 
 
 def make_fig_table2(runs: Sequence[str | Path], variants: Sequence[str], *, pdf: str | Path,
-                    png: str | Path) -> None:
-    """Contact time against ball mass per geometry variant."""
+                    png: str | Path, provenance: str | Path, sweep_runs: Sequence[str | Path] = ()) -> None:
+    """Contact time against ball mass per geometry variant, with the sweeps' curves."""
     records, frames = _by_variant(runs, variants)
-    fig = plot_table2_contact_time(frames)
-    save_figure(fig, pdf=pdf, png=png, provenance=provenance_record(records, [pdf, png]),
-                title="Table 2: contact time against ball mass")
+    sweeps = load_records(sweep_runs)
+    fig = plot_table2_contact_time(frames, sweep_results_frame(sweeps))
+    _save_figure(fig, [*records, *sweeps], pdf=pdf, png=png, provenance=provenance,
+                 title="Table 2: contact time against ball mass")
+
+
+def make_sweep_table(runs: Sequence[str | Path], *, csv: str | Path, md: str | Path,
+                     provenance: str | Path) -> None:
+    """Every sweep point's contact time and force, one row per point and method."""
+    _table_artifact(runs, sweep_results_frame, csv=csv, md=md, provenance=provenance, digits=4, caption=(
+        "Parameter sweeps: contact time (first contact, us) and force maxima (N) at every point."))
 
 
 def make_comparison(runs: Sequence[str | Path], *, csv: str | Path, md: str | Path,
@@ -140,14 +157,14 @@ def make_work_precision(runs: Sequence[str | Path], methods: Mapping[str, Any], 
 
 
 def make_work_precision_figure(runs: Sequence[str | Path], methods: Mapping[str, Any], fit_levels: int, *,
-                               pdf: str | Path, png: str | Path) -> None:
+                               pdf: str | Path, png: str | Path, provenance: str | Path) -> None:
     """Error against wall time for one case: every method and quantity, orders in the legend."""
     records = [read_run(p) for p in runs]
     case = _one_case(records, "a work-precision figure")
     frame = work_precision_frame(records, methods)
     fig = plot_work_precision(frame, observed_orders(frame, methods, fit_levels), case)
-    save_figure(fig, pdf=pdf, png=png, provenance=provenance_record(records, [pdf, png]),
-                title=f"Error against run time, case {case}")
+    _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance,
+                 title=f"Error against run time, case {case}")
 
 
 def make_stability(runs: Sequence[str | Path], references: Sequence[str | Path],

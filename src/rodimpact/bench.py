@@ -6,17 +6,34 @@ import logging
 import os
 import platform
 import time
+from pathlib import Path
 from typing import Any, Mapping, Sequence
 
 import numpy as np
 import pandas as pd
 
+from .atomic import atomic_output
 from .fem import FEM1DOptions, solve_fem1d
 from .sem import ImpactProblem, SEMOptions, solve_sem
+from .tables import write_provenance
 
-__all__ = ["benchmark_fem1d", "benchmark_fem_axi", "benchmark_sem", "machine_info"]
+__all__ = ["benchmark_fem1d", "benchmark_fem_axi", "benchmark_sem", "fem_bench_runs", "machine_info",
+           "resource_margins", "sem_bench_runs", "write_benchmark"]
 
 log = logging.getLogger(__name__)
+
+#: Steps per Hertz time of the SEM benchmark: implicit scheme, paper scheme, the reference.
+SEM_IMPLICIT_STEPS = (50, 100, 200, 400, 800, 1600, 2000, 3200)
+SEM_PAPER_STEPS = (1000, 2000, 4000, 8000, 16000, 20000, 32000, 64000)
+SEM_REFERENCE_STEPS = 64000
+SEM_REPEATS = 3
+#: fem1d benchmark: (element, elements or None, steps_per_contact), and its SEM reference.
+FEM1D_SETTINGS = (("P1", 20, 500), ("P1", 40, 1000), ("P1", 80, 2000), ("P2", 10, 500), ("P2", 20, 1000),
+                  ("P2", None, 2000), ("P2", 80, 4000))
+FEM1D_REPEATS = 2
+FEM1D_REFERENCE_STEPS = 16000
+#: Steps per Hertz time of the SEM run each fem_axi run is compared with.
+FEM_AXI_SEM_STEPS = 4000
 
 
 def machine_info() -> dict[str, Any]:
@@ -41,9 +58,9 @@ def _rel_errors(result, ref) -> tuple[float, float]:
     return tc, float(np.max(np.abs(result.peak_force_N / ref.peak_force_N - 1.0)))
 
 
-def benchmark_sem(case: Mapping[str, Any], *, implicit_steps: Sequence[int] = (50, 100, 200, 400, 800, 1600, 2000, 3200),
-                  paper_steps: Sequence[int] = (1000, 2000, 4000, 8000, 16000, 20000, 32000, 64000),
-                  reference_steps: int = 64000, repeats: int = 3) -> pd.DataFrame:
+def benchmark_sem(case: Mapping[str, Any], *, implicit_steps: Sequence[int] = SEM_IMPLICIT_STEPS,
+                  paper_steps: Sequence[int] = SEM_PAPER_STEPS, reference_steps: int = SEM_REFERENCE_STEPS,
+                  repeats: int = SEM_REPEATS) -> pd.DataFrame:
     """Wall time and relative error of both SEM schemes at several steps.
 
     The reference is the implicit scheme at ``reference_steps`` steps per Hertz time; its
@@ -74,9 +91,8 @@ def benchmark_sem(case: Mapping[str, Any], *, implicit_steps: Sequence[int] = (5
     return pd.DataFrame(rows)
 
 
-def benchmark_fem1d(case: Mapping[str, Any], *, settings: Sequence[tuple[str, int | None, int]] = (
-        ("P1", 20, 500), ("P1", 40, 1000), ("P1", 80, 2000), ("P2", 10, 500), ("P2", 20, 1000),
-        ("P2", None, 2000), ("P2", 80, 4000)), repeats: int = 2) -> pd.DataFrame:
+def benchmark_fem1d(case: Mapping[str, Any], *, settings: Sequence[tuple[str, int | None, int]] = FEM1D_SETTINGS,
+                    repeats: int = FEM1D_REPEATS) -> pd.DataFrame:
     """Wall time of fem1d and its agreement with a converged SEM run, per setting.
 
     Parameters
@@ -93,7 +109,7 @@ def benchmark_fem1d(case: Mapping[str, Any], *, settings: Sequence[tuple[str, in
         steps per Hertz time, and the machine.
     """
     problem = ImpactProblem.from_case(case)
-    ref = solve_sem(problem, SEMOptions(steps_per_contact=16000))
+    ref = solve_sem(problem, SEMOptions(steps_per_contact=FEM1D_REFERENCE_STEPS))
     rows = []
     for element, n, steps in settings:
         options = FEM1DOptions(element=element, elements=n, steps_per_contact=steps)
@@ -117,7 +133,7 @@ def _fem_axi_task(case: Mapping[str, Any]) -> dict[str, Any]:
     result = solve_fem_axi(AxiImpact.from_case(case), FEMAxiOptions.from_mapping(case["numerics"]["fem_axi"]),
                            stations=case.get("stations", ()))
     wall = time.perf_counter() - started
-    sem = solve_sem(ImpactProblem.from_case(case), SEMOptions(steps_per_contact=4000))
+    sem = solve_sem(ImpactProblem.from_case(case), SEMOptions(steps_per_contact=FEM_AXI_SEM_STEPS))
     return {"case": case["id"], "method": "fem_axi", "success": result.success,
             "elements_across": case["numerics"]["fem_axi"]["elements_across"],
             "steps_per_contact": case["numerics"]["fem_axi"]["steps_per_contact"],
@@ -135,17 +151,105 @@ def benchmark_fem_axi(cases: Sequence[Mapping[str, Any]]) -> pd.DataFrame:
     DataFrame
         One row per case: DOFs (rod + impactor), steps, wall time, the process's peak
         resident memory (MiB, includes the Python interpreter and libraries), contact time
-        and its difference from the SEM.
+        and its difference from the SEM; next to them what the workflow requests for the
+        run's job (:func:`rodimpact.resources.estimate_resources`): ``n_dofs_estimate``,
+        ``mem_estimate_MiB``, ``runtime_estimate_s`` and the margins ``mem_margin`` and
+        ``runtime_margin`` (estimate over measured; the estimate covers the whole job, with
+        snakemake's process and start-up, the measurement the solve).
     """
     from concurrent.futures import ProcessPoolExecutor
     from multiprocessing import get_context
+
+    from .resources import estimate_resources, fem_axi_dofs
 
     rows = []
     for case in cases:
         # fork, not spawn: a spawned child would re-run the calling (snakemake) script
         with ProcessPoolExecutor(max_workers=1, mp_context=get_context("fork")) as pool:
             row = pool.submit(_fem_axi_task, dict(case)).result()
-        log.info("fem_axi %s: %.1f s, %d DOFs, %.0f MiB", row["case"], row["wall_time_s"], row["n_dofs"],
-                 row["peak_memory_MiB"])
+        estimate = estimate_resources(case, "fem_axi")
+        row.update(n_dofs_estimate=fem_axi_dofs(case), mem_estimate_MiB=estimate.mem_mb * 1e6 / 2**20,
+                   runtime_estimate_s=60.0 * estimate.runtime_min)
+        row.update(mem_margin=row["mem_estimate_MiB"] / row["peak_memory_MiB"],
+                   runtime_margin=row["runtime_estimate_s"] / row["wall_time_s"])
+        log.info("fem_axi %s: %.1f s, %d DOFs, %.0f MiB; requested %.0f s (x%.1f), %.0f MiB (x%.1f)", row["case"],
+                 row["wall_time_s"], row["n_dofs"], row["peak_memory_MiB"], row["runtime_estimate_s"],
+                 row["runtime_margin"], row["mem_estimate_MiB"], row["mem_margin"])
         rows.append(row)
     return pd.DataFrame(rows)
+
+
+def _with_numerics(case: Mapping[str, Any], method: str, **settings: Any) -> dict[str, Any]:
+    """``case`` run by ``method`` with some of its numerics replaced."""
+    numerics = {**case["numerics"].get(method, {}), **settings}
+    return {**case, "methods": [method], "numerics": {**case["numerics"], method: numerics}}
+
+
+def sem_bench_runs(case: Mapping[str, Any]) -> list[tuple[dict[str, Any], str, int]]:
+    """The solves :func:`benchmark_sem` makes with its defaults, as (case, method, repeats)
+    for :func:`rodimpact.resources.estimate_sequence` (the rule's resources)."""
+    fixed = {"dt_s": None}
+    runs = [(_with_numerics(case, "sem", **fixed, steps_per_contact=n), "sem", 1)
+            for n in (SEM_REFERENCE_STEPS, SEM_REFERENCE_STEPS // 2)]
+    runs += [(_with_numerics(case, "sem", **fixed, steps_per_contact=n), "sem", SEM_REPEATS)
+             for n in SEM_IMPLICIT_STEPS]
+    runs += [(_with_numerics(case, "sem_paper", **fixed, steps_per_contact=n), "sem_paper", SEM_REPEATS)
+             for n in SEM_PAPER_STEPS]
+    return runs
+
+
+def fem_bench_runs(case: Mapping[str, Any], axi_cases: Sequence[Mapping[str, Any]]
+                   ) -> list[tuple[dict[str, Any], str, int]]:
+    """The solves of :func:`benchmark_fem1d` on ``case`` and :func:`benchmark_fem_axi` on
+    ``axi_cases`` with their defaults, as (case, method, repeats) (the rule's resources)."""
+    fixed = {"dt_s": None}
+    runs = [(_with_numerics(case, "sem", **fixed, steps_per_contact=FEM1D_REFERENCE_STEPS), "sem", 1)]
+    runs += [(_with_numerics(case, "fem1d", **fixed, element=element, elements=n, steps_per_contact=steps), "fem1d",
+              FEM1D_REPEATS) for element, n, steps in FEM1D_SETTINGS]
+    for axi in axi_cases:
+        runs += [(dict(axi), "fem_axi", 1),
+                 (_with_numerics(axi, "sem", **fixed, steps_per_contact=FEM_AXI_SEM_STEPS), "sem", 1)]
+    return runs
+
+
+def write_benchmark(frame: pd.DataFrame, *, csv: str | Path, provenance: str | Path) -> None:
+    """Write a benchmark table (CSV, atomically) and its provenance sidecar (code version and
+    the SHA-256 of the CSV; a benchmark reads no stored run)."""
+    with atomic_output(csv) as tmp:
+        frame.to_csv(tmp, index=False, float_format="%.6g")
+    write_provenance(provenance, [], [csv])
+
+
+def resource_margins(frame: pd.DataFrame) -> pd.DataFrame:
+    """The fem_axi rows of a ``fem.csv`` benchmark: measured time and memory, what the
+    workflow requests, and the margins (estimate over measured)."""
+    missing = {"mem_estimate_MiB", "runtime_estimate_s"} - set(frame.columns)
+    if missing:
+        raise ValueError(f"frame: no resource estimates (columns {sorted(missing)}); rerun make bench")
+    columns = ["case", "n_dofs", "n_dofs_estimate", "wall_time_s", "runtime_estimate_s", "runtime_margin",
+               "peak_memory_MiB", "mem_estimate_MiB", "mem_margin"]
+    return frame.loc[frame["method"] == "fem_axi", columns].reset_index(drop=True)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """``python -m rodimpact.bench results/benchmarks/fem.csv``: log the resource margins."""
+    import argparse
+
+    parser = argparse.ArgumentParser(prog="python -m rodimpact.bench", description=main.__doc__)
+    parser.add_argument("csv", help="a fem.csv written by the bench_fem rule")
+    args = parser.parse_args(argv)
+    logging.basicConfig(level=logging.INFO, format="%(message)s")
+    try:
+        table = resource_margins(pd.read_csv(args.csv))
+    except (OSError, ValueError) as error:
+        log.error("rodimpact.bench: %s: %s", args.csv, error)
+        return 1
+    log.info("fem_axi: measured against requested (margin = requested / measured)\n%s",
+             table.to_string(index=False, float_format=lambda x: f"{x:.4g}"))
+    log.info("smallest margins: run time x%.1f, memory x%.1f", table["runtime_margin"].min(),
+             table["mem_margin"].min())
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -18,20 +18,13 @@ import functools
 import logging
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from rodimpact._schema import (
-    Problem,
-    Schemas,
-    YamlError,
-    deep_merge,
-    first_non_finite,
-    format_path,
-    read_yaml,
-    with_floats,
-)
+from rodimpact._schema import Schemas, YamlError, deep_merge, format_path, with_floats
+from rodimpact.project import ConfigError, Project, _File
+
+__all__ = ["ConfigError", "METHODS", "METHOD_SETTINGS", "OUTPUTS", "Project", "load_global_config", "load_project"]
 
 logger = logging.getLogger(__name__)
 
@@ -66,79 +59,6 @@ CASES_SCHEMA = "cases.schema.yaml"
 MATERIALS_SCHEMA = "materials.schema.yaml"
 MATERIAL_FIELDS = ("youngs_modulus_pa", "poisson_ratio", "density_kg_m3")
 _VARIANT_FIELDS = ("impactor", "rod")  # what a variant may change in a case
-
-
-class ConfigError(ValueError):
-    """One clear message naming the file, the case and the field.
-
-    ``str(err)`` is ``"<file>: case '<id>': field '<dotted.path[0]>': <message>"``, the case
-    and field parts left out when they do not apply. The parts are kept as the attributes
-    `file`, `case`, `field` and `reason` (the message alone).
-    """
-
-    def __init__(
-        self, message: str, *, file: str, case: str | None = None, field: str | None = None
-    ):
-        self.reason, self.file, self.case, self.field = message, str(file), case, field
-        parts = [self.file]
-        if case is not None:
-            parts.append(f"case '{case}'")
-        if field:
-            parts.append(f"field '{field}'")
-        super().__init__(": ".join([*parts, message]))
-
-    def __reduce__(self):
-        rebuild = functools.partial(ConfigError, file=self.file, case=self.case, field=self.field)
-        return rebuild, (self.reason,)
-
-
-@dataclass(frozen=True)
-class _File:
-    """A file being read, with its name as shown in messages (relative to the root)."""
-
-    path: Path
-    label: str
-
-    @classmethod
-    def under(cls, path: str | Path, root: Path) -> _File:
-        path = Path(path) if Path(path).is_absolute() else root / path
-        try:
-            label = path.resolve().relative_to(root.resolve()).as_posix()
-        except ValueError:
-            label = str(path)
-        return cls(path, label)
-
-    def error(self, message: str, *, case: str | None = None, field: str | None = None):
-        return ConfigError(message, file=self.label, case=case, field=field)
-
-    def read(self) -> Any:
-        """The file's YAML content (None when empty); ConfigError if missing or not YAML."""
-        try:
-            return read_yaml(self.path)
-        except FileNotFoundError:
-            raise self.error("file not found") from None
-        except (IsADirectoryError, UnicodeDecodeError) as exc:
-            raise self.error(f"cannot read file: {exc}") from None
-        except YamlError as exc:
-            raise self.error(str(exc)) from None
-
-    def check(self, document: Any, schemas: Schemas, schema: str, *, fill: bool = False) -> None:
-        """Raise ConfigError for the first schema problem or non-finite number in `document`."""
-        problem = schemas.first_problem(document, schema, fill_defaults=fill)
-        problem = problem or first_non_finite(document)
-        if problem:
-            raise self._located(problem, document)
-
-    def _located(self, problem: Problem, document: Any) -> ConfigError:
-        """The error, naming the case when the problem lies in ``cases[i]`` of a case file."""
-        path = problem.path
-        if len(path) >= 2 and path[0] == "cases" and isinstance(path[1], int):
-            entry = document["cases"][path[1]]
-            case_id = entry.get("id") if isinstance(entry, dict) else None
-            if isinstance(case_id, str) and case_id:
-                field = format_path(path[2:]) or None
-                return self.error(problem.message, case=case_id, field=field)
-        return self.error(problem.message, field=format_path(path) or None)
 
 
 def _load_schemas(schema_dir: Path, root: Path) -> Schemas:
@@ -266,6 +186,7 @@ class _ProjectBuilder:
         self.cases: dict[str, dict] = {}
         self.sets: dict[str, list[str]] = {}
         self.variants: dict[str, dict[str, dict]] = {}
+        self.sweeps: dict[str, dict] = {}
 
     def add_file(self, source: _File, schemas: Schemas) -> None:
         document = source.read()
@@ -317,15 +238,18 @@ class _ProjectBuilder:
         )
         if problem:
             raise error(problem.message, field=format_path(problem.path) or None)
-        if case_id in self.cases:
-            other = self.cases[case_id]["source_file"]
+        if case_id in self.cases or case_id in self.sweeps:
+            other = {**self.cases, **self.sweeps}[case_id]["source_file"]
             where = "earlier in this file" if other == source.label else f"in {other}"
             raise error(f"duplicate case id; already defined {where}", field="id")
         for index, output in enumerate(case["outputs"]):
             if output.startswith("station_") and not case["stations"]:
                 raise error(f"output {output!r} needs stations (fractions of the rod length)",
                             field=f"outputs[{index}]")
-        self.cases[case_id] = {
+        sweep = case.get("sweep")
+        if sweep is not None:
+            case["methods"] = sweep.setdefault("methods", case["methods"])
+        resolved = {
             "id": case_id,
             "row": row,
             "variant": variant,
@@ -341,8 +265,32 @@ class _ProjectBuilder:
             "measured": with_floats(case["measured"]),
             "published": with_floats(case["published"]),
         }
-        self._check_runs(self.cases[case_id], source)
+        if sweep is not None:
+            self.sweeps[case_id] = self._sweep(resolved, sweep, source)
+            return
+        self.cases[case_id] = resolved
+        self._check_runs(resolved, source)
         self.sets[set_name].append(case_id)
+
+    def _sweep(self, case: dict, sweep: dict, source: _File) -> dict:
+        """The sweep case with its grid's values; every point's runs checked like a case's."""
+        from .sweeps import sweep_frame, sweep_point_case
+
+        try:
+            frame = sweep_frame(sweep)
+        except ValueError as error:
+            field, _, reason = str(error).partition(": ")
+            raise source.error(reason, case=case["id"], field=f"sweep.{field}") from None
+        parameters = {name: sorted(set(frame[name].tolist())) for name in frame.columns}
+        case = {**case, "sweep": {"description": sweep["description"], "methods": list(sweep["methods"]),
+                                  "parameters": parameters}}
+        for row in frame.to_dict("records"):
+            try:
+                self._check_runs(sweep_point_case(case, row, "check"), source)
+            except ConfigError as error:
+                where = ", ".join(f"{name} = {value:g}" for name, value in row.items())
+                raise source.error(f"at {where}: {error.reason}", case=case["id"], field=error.field) from None
+        return case
 
     def _material(self, value: str | dict, error: Callable[..., ConfigError], field: str) -> dict:
         if isinstance(value, str):
@@ -414,46 +362,7 @@ class _ProjectBuilder:
         check_work_precision(self.config.get("work_precision"), self.cases, self.config["numerics"],
                              self.config_source.error)
         check_stability(self.config.get("stability"), self.cases, self.sets, self.config_source.error)
-        return Project(cases=self.cases, sets=self.sets, variants=self.variants)
-
-
-@dataclass(frozen=True)
-class Project:
-    """All resolved cases of the project.
-
-    Attributes
-    ----------
-    cases
-        Resolved case dicts keyed by id, in file order (files sorted by name).
-    sets
-        Case set name -> case ids, in file order.
-    variants
-        Case set name -> {variant name -> variant mapping as written}.
-    """
-
-    cases: dict[str, dict]
-    sets: dict[str, list[str]]
-    variants: dict[str, dict]
-
-    def cases_in(self, set_name: str, variant: str | None = None) -> list[dict]:
-        """The resolved cases of a set, optionally only those of one variant.
-
-        Raises
-        ------
-        KeyError
-            If the set, or the variant of that set, does not exist.
-        """
-        if set_name not in self.sets:
-            raise KeyError(f"unknown case set {set_name!r}; known: {', '.join(self.sets)}")
-        known = self.variants.get(set_name, {})
-        if variant is not None and variant not in known:
-            listed = ", ".join(known) or "none"
-            raise KeyError(f"unknown variant {variant!r} of case set {set_name!r}; known: {listed}")
-        return [
-            self.cases[case_id]
-            for case_id in self.sets[set_name]
-            if variant is None or self.cases[case_id]["variant"] == variant
-        ]
+        return Project(cases=self.cases, sets=self.sets, variants=self.variants, sweeps=self.sweeps)
 
 
 def _setting(name: str, value: Any) -> Any:

@@ -119,13 +119,17 @@ def plot_station_displacement(records: Sequence[RunRecord], fraction: float,
     return _finish(fig, ax, title)
 
 
-def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame]) -> matplotlib.figure.Figure:
+def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame],
+                             sweeps: pd.DataFrame | None = None) -> matplotlib.figure.Figure:
     """Contact time against ball mass per geometry variant: measured, published and ours.
 
     Parameters
     ----------
     frames : mapping
         Variant -> :func:`rodimpact.tables.table2_frame`.
+    sweeps : DataFrame, optional
+        :func:`rodimpact.tables.sweep_results_frame` of sweep runs: each sweep and method of
+        a variant is drawn as a curve in that variant's panel.
     """
     n = len(frames)
     cols = 2 if n > 1 else 1
@@ -141,6 +145,11 @@ def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame]) -> matplotlib.f
             if f"{method}_us" in frame:
                 ax.plot(mass, frame[f"{method}_us"], "o" + _STYLE[method], ms=4,
                         label=METHOD_LABELS[method])
+        if sweeps is not None and not sweeps.empty:
+            for (sweep, method), curve in sweeps[sweeps["variant"] == variant].groupby(["sweep", "method"]):
+                ax.plot(curve["mass_g"], curve["contact_time_us"], _STYLE.get(method, "-"), lw=1.0,
+                        color="tab:purple", label=(f"{METHOD_LABELS.get(method, method)}: sweep "
+                                                   f"'{sweep.rsplit('-', 1)[0]}', {len(curve)} points"))
         ax.set_title(f"rod geometry variant {variant}", fontsize=10)
         ax.set_xscale("log")
         ax.grid(alpha=0.3, which="both")

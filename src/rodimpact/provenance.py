@@ -27,6 +27,8 @@ import subprocess
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 import rodimpact
 
 logger = logging.getLogger(__name__)
@@ -35,7 +37,10 @@ __all__ = [
     "LIBRARIES",
     "canonical_json",
     "code_version",
+    "commit_exists",
     "config_sha256",
+    "data_sha256",
+    "file_sha256",
     "find_repo_root",
     "library_versions",
 ]
@@ -225,6 +230,17 @@ def code_version(repo_root: str | Path | None = None) -> str:
     return f"{version}+g{short}{dirty}"
 
 
+def commit_exists(repo_root: str | Path, commit: str) -> bool:
+    """Whether ``commit`` (a hex prefix) names a commit of the repository at ``repo_root``."""
+    if not _SHORT_SHA.match(commit):
+        return False
+    try:
+        _git(Path(repo_root), "cat-file", "-e", f"{commit}^{{commit}}")
+    except (OSError, subprocess.SubprocessError):
+        return False
+    return True
+
+
 def library_versions() -> dict[str, str]:
     """Versions of Python and of the numerical and workflow libraries.
 
@@ -242,3 +258,64 @@ def library_versions() -> dict[str, str]:
         except importlib.metadata.PackageNotFoundError:
             versions[name] = _NOT_INSTALLED
     return versions
+
+
+def _summary_bytes(value: Any) -> tuple[bytes, ...]:
+    """Type tag and bytes of one summary value, the same before writing and after reading."""
+    if isinstance(value, (str, np.str_)):
+        return b"s", str(value).encode("utf-8")
+    if isinstance(value, (bool, np.bool_)):
+        return b"b", b"1" if value else b"0"
+    if isinstance(value, (int, np.integer)):
+        return b"i", np.int64(value).tobytes()
+    if isinstance(value, (float, np.floating)):
+        return b"f", np.float64(value).tobytes()
+    array = np.asarray(value)
+    kind = {"b": np.uint8, "i": np.int64, "u": np.int64}.get(array.dtype.kind, np.float64)
+    return b"a", repr(array.shape).encode(), np.ascontiguousarray(array, dtype=kind).tobytes()
+
+
+def data_sha256(config_json: str, method: str, series: Any, summary: Any) -> str:
+    """Hex SHA-256 of a run's content: its config, method, every series and the summary.
+
+    Parameters
+    ----------
+    config_json : str
+        The run's canonical config JSON.
+    method : str
+        The method that made the run.
+    series : mapping of str to (array, units, description)
+        Every dataset; arrays are hashed as C-ordered float64 with their shape.
+    summary : mapping of str to scalar, str or 1-D array
+        Every summary attribute (bool, int, float, str or numeric array; numpy or Python
+        types hash alike).
+
+    Returns
+    -------
+    str
+        64 hex characters; a run file edited after it was written no longer matches.
+    """
+    digest = hashlib.sha256()
+
+    def feed(*parts: bytes) -> None:
+        for part in parts:
+            digest.update(len(part).to_bytes(8, "little"))
+            digest.update(part)
+
+    feed(config_json.encode("utf-8"), method.encode("utf-8"))
+    for name in sorted(series):
+        values, units, description = series[name]
+        array = np.ascontiguousarray(values, dtype=np.float64)
+        feed(name.encode(), units.encode(), description.encode(), repr(array.shape).encode(), array.tobytes())
+    for key in sorted(summary):
+        feed(key.encode("utf-8"), *_summary_bytes(summary[key]))
+    return digest.hexdigest()
+
+
+def file_sha256(path: str | Path) -> str:
+    """Hex SHA-256 of a file's bytes."""
+    digest = hashlib.sha256()
+    with open(path, "rb") as stream:
+        for block in iter(lambda: stream.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()

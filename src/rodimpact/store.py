@@ -14,6 +14,7 @@ One file per run (one case solved by one method); SI units throughout::
       @wall_time_s       float  solver wall-clock time (s)
       @created_utc       str    ISO 8601 UTC time, e.g. "2018-05-01T12:00:00+00:00"
       @schema_version    int    1
+      @data_sha256       str    provenance.data_sha256 of config, method, series and summary
       time                    float64 (n,)    s    always present
       contact_force           float64 (n,)    N    optional
       approach                float64 (n,)    m    optional
@@ -104,6 +105,7 @@ class RunRecord:
     units: dict[str, str]
     summary: dict[str, Any]
     descriptions: dict[str, str] = field(default_factory=dict)
+    data_sha256: str = ""  # empty: written before the digest was stored
 
 
 def _check_config(config: Mapping[str, Any]) -> tuple[str, str]:
@@ -272,6 +274,8 @@ def write_run(
         "wall_time_s": np.float64(wall_time_s),
         "created_utc": datetime.now(timezone.utc).isoformat(timespec="seconds"),
         "schema_version": np.int64(SCHEMA_VERSION),
+        "data_sha256": provenance.data_sha256(config_json, method, {n: (a, u, d) for n, a, u, d in checked_series},
+                                              checked_summary),
     }
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f"{path.name}.tmp.{os.getpid()}.{secrets.token_hex(4)}")
@@ -331,7 +335,7 @@ def _read_record(path: str | Path, *, verify: bool, with_series: bool) -> RunRec
     if not h5py.is_hdf5(path):
         raise StoreError(f"{path} is not an HDF5 file (not a rodimpact run file)")
     with h5py.File(path, "r") as h5:
-        attrs = {key: _attr_value(h5.attrs[key]) for key in _ROOT_ATTRS if key in h5.attrs}
+        attrs = {key: _attr_value(h5.attrs[key]) for key in (*_ROOT_ATTRS, "data_sha256") if key in h5.attrs}
         if missing := [key for key in _ROOT_ATTRS if key not in attrs]:
             raise StoreError(f"{path} is not a rodimpact run file: missing root attrs {missing}")
         if attrs["schema_version"] != SCHEMA_VERSION:
@@ -361,7 +365,7 @@ def _read_record(path: str | Path, *, verify: bool, with_series: bool) -> RunRec
     return RunRecord(
         path, attrs["case_id"], attrs["method"], config, attrs["config_sha256"],
         attrs["code_version"], libraries, float(attrs["wall_time_s"]), attrs["created_utc"],
-        series, units, summary, descriptions,
+        series, units, summary, descriptions, str(attrs.get("data_sha256", "")),
     )  # fmt: skip
 
 

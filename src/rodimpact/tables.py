@@ -16,7 +16,7 @@ import numpy as np
 import pandas as pd
 
 from .atomic import atomic_output
-from .provenance import code_version
+from .provenance import code_version, file_sha256
 from .result import first_contact_maxima
 from .store import RunRecord, read_summary
 
@@ -26,6 +26,7 @@ __all__ = [
     "PUBLISHED_FAMILY",
     "load_records",
     "provenance_record",
+    "sweep_results_frame",
     "table2_frame",
     "variants_summary",
     "write_provenance",
@@ -108,6 +109,47 @@ def table2_frame(records: Sequence[RunRecord]) -> pd.DataFrame:
         rows.append(row)
     frame = pd.DataFrame(rows)
     return frame.sort_values("mass_g", kind="stable").reset_index(drop=True)
+
+
+def sweep_results_frame(records: Sequence[RunRecord]) -> pd.DataFrame:
+    """One row per sweep point and method: the swept values and the computed contact.
+
+    Parameters
+    ----------
+    records : sequence of RunRecord
+        Runs of sweep points (their config has ``sweep_point``: parameter -> value).
+
+    Returns
+    -------
+    DataFrame
+        Columns ``sweep, variant, method``, one column per swept parameter (SI units),
+        ``mass_g, diameter_mm, velocity_m_s, rod_length_mm, contact_time_us`` (first
+        contact), ``first_peak_force_N``, ``max_force_N`` (largest in the first contact),
+        ``n_contacts``, sorted by sweep, method and mass.
+    """
+    rows = []
+    for rec in records:
+        config, summary = rec.config, rec.summary
+        maxima = first_contact_maxima(summary["peak_time_s"], summary["peak_force_N"],
+                                      summary.get("contact_end_s", np.empty(0)))
+        rows.append({
+            "sweep": rec.case_id.split(".sweep.", 1)[0],
+            "variant": config.get("variant"),
+            "method": rec.method,
+            **{f"{name}": float(value) for name, value in (config.get("sweep_point") or {}).items()},
+            "mass_g": 1000.0 * config["impactor"]["mass_kg"],
+            "diameter_mm": 2000.0 * config["impactor"]["radius_m"],
+            "velocity_m_s": config["impactor"]["velocity_m_s"],
+            "rod_length_mm": 1000.0 * config["rod"]["length_m"],
+            "contact_time_us": 1e6 * float(summary["contact_time_s"]),
+            "first_peak_force_N": float(maxima[0]) if len(maxima) else math.nan,
+            "max_force_N": float(np.max(maxima)) if len(maxima) else math.nan,
+            "n_contacts": int(summary.get("n_contacts", 1)),
+        })
+    frame = pd.DataFrame(rows)
+    if frame.empty:
+        return frame
+    return frame.sort_values(["sweep", "method", "mass_g"], kind="stable").reset_index(drop=True)
 
 
 def variants_summary(frames: dict[str, pd.DataFrame]) -> pd.DataFrame:
@@ -213,12 +255,15 @@ def provenance_record(records: Sequence[RunRecord], artifacts: Iterable[str | Pa
         "code_version": code_version(),
         "inputs": [
             {"path": str(r.path), "case_id": r.case_id, "method": r.method,
-             "config_sha256": r.config_sha256, "code_version": r.code_version}
+             "config_sha256": r.config_sha256, "data_sha256": r.data_sha256, "code_version": r.code_version}
             for r in records
         ],
     }
 
 
 def write_provenance(path: str | Path, records: Sequence[RunRecord], artifacts: Iterable[str | Path]) -> None:
-    """Write :func:`provenance_record` as JSON."""
-    _write_text(path, json.dumps(provenance_record(records, artifacts), indent=2) + "\n")
+    """Write :func:`provenance_record` as JSON, with the SHA-256 of each artifact as written
+    (``sha256``: path -> hex digest; ``make provenance`` checks them)."""
+    artifacts = [str(a) for a in artifacts]
+    record = {**provenance_record(records, artifacts), "sha256": {a: file_sha256(a) for a in artifacts}}
+    _write_text(path, json.dumps(record, indent=2) + "\n")

@@ -6,11 +6,21 @@ rule bench_sem:
     input:
         code=SRC_BENCH,
     output:
-        csv="results/benchmarks/sem.csv",
+        csv=report(
+            "results/benchmarks/sem.csv",
+            caption="../report/bench_sem.rst",
+            category="Benchmarks",
+            subcategory="SEM",
+            labels={"artifact": "Both SEM schemes: time and error", "format": "CSV"},
+        ),
+        provenance="results/benchmarks/sem.provenance.json",
     params:
         case=lambda w: PROJECT.cases["model"],
     log:
         "logs/benchmarks/sem.log",
+    threads: 1
+    resources:
+        **bench_resources(lambda: sem_bench_runs(PROJECT.cases["model"])),
     conda:
         "../envs/rodimpact.yaml"
     script:
@@ -23,12 +33,23 @@ rule bench_fem:
     input:
         code=SRC_BENCH,
     output:
-        csv="results/benchmarks/fem.csv",
+        csv=report(
+            "results/benchmarks/fem.csv",
+            caption="../report/bench_fem.rst",
+            category="Benchmarks",
+            subcategory="FEM",
+            labels={"artifact": "fem1d and fem_axi: time, size, agreement", "format": "CSV"},
+        ),
+        provenance="results/benchmarks/fem.provenance.json",
     params:
         case=lambda w: PROJECT.cases["model"],
         axi_cases=lambda w: [PROJECT.cases["model"], *PROJECT.cases_in("table2")],
     log:
         "logs/benchmarks/fem.log",
+    threads: 1
+    resources:
+        **bench_resources(lambda: fem_bench_runs(PROJECT.cases["model"],
+                                                 [PROJECT.cases["model"], *PROJECT.cases_in("table2")])),
     conda:
         "../envs/rodimpact.yaml"
     script:

@@ -4,7 +4,7 @@ import re
 import sys
 from pathlib import Path
 
-from snakemake.utils import validate
+from snakemake.utils import Paramspace, validate
 
 # The workflow runs the code of its own checkout (src/), in this process and in its jobs,
 # whatever else is installed: the sources snakemake tracks are the sources that run.
@@ -17,6 +17,7 @@ os.environ.update(PYTHONPATH=os.pathsep.join(filter(None, [SRC_DIR, os.environ.g
 from rodimpact.config import METHODS, ConfigError, load_project
 from rodimpact.studies import level_case, map_point_case, map_point_names, reference_case
 from rodimpact.sources import module_sources
+from rodimpact.sweeps import sweep_frame, sweep_point_case
 
 validate(config, "../schemas/config.schema.yaml")
 try:
@@ -47,6 +48,7 @@ wildcard_constraints:
     level="[0-9]+",
     point="m[0-9]+_z[0-9]+",
     map_method=one_of(["sem", "sem_paper", "reference"]),
+    sweep_point="[A-Za-z0-9_.~+\-]+",
 
 
 def runs_of(cases):
@@ -93,6 +95,30 @@ def sweep_runs(cases=None):
             for m, sweep in WORK_PRECISION.get("methods", {}).items() for k in range(len(sweep["levels"]))]
 
 
+# One Paramspace per sweep case: its grid, and the names of its points (one file each).
+SWEEPS = {case_id: Paramspace(sweep_frame(case["sweep"]), filename_params="*", single_wildcard="sweep_point")
+          for case_id, case in PROJECT.sweeps.items()}
+
+
+def sweep_point_runs(sweep_cases):
+    """HDF5 files of every point and method of the given sweep cases."""
+    return [f"results/sweeps/{c['id']}/{m}/{point}.h5" for c in sweep_cases for m in c["sweep"]["methods"]
+            for point in SWEEPS[c["id"]].instance_patterns]
+
+
+def sweep_point_of(wildcards):
+    """The resolved case of one sweep point; refuses a point or method the sweep lacks."""
+    case = PROJECT.sweeps.get(wildcards.case)
+    if case is None:
+        raise ValueError(f"unknown sweep {wildcards.case!r}; known: {sorted(PROJECT.sweeps)}")
+    if wildcards.method not in case["sweep"]["methods"]:
+        raise ValueError(f"sweep {wildcards.case!r} does not run {wildcards.method!r}")
+    if wildcards.sweep_point not in set(SWEEPS[wildcards.case].instance_patterns):
+        raise ValueError(f"{wildcards.sweep_point!r} is not a point of sweep {wildcards.case!r}")
+    point = SWEEPS[wildcards.case].instance(wildcards)
+    return sweep_point_case(case, point, wildcards.sweep_point)
+
+
 def table2_runs(variant):
     return runs_of(PROJECT.cases_in("table2", variant))
 
@@ -111,6 +137,8 @@ def default_targets():
         targets += expand("results/figures/table2_contact_time.{ext}", ext=["pdf", "png"])
     for name in sets:
         targets += runs_of(PROJECT.cases_in(name))
+        if PROJECT.sweeps_in(name):
+            targets += expand("results/tables/sweep_{set}.{ext}", set=name, ext=["csv", "md", "provenance.json"])
     if WORK_PRECISION:
         targets += ["results/tables/work_precision.csv", "results/tables/work_precision_orders.md"]
         targets += expand("results/figures/work_precision_{case}.{ext}", case=WORK_PRECISION["cases"],

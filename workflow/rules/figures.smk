@@ -7,10 +7,26 @@ rule fig2:
         runs=lambda w: runs_of([PROJECT.cases["model"]]),
         code=SRC_PRESENT,
     output:
-        pdf="results/figures/fig2_contact_force.pdf",
-        png="results/figures/fig2_contact_force.png",
+        pdf=report(
+            "results/figures/fig2_contact_force.pdf",
+            caption="../report/fig2.rst",
+            category="Paper, Fig. 2 and Fig. 4",
+            subcategory="Fig. 2",
+            labels={"artifact": "Fig. 2: contact force", "format": "PDF"},
+        ),
+        png=report(
+            "results/figures/fig2_contact_force.png",
+            caption="../report/fig2.rst",
+            category="Paper, Fig. 2 and Fig. 4",
+            subcategory="Fig. 2",
+            labels={"artifact": "Fig. 2: contact force", "format": "PNG"},
+        ),
+        provenance="results/figures/fig2_contact_force.provenance.json",
     log:
         "logs/figures/fig2_contact_force.log",
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     conda:
         "../envs/rodimpact.yaml"
     script:
@@ -23,12 +39,28 @@ rule fig4:
         runs=lambda w: runs_of([PROJECT.cases["model"]]),
         code=SRC_PRESENT,
     output:
-        pdf="results/figures/fig4_midrod_displacement.pdf",
-        png="results/figures/fig4_midrod_displacement.png",
+        pdf=report(
+            "results/figures/fig4_midrod_displacement.pdf",
+            caption="../report/fig4.rst",
+            category="Paper, Fig. 2 and Fig. 4",
+            subcategory="Fig. 4",
+            labels={"artifact": "Fig. 4: displacement half-way along the rod", "format": "PDF"},
+        ),
+        png=report(
+            "results/figures/fig4_midrod_displacement.png",
+            caption="../report/fig4.rst",
+            category="Paper, Fig. 2 and Fig. 4",
+            subcategory="Fig. 4",
+            labels={"artifact": "Fig. 4: displacement half-way along the rod", "format": "PNG"},
+        ),
+        provenance="results/figures/fig4_midrod_displacement.provenance.json",
     params:
         fraction=0.5,
     log:
         "logs/figures/fig4_midrod_displacement.log",
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     conda:
         "../envs/rodimpact.yaml"
     script:
@@ -36,17 +68,35 @@ rule fig4:
 
 
 rule fig_table2:
-    """Contact time against ball mass: measured, published and ours, per geometry variant."""
+    """Contact time against ball mass: measured, published and ours, per geometry variant,
+    with the curves of the table2 set's sweeps."""
     input:
         runs=[run for v in TABLE2_VARIANTS for run in table2_runs(v)],
+        sweep_runs=sweep_point_runs(PROJECT.sweeps_in("table2")),
         code=SRC_PRESENT,
     output:
-        pdf="results/figures/table2_contact_time.pdf",
-        png="results/figures/table2_contact_time.png",
+        pdf=report(
+            "results/figures/table2_contact_time.pdf",
+            caption="../report/table2_contact_time.rst",
+            category="Paper, Table 2",
+            subcategory="All readings",
+            labels={"artifact": "Contact time against ball mass", "format": "PDF"},
+        ),
+        png=report(
+            "results/figures/table2_contact_time.png",
+            caption="../report/table2_contact_time.rst",
+            category="Paper, Table 2",
+            subcategory="All readings",
+            labels={"artifact": "Contact time against ball mass", "format": "PNG"},
+        ),
+        provenance="results/figures/table2_contact_time.provenance.json",
     params:
         variants=TABLE2_VARIANTS,
     log:
         "logs/figures/table2_contact_time.log",
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     conda:
         "../envs/rodimpact.yaml"
     script:

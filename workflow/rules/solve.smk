@@ -12,6 +12,9 @@ rule solve:
         method="{method}",
     log:
         "logs/runs/{case}/{method}.log",
+    threads: 1
+    resources:
+        **solver_resources(case_of_run),
     conda:
         "../envs/rodimpact.yaml"
     script:
@@ -25,7 +28,7 @@ rule solve_level:
     output:
         h5="results/convergence/{case}/{method}_level{level}.h5",
     params:
-        case=lambda w: sweep_case(w.case, w.method, int(w.level)),
+        case=level_case_of,
         method="{method}",
         level=lambda w: int(w.level),
         study=lambda w: {"name": "work_precision", "level": int(w.level),
@@ -33,6 +36,9 @@ rule solve_level:
         timing=config.get("work_precision", {}).get("timing", {}),
     log:
         "logs/convergence/{case}/{method}_level{level}.log",
+    threads: 1
+    resources:
+        **solver_resources(level_case_of, timing=WORK_PRECISION.get("timing", {})),
     conda:
         "../envs/rodimpact.yaml"
     script:
@@ -50,6 +56,9 @@ rule solve_stress:
         method="{method}",
     log:
         "logs/stress/{case}/{method}.log",
+    threads: 1
+    resources:
+        **solver_resources(case_of_run),
     conda:
         "../envs/rodimpact.yaml"
     script:
@@ -63,11 +72,13 @@ rule solve_stress_reference:
     output:
         h5="results/stress/{case}/reference.h5",
     params:
-        case=lambda w: reference_case(PROJECT.cases[w.case], config["numerics"],
-                                      config["stability"]["reference_tolerance"]),
+        case=reference_case_of,
         method="sem",
     log:
         "logs/stress/{case}/reference.log",
+    threads: 1
+    resources:
+        **solver_resources(reference_case_of, lambda w: "sem"),
     conda:
         "../envs/rodimpact.yaml"
     script:
@@ -81,11 +92,13 @@ rule solve_map_point:
     output:
         h5="results/stability_map/{point}/{map_method}.h5",
     params:
-        case=lambda w: map_point_case(PROJECT.cases[MAP["base_case"]], MAP, w.point, w.map_method,
-                                      config["numerics"]),
-        method=lambda w: "sem" if w.map_method == "reference" else w.map_method,
+        case=map_case_of,
+        method=map_method_of,
     log:
         "logs/stability_map/{point}/{map_method}.log",
+    threads: 1
+    resources:
+        **solver_resources(map_case_of, map_method_of),
     conda:
         "../envs/rodimpact.yaml"
     script:

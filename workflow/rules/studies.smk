@@ -8,8 +8,20 @@ rule work_precision_table:
         runs=sweep_runs(),
         code=SRC_PRESENT,
     output:
-        csv="results/tables/work_precision.csv",
-        orders_csv="results/tables/work_precision_orders.csv",
+        csv=report(
+            "results/tables/work_precision.csv",
+            caption="../report/work_precision.rst",
+            category="Error against run time",
+            subcategory="All cases",
+            labels={"artifact": "Every level: errors and wall times", "format": "CSV"},
+        ),
+        orders_csv=report(
+            "results/tables/work_precision_orders.csv",
+            caption="../report/work_precision_orders.rst",
+            category="Error against run time",
+            subcategory="All cases",
+            labels={"artifact": "Observed orders of convergence", "format": "CSV"},
+        ),
         orders_md="results/tables/work_precision_orders.md",
         provenance="results/tables/work_precision.provenance.json",
     params:
@@ -17,6 +29,9 @@ rule work_precision_table:
         fit_levels=WORK_PRECISION.get("fit_levels", 4),
     log:
         "logs/tables/work_precision.log",
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     conda:
         "../envs/rodimpact.yaml"
     script:
@@ -29,13 +44,29 @@ rule work_precision_figure:
         runs=lambda w: sweep_runs([w.case]),
         code=SRC_PRESENT,
     output:
-        pdf="results/figures/work_precision_{case}.pdf",
-        png="results/figures/work_precision_{case}.png",
+        pdf=report(
+            "results/figures/work_precision_{case}.pdf",
+            caption="../report/work_precision_figure.rst",
+            category="Error against run time",
+            subcategory="{case}",
+            labels={"artifact": "Error against wall time, {case}", "format": "PDF"},
+        ),
+        png=report(
+            "results/figures/work_precision_{case}.png",
+            caption="../report/work_precision_figure.rst",
+            category="Error against run time",
+            subcategory="{case}",
+            labels={"artifact": "Error against wall time, {case}", "format": "PNG"},
+        ),
+        provenance="results/figures/work_precision_{case}.provenance.json",
     params:
         methods=WORK_PRECISION.get("methods", {}),
         fit_levels=WORK_PRECISION.get("fit_levels", 4),
     log:
         "logs/figures/work_precision_{case}.log",
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     conda:
         "../envs/rodimpact.yaml"
     script:
@@ -49,13 +80,22 @@ rule stability_table:
         references=[f"results/stress/{c['id']}/reference.h5" for c in STRESS_CASES],
         code=SRC_PRESENT,
     output:
-        csv="results/tables/stability.csv",
+        csv=report(
+            "results/tables/stability.csv",
+            caption="../report/stability.rst",
+            category="Stability",
+            subcategory="Stress cases",
+            labels={"artifact": "Every stress run, checked", "format": "CSV"},
+        ),
         md="results/tables/stability.md",
         provenance="results/tables/stability.provenance.json",
     params:
         tolerances=STABILITY.get("tolerances", {}),
     log:
         "logs/tables/stability.log",
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     conda:
         "../envs/rodimpact.yaml"
     script:
@@ -69,14 +109,35 @@ rule stability_map:
         references=[f"results/stability_map/{p}/reference.h5" for p in MAP_POINTS],
         code=SRC_PRESENT,
     output:
-        csv="results/tables/stability_map.csv",
-        pdf="results/figures/stability_map.pdf",
-        png="results/figures/stability_map.png",
+        csv=report(
+            "results/tables/stability_map.csv",
+            caption="../report/stability_map.rst",
+            category="Stability",
+            subcategory="Stability map",
+            labels={"artifact": "Stability map of the SEM schemes", "format": "CSV"},
+        ),
+        pdf=report(
+            "results/figures/stability_map.pdf",
+            caption="../report/stability_map.rst",
+            category="Stability",
+            subcategory="Stability map",
+            labels={"artifact": "Stability map of the SEM schemes", "format": "PDF"},
+        ),
+        png=report(
+            "results/figures/stability_map.png",
+            caption="../report/stability_map.rst",
+            category="Stability",
+            subcategory="Stability map",
+            labels={"artifact": "Stability map of the SEM schemes", "format": "PNG"},
+        ),
         provenance="results/tables/stability_map.provenance.json",
     params:
         spec=MAP,
     log:
         "logs/figures/stability_map.log",
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     conda:
         "../envs/rodimpact.yaml"
     script:

@@ -2,12 +2,10 @@
 
 import pandas as pd
 
-from rodimpact.atomic import atomic_output
-from rodimpact.bench import benchmark_fem1d, benchmark_fem_axi
+from rodimpact.bench import benchmark_fem1d, benchmark_fem_axi, write_benchmark
 from rodimpact.logs import script_logging
 
 with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
     frame = pd.concat([benchmark_fem1d(snakemake.params.case),  # noqa: F821
                        benchmark_fem_axi(snakemake.params.axi_cases)], ignore_index=True)  # noqa: F821
-    with atomic_output(snakemake.output.csv) as tmp:  # noqa: F821
-        frame.to_csv(tmp, index=False, float_format="%.6g")
+    write_benchmark(frame, csv=snakemake.output.csv, provenance=snakemake.output.provenance)  # noqa: F821

@@ -1,10 +1,8 @@
 """Snakemake adapter: SEM wall time against accuracy on the case 'model'."""
 
-from rodimpact.atomic import atomic_output
-from rodimpact.bench import benchmark_sem
+from rodimpact.bench import benchmark_sem, write_benchmark
 from rodimpact.logs import script_logging
 
 with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
     frame = benchmark_sem(snakemake.params.case)  # noqa: F821
-    with atomic_output(snakemake.output.csv) as tmp:  # noqa: F821
-        frame.to_csv(tmp, index=False, float_format="%.6g")
+    write_benchmark(frame, csv=snakemake.output.csv, provenance=snakemake.output.provenance)  # noqa: F821

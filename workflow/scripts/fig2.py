@@ -4,4 +4,5 @@ from rodimpact.artifacts import make_fig2
 from rodimpact.logs import script_logging
 
 with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
-    make_fig2(snakemake.input.runs, pdf=snakemake.output.pdf, png=snakemake.output.png)  # noqa: F821
+    out = snakemake.output  # noqa: F821
+    make_fig2(snakemake.input.runs, pdf=out.pdf, png=out.png, provenance=out.provenance)  # noqa: F821

@@ -5,4 +5,5 @@ from rodimpact.logs import script_logging
 
 with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
     make_fig4(snakemake.input.runs, snakemake.params.fraction,  # noqa: F821
-              pdf=snakemake.output.pdf, png=snakemake.output.png)  # noqa: F821
+              pdf=snakemake.output.pdf, png=snakemake.output.png,  # noqa: F821
+              provenance=snakemake.output.provenance)  # noqa: F821

@@ -5,4 +5,6 @@ from rodimpact.logs import script_logging
 
 with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
     make_fig_table2(snakemake.input.runs, snakemake.params.variants,  # noqa: F821
-                    pdf=snakemake.output.pdf, png=snakemake.output.png)  # noqa: F821
+                    pdf=snakemake.output.pdf, png=snakemake.output.png,  # noqa: F821
+                    provenance=snakemake.output.provenance,  # noqa: F821
+                    sweep_runs=snakemake.input.sweep_runs)  # noqa: F821

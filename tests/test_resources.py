@@ -1,0 +1,182 @@
+"""Job resources estimated from the case (rodimpact.resources): what they follow, that they
+cover what a real run takes, and that bad input is refused by name."""
+
+from __future__ import annotations
+
+import copy
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from rodimpact.bench import fem_bench_runs, resource_margins, sem_bench_runs
+from rodimpact.config import load_global_config, load_project
+from rodimpact.resources import (MIN_MEM_MB, MIN_RUNTIME_MIN, PRESENTATION, SAFETY, JobResources,
+                                 estimate_resources, estimate_sequence, fem_axi_dofs)
+from rodimpact.sources import module_sources
+from rodimpact.studies import level_case
+
+REPO = Path(__file__).resolve().parents[1]
+SRC = REPO / "src"
+#: A coarse fem_axi run (the level the workflow tests use): a few seconds.
+COARSE_AXI = {"elements_across": 4, "steps_per_contact": 80}
+
+
+@pytest.fixture(scope="module")
+def project():
+    config = load_global_config(REPO / "config" / "config.yaml")
+    return config, load_project(config, root=REPO)
+
+
+@pytest.fixture(scope="module")
+def model(project):
+    return project[1].cases["model"]
+
+
+def with_numerics(case, method, **settings):
+    out = copy.deepcopy(dict(case))
+    out["numerics"][method] = {**out["numerics"][method], **settings}
+    return out
+
+
+def test_finer_fem_axi_level_needs_more_memory_and_time(project, model):
+    config, _ = project
+    levels = config["work_precision"]["methods"]["fem_axi"]["levels"]
+    estimates = [estimate_resources(level_case(model, "fem_axi", config["numerics"], level), "fem_axi")
+                 for level in levels]
+    dofs = [fem_axi_dofs(level_case(model, "fem_axi", config["numerics"], level)) for level in levels]
+    assert dofs == sorted(dofs) and dofs[-1] > 2 * dofs[0]
+    for coarse, fine in zip(estimates, estimates[1:]):
+        assert fine.mem_mb >= coarse.mem_mb and fine.runtime_min >= coarse.runtime_min
+    assert estimates[-1].mem_mb > estimates[0].mem_mb
+    assert estimates[-1].runtime_min > estimates[0].runtime_min
+
+
+def test_continuum_model_needs_more_than_the_sem(model):
+    axi, sem = estimate_resources(model, "fem_axi"), estimate_resources(model, "sem")
+    assert axi.mem_mb > sem.mem_mb and axi.runtime_min > sem.runtime_min
+
+
+def test_more_steps_and_elements_cost_more(model):
+    base = estimate_resources(with_numerics(model, "sem_paper", steps_per_contact=20000), "sem_paper")
+    more = estimate_resources(with_numerics(model, "sem_paper", steps_per_contact=2_000_000), "sem_paper")
+    assert more.mem_mb > base.mem_mb and more.runtime_min > base.runtime_min
+    few = estimate_resources(with_numerics(model, "fem1d", elements=50, steps_per_contact=2000), "fem1d")
+    many = estimate_resources(with_numerics(model, "fem1d", elements=50_000, steps_per_contact=20_000), "fem1d")
+    assert many.mem_mb > few.mem_mb and many.runtime_min > few.runtime_min
+
+
+def test_a_contact_over_many_round_trips_costs_more_per_step(project):
+    """The SEM's history sum has a term per wave round trip: same steps, longer contact."""
+    stress = project[1].cases
+    short, long = stress["short_rod"], stress["seconds_contact"]
+    steps = {"dt_s": None, "steps_per_contact": 20000}
+    assert (estimate_resources(with_numerics(long, "sem_paper", **steps), "sem_paper").runtime_min
+            > estimate_resources(with_numerics(short, "sem_paper", **steps), "sem_paper").runtime_min)
+
+
+def test_floors_and_attempts(model):
+    small = estimate_resources(model, "sem")
+    assert small.mem_mb >= MIN_MEM_MB and small.runtime_min >= MIN_RUNTIME_MIN and small.threads == 1
+    third = small.for_attempt(3)
+    assert (third.mem_mb, third.runtime_min, third.threads) == (3 * small.mem_mb, 3 * small.runtime_min, 1)
+    assert small.for_attempt(1) == small
+
+
+def test_timed_runs_ask_for_the_repeats(model):
+    case = with_numerics(model, "fem_axi", **COARSE_AXI)
+    once = estimate_resources(case, "fem_axi")
+    timed = estimate_resources(case, "fem_axi", timing={"min_repeats": 30, "min_total_s": 1.0,
+                                                        "max_total_s": 10_000.0})
+    assert timed.runtime_min > once.runtime_min and timed.mem_mb == once.mem_mb
+
+
+def test_a_sequence_sums_times_and_keeps_the_largest_memory(model):
+    runs = [(model, "sem", 1), (model, "fem_axi", 3)]
+    total = estimate_sequence(runs)
+    assert total.mem_mb == estimate_resources(model, "fem_axi").mem_mb
+    assert total.runtime_min >= estimate_resources(model, "fem_axi").runtime_min
+    bench_sem = estimate_sequence(sem_bench_runs(model))
+    bench_fem = estimate_sequence(fem_bench_runs(model, [model]))
+    assert bench_sem.runtime_min > estimate_resources(model, "sem").runtime_min
+    assert bench_fem.mem_mb >= estimate_resources(model, "fem_axi").mem_mb
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda case: estimate_resources(case, "fem2d"), "method"),
+    (lambda case: estimate_resources(case, 3), "method"),
+    (lambda case: estimate_resources([case], "sem"), "case"),
+    (lambda case: estimate_resources({**case, "numerics": {}}, "sem"), "case"),
+    (lambda case: estimate_resources({k: v for k, v in case.items() if k != "rod"}, "sem"), "case"),
+    (lambda case: estimate_resources(case, "sem", timing={"min_repeats": 0}), "timing"),
+    (lambda case: estimate_sequence([]), "runs"),
+    (lambda case: estimate_sequence([(case, "sem", 0)]), "runs"),
+    (lambda case: estimate_resources(case, "sem").for_attempt(0), "attempt"),
+    (lambda case: JobResources(threads=1, mem_mb=0, runtime_min=1), "mem_mb"),
+    (lambda case: JobResources(threads=1.5, mem_mb=1, runtime_min=1), "threads"),
+])
+def test_bad_input_is_refused_by_name(model, call, name):
+    with pytest.raises(ValueError, match=f"^{name}"):
+        call(model)
+
+
+def test_presentation_is_constant_and_small():
+    assert PRESENTATION.threads == 1 and PRESENTATION.mem_mb <= 2000 and PRESENTATION.runtime_min <= 10
+
+
+def test_resources_are_not_solver_code():
+    """The solvers' rerun trigger lists their sources: a new calibration reruns no solver."""
+    solver = {Path(f).name for f in module_sources(SRC, ["rodimpact.runner"])}
+    assert "resources.py" not in solver
+    assert "resources.py" in {Path(f).name for f in module_sources(SRC, ["rodimpact.bench"])}
+
+
+def test_dof_bound_covers_the_meshes(model):
+    """The closed-form DOF bound against the meshes fem_axi builds (coarse, so quick)."""
+    from rodimpact.fem.fem_axi import AxiImpact, FEMAxiOptions, _build
+
+    for case in (with_numerics(model, "fem_axi", **COARSE_AXI),
+                 with_numerics(model, "fem_axi", elements_across=6, element="P1")):
+        rod, imp, *_ = _build(AxiImpact.from_case(case), FEMAxiOptions.from_mapping(case["numerics"]["fem_axi"]))
+        built = rod.basis.N + imp.basis.N
+        assert built <= fem_axi_dofs(case) <= 3 * built
+
+
+_MEASURE = r"""
+import json, resource, sys, time
+from rodimpact.runner import run_case
+case, method = json.loads(sys.argv[1]), sys.argv[2]
+started = time.perf_counter()
+result = run_case(case, method)
+print(json.dumps({"wall_s": time.perf_counter() - started, "success": result.success,
+                  "peak_MiB": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}))
+"""
+
+
+@pytest.mark.parametrize("method, settings", [("sem", {}), ("fem_axi", COARSE_AXI)])
+def test_estimate_covers_a_measured_run(model, method, settings):
+    """A real run in a fresh process (the job's solver process): the estimate asks for at
+    least SAFETY times its peak memory and its wall time."""
+    case = with_numerics(model, method, **settings)
+    done = subprocess.run([sys.executable, "-c", _MEASURE, json.dumps(case), method], capture_output=True,
+                          text=True, timeout=120, check=False)
+    assert done.returncode == 0, done.stderr[-3000:]
+    measured = json.loads(done.stdout.splitlines()[-1])
+    assert measured["success"]
+    estimate = estimate_resources(case, method)
+    assert estimate.mem_mb * 1e6 / 2**20 >= SAFETY * measured["peak_MiB"]
+    assert estimate.runtime_min * 60.0 >= SAFETY * measured["wall_s"]
+
+
+def test_bench_margins_table():
+    import pandas as pd
+
+    frame = pd.DataFrame([{"case": "model", "method": "fem_axi", "n_dofs": 100, "n_dofs_estimate": 150,
+                           "wall_time_s": 10.0, "runtime_estimate_s": 60.0, "runtime_margin": 6.0,
+                           "peak_memory_MiB": 200.0, "mem_estimate_MiB": 800.0, "mem_margin": 4.0},
+                          {"case": "model", "method": "fem1d"}])
+    assert list(resource_margins(frame)["case"]) == ["model"]
+    with pytest.raises(ValueError, match="^frame"):
+        resource_margins(frame.drop(columns=["mem_estimate_MiB"]))

@@ -1,0 +1,8 @@
+"""Snakemake adapter: the table of every sweep point of one case set."""
+
+from rodimpact.artifacts import make_sweep_table
+from rodimpact.logs import script_logging
+
+with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
+    out = snakemake.output  # noqa: F821
+    make_sweep_table(snakemake.input.runs, csv=out.csv, md=out.md, provenance=out.provenance)  # noqa: F821
