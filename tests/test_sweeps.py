@@ -97,11 +97,18 @@ def test_paramspace_names_round_trip_to_the_grids_floats(project) -> None:
         assert float(space.instance({"sweep_point": name})["ball_diameter_m"]) == value
 
 
-def test_every_parameter_changes_the_case(project) -> None:
+def test_every_parameter_sets_its_field(project) -> None:
     case = project.sweeps["ball_sweep-r1_l30"]
-    for name in SWEEP_PARAMETERS:
+    where = {"ball_diameter_m": ("impactor", "radius_m", 0.0123 / 2), "mass_kg": ("impactor", "mass_kg", 0.0123),
+             "radius_m": ("impactor", "radius_m", 0.0123), "velocity_m_s": ("impactor", "velocity_m_s", 0.0123),
+             "rod_length_m": ("rod", "length_m", 0.0123)}
+    assert set(where) == set(SWEEP_PARAMETERS)
+    for name, (part, field, value) in where.items():
         point = sweep_point_case(case, {name: 0.0123}, "p")
-        assert point != {**case, "id": point["id"]}, name
+        assert case[part][field] != value and point[part][field] == pytest.approx(value, rel=1e-15), name
+        assert point["sweep_point"] == {name: 0.0123} and point["sweep_of"] == "ball_sweep-r1_l30"
+        unchanged = {k: v for k, v in point[part].items() if k not in (field, "mass_kg")}
+        assert unchanged == {k: v for k, v in case[part].items() if k not in (field, "mass_kg")}, name
 
 
 def test_contact_time_along_the_sweep_follows_hertz_for_a_rigid_rod(project) -> None:

@@ -146,10 +146,10 @@ def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame],
                 ax.plot(mass, frame[f"{method}_us"], "o" + _STYLE[method], ms=4,
                         label=METHOD_LABELS[method])
         if sweeps is not None and not sweeps.empty:
-            for (sweep, method), curve in sweeps[sweeps["variant"] == variant].groupby(["sweep", "method"]):
+            for (row, method), curve in sweeps[sweeps["variant"] == variant].groupby(["row", "method"]):
                 ax.plot(curve["mass_g"], curve["contact_time_us"], _STYLE.get(method, "-"), lw=1.0,
                         color="tab:purple", label=(f"{METHOD_LABELS.get(method, method)}: sweep "
-                                                   f"'{sweep.rsplit('-', 1)[0]}', {len(curve)} points"))
+                                                   f"'{row}', {len(curve)} points"))
         ax.set_title(f"rod geometry variant {variant}", fontsize=10)
         ax.set_xscale("log")
         ax.grid(alpha=0.3, which="both")

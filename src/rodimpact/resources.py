@@ -185,7 +185,7 @@ def _horizon(problem: Any, numerics: Mapping[str, Any], contact_s: float, end_te
 
 def _sem(case: Mapping[str, Any], method: str) -> _Cost:
     from .sem import ImpactProblem, SEMOptions
-    from .sem.stability import AUTO_ERROR_CONSTANT, contact_time_scale
+    from .sem.stability import tolerance_step
 
     problem = ImpactProblem.from_case(case)
     options = SEMOptions.from_mapping(case["numerics"][method], "implicit" if method == "sem" else "paper")
@@ -196,10 +196,7 @@ def _sem(case: Mapping[str, Any], method: str) -> _Cost:
     if options.automatic_step:
         # the first guess may be floored at a step count; the check halves it down to the
         # step the tolerance asks for
-        step = min(step, contact_time_scale(problem) * math.sqrt(options.tolerance / AUTO_ERROR_CONSTANT))
-        if math.isfinite(period):
-            step = min(step, period / 20.0)
-        work = SEM_AUTO_WORK
+        step, work = min(step, tolerance_step(problem, options.tolerance)), SEM_AUTO_WORK
     stored = min(horizon / step, float(options.max_steps)) + 1.0
     rounds = 1.0 + (0.5 * horizon / period if math.isfinite(period) else 0.0)
     stations = len(case.get("stations", ()))

@@ -141,7 +141,8 @@ def sweep_point_case(case: Mapping[str, Any], point: Mapping[str, Any], name: st
     -------
     dict
         A plain case (no ``sweep``) whose ``methods`` are the sweep's, with ``sweep_point``
-        holding the point's parameters (stored with the run).
+        holding the point's parameters and ``sweep_of`` the sweep case's id (stored with
+        the run).
     """
     unknown = [key for key in point if key not in SWEEP_PARAMETERS]
     if unknown:
@@ -154,6 +155,7 @@ def sweep_point_case(case: Mapping[str, Any], point: Mapping[str, Any], name: st
             raise ValueError(f"point.{key}: must be finite and > 0, got {value!r}")
         SWEEP_PARAMETERS[key][1](resolved, value)
     resolved.update(id=f"{case['id']}.sweep.{name}", methods=list(sweep["methods"]), sweep_point=values,
+                    sweep_of=case["id"],
                     description=f"{case['id']} at " + ", ".join(f"{k} = {v:g}" for k, v in values.items()),
                     measured={}, published={})
     return resolved

@@ -117,12 +117,14 @@ def sweep_results_frame(records: Sequence[RunRecord]) -> pd.DataFrame:
     Parameters
     ----------
     records : sequence of RunRecord
-        Runs of sweep points (their config has ``sweep_point``: parameter -> value).
+        Runs of sweep points (their config has ``sweep_point``: parameter -> value, and
+        ``sweep_of``: the sweep case's id).
 
     Returns
     -------
     DataFrame
-        Columns ``sweep, variant, method``, one column per swept parameter (SI units),
+        Columns ``sweep`` (the sweep case's id), ``row`` (its id without the variant),
+        ``variant, method``, one column per swept parameter (SI units),
         ``mass_g, diameter_mm, velocity_m_s, rod_length_mm, contact_time_us`` (first
         contact), ``first_peak_force_N``, ``max_force_N`` (largest in the first contact),
         ``n_contacts``, sorted by sweep, method and mass.
@@ -133,7 +135,8 @@ def sweep_results_frame(records: Sequence[RunRecord]) -> pd.DataFrame:
         maxima = first_contact_maxima(summary["peak_time_s"], summary["peak_force_N"],
                                       summary.get("contact_end_s", np.empty(0)))
         rows.append({
-            "sweep": rec.case_id.split(".sweep.", 1)[0],
+            "sweep": config["sweep_of"],
+            "row": config.get("row"),
             "variant": config.get("variant"),
             "method": rec.method,
             **{f"{name}": float(value) for name, value in (config.get("sweep_point") or {}).items()},

@@ -48,6 +48,7 @@ __all__ = [
     "contact_stiffness",
     "contact_time_scale",
     "implicit_step",
+    "tolerance_step",
     "paper_step_limit",
     "sawtooth_amplitude",
     "zigzag_steps",
@@ -107,6 +108,17 @@ def contact_time_scale(problem: ImpactProblem) -> float:
     return hertz.contact_time_s * min(1.0, alpha_z / hertz.max_approach_m)
 
 
+def tolerance_step(problem: ImpactProblem, tolerance: float) -> float:
+    """The implicit scheme's step for ``tolerance`` from its error model, s: tau sqrt(tolerance
+    / C) with tau = :func:`contact_time_scale` and C = :data:`AUTO_ERROR_CONSTANT`, and at
+    most a 20th of the wave round trip 2T (the reflections' kinks on a resolved history)."""
+    if not (0.0 < tolerance < 1.0):
+        raise ValueError(f"tolerance must be in (0, 1), got {tolerance!r}")
+    step = contact_time_scale(problem) * math.sqrt(tolerance / AUTO_ERROR_CONSTANT)
+    period = problem.rod.reflection_period
+    return min(step, period / 20.0) if math.isfinite(period) else step
+
+
 def implicit_step(problem: ImpactProblem, tolerance: float) -> float:
     """First guess of the implicit (second-order) scheme's step for ``tolerance``, s.
 
@@ -117,12 +129,8 @@ def implicit_step(problem: ImpactProblem, tolerance: float) -> float:
     rod varies slowly after its rise). The solver checks the guess by step doubling and
     halves it until the estimate meets the tolerance.
     """
-    if not (0.0 < tolerance < 1.0):
-        raise ValueError(f"tolerance must be in (0, 1), got {tolerance!r}")
-    step = contact_time_scale(problem) * math.sqrt(tolerance / AUTO_ERROR_CONSTANT)
+    step = tolerance_step(problem, tolerance)
     period = problem.rod.reflection_period
-    if math.isfinite(period):
-        step = min(step, period / 20.0)
     duration = problem.contact_time_estimate()
     if math.isfinite(period):
         duration -= period  # the estimate's round trip: an upper bound, not a time scale
