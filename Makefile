@@ -37,7 +37,7 @@ test: $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/snakemake -j1 --forcerun bench_sem bench_fem -- results/benchmarks/sem.csv results/benchmarks/fem.csv
-	$(BIN)/python -m rodimpact.bench results/benchmarks/fem.csv
+	$(BIN)/python -m rodimpact.workflow.bench results/benchmarks/fem.csv
 
 convergence: $(STAMP)
 	$(BIN)/snakemake -j$(CORES) results/tables/work_precision.csv results/tables/work_precision_orders.md
@@ -51,7 +51,7 @@ report: paper
 	$(BIN)/snakemake --report results/report.html all $(wildcard results/benchmarks/sem.csv results/benchmarks/fem.csv)
 
 provenance: $(STAMP)
-	$(BIN)/python -m rodimpact.audit --json logs/provenance_audit.json
+	$(BIN)/python -m rodimpact.workflow.audit --json logs/provenance_audit.json
 
 clean:
 	rm -rf results logs .snakemake

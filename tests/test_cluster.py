@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 from test_workflow import copy_project, project_cases, snakemake
 
-from rodimpact.resources import PRESENTATION, estimate_resources
+from rodimpact.workflow.resources import PRESENTATION, estimate_resources
 
 pytestmark = pytest.mark.workflow
 

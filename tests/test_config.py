@@ -1,4 +1,4 @@
-"""Tests of the configuration layer (rodimpact.config): shipped config, schemas, error messages.
+"""Tests of the configuration layer (rodimpact.io.config): shipped config, schemas, error messages.
 
 Every test that changes a file works on a copy of config/ and workflow/schemas/ in tmp_path.
 """
@@ -16,14 +16,9 @@ import pytest
 import yaml
 from jsonschema import Draft202012Validator
 
-from rodimpact.config import (
-    METHODS,
-    OUTPUTS,
-    ConfigError,
-    Project,
-    load_global_config,
-    load_project,
-)
+from rodimpact.io.config import METHODS, OUTPUTS, Project, load_global_config, load_project, registry_schema
+from rodimpact.solvers.registry import METHODS as REGISTRY
+from rodimpact.io.project import ConfigError
 
 ROOT = Path(__file__).resolve().parents[1]
 SCHEMAS = ROOT / "workflow" / "schemas"
@@ -162,22 +157,10 @@ def test_global_config_defaults_are_filled(tmp_path: Path) -> None:
     assert config["materials"] == "config/materials.yaml"
     assert config["numerics"]["sem"] == {
         "steps_per_contact": None, "tolerance": 1e-6, "dt_s": None, "max_time_factor": 100.0,
-        "max_contacts": 50, "element": "P2", "elements": None, "points_per_wavelength": 200.0,
-        "elements_across": 10, "contact_extent": 1.5, "cap_height": 1.0,
-        "energy_tolerance": 0.01, "max_steps": 5_000_000, "allow_unstable": False,
+        "max_contacts": 50, "energy_tolerance": 0.01, "max_steps": 5_000_000,
     }
+    assert config["numerics"]["fem_axi"]["elements_across"] == 10
     assert config["numerics"]["sem_paper"]["steps_per_contact"] == 20000
-
-
-def test_snakemake_validate_fills_the_same_defaults() -> None:
-    from snakemake.utils import validate
-
-    config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
-    validate(config, str(SCHEMAS / "config.schema.yaml"))
-    assert config == load_global_config(ROOT / "config" / "config.yaml")
-    empty: dict = {}
-    validate(empty, str(SCHEMAS / "config.schema.yaml"))
-    assert empty["numerics"]["sem_paper"]["steps_per_contact"] == 20000
 
 
 def test_new_case_file_is_picked_up(project_dir: Path) -> None:
@@ -228,8 +211,20 @@ def _schema(name: str) -> dict:
 
 
 def test_known_lists_match_the_schemas() -> None:
-    assert tuple(_schema("config.schema.yaml")["$defs"]["method"]["enum"]) == METHODS
+    assert "method" not in _schema("config.schema.yaml")["$defs"]  # generated from the registry
+    assert tuple(registry_schema()["config.schema.yaml"]["$defs"]["method"]["enum"]) == METHODS == tuple(REGISTRY)
     assert tuple(_schema("cases.schema.yaml")["$defs"]["output"]["enum"]) == OUTPUTS
+
+
+def test_numerics_schema_is_the_options_declaration() -> None:
+    """Each method's numerics block in the schema is generated from its options class: the
+    settings, their defaults and their bounds are declared once."""
+    defs = registry_schema()["config.schema.yaml"]["$defs"]
+    for name, spec in REGISTRY.items():
+        properties = defs[f"numerics_{name}"]["properties"]
+        assert tuple(properties) == spec.options.names()
+        assert {key: value["default"] for key, value in properties.items()} == spec.options.defaults()
+    assert defs["numerics_sem"]["properties"]["tolerance"]["exclusiveMaximum"] == 1
 
 
 def _nodes(schema: dict):
@@ -420,8 +415,8 @@ MALFORMED = {
     "work precision level with another method's setting": (
         _set("config/config.yaml", "work_precision", "methods", "sem", "levels", 0, "elements_across", 4),
         "config/config.yaml: field 'work_precision.methods.sem.levels[0].elements_across': not a setting of "
-        "method 'sem'; its settings: dt_s, steps_per_contact, max_time_factor, max_contacts, tolerance, "
-        "energy_tolerance, max_steps",
+        "method 'sem'; its settings: dt_s, steps_per_contact, max_time_factor, max_contacts, energy_tolerance, "
+        "max_steps, tolerance",
     ),
     "work precision levels that do not refine": (
         _set("config/config.yaml", "work_precision", "methods", "sem", "levels", 1, "steps_per_contact", 25),
@@ -432,7 +427,7 @@ MALFORMED = {
         _set("config/config.yaml", "work_precision", "methods", "sem_paper", "levels", 0, "steps_per_contact", 10),
         "config/config.yaml: field 'work_precision.methods.sem_paper.levels[0]': case 'ball_12.73mm-r1_l30': "
         "steps_per_contact: dt_s=7.109e-06 s exceeds the paper scheme's stability limit 2 Z / k_c = 3.252e-06 s "
-        "(rod impedance Z = 44.2 kg/s, contact stiffness k_c = 3/2 k alpha^(1/2) at the rigid-rod Hertz approach "
+        "(rod impedance Z = 44.2 kg/s, contact stiffness k_c = dP/dalpha = 2.719e+07 N/m at the rigid-rod approach "
         "7.79e-06 m); take dt_s <= 3.252e-06 s (steps_per_contact >= 22), or set allow_unstable: true to run it "
         "anyway",
     ),
@@ -540,7 +535,7 @@ def test_global_config_typo(project_dir: Path) -> None:
         load_global_config(path)
     assert str(info.value) == (
         "config/config.yaml: field 'numerics.sem.step_per_contact': unknown field "
-        "(did you mean 'steps_per_contact'?); allowed: dt_s, steps_per_contact, tolerance, energy_tolerance, max_steps, allow_unstable, max_time_factor, max_contacts, element, elements, points_per_wavelength, elements_across, contact_extent, cap_height"
+        "(did you mean 'steps_per_contact'?); allowed: dt_s, steps_per_contact, max_time_factor, max_contacts, energy_tolerance, max_steps, tolerance"
     )
 
 
@@ -566,7 +561,7 @@ def test_setting_of_another_method_is_refused(project_dir: Path) -> None:
     edit(project_dir / MODEL, lambda d: d["cases"][0].update(numerics={"sem": {"elements": 10}}))
     assert error_of(project_dir) == (
         f"{MODEL}: case 'model': field 'numerics.sem.elements': not a setting of "
-        "method 'sem'; its settings: dt_s, steps_per_contact, max_time_factor, max_contacts, tolerance, energy_tolerance, max_steps")
+        "method 'sem'; its settings: dt_s, steps_per_contact, max_time_factor, max_contacts, energy_tolerance, max_steps, tolerance")
 
 
 def test_station_output_needs_stations(project_dir: Path) -> None:

@@ -6,21 +6,24 @@ import math
 import numpy as np
 import pytest
 
-from rodimpact.config import load_global_config, load_project
-from rodimpact.fem import FEM1DOptions, solve_fem1d
-from rodimpact.hertz import hertz_constant
-from rodimpact.materials import Material
-from rodimpact.responses import Rod
-from rodimpact.runner import run_case
-from rodimpact.sem import ImpactProblem, SEMOptions, solve_sem
-from rodimpact.sem.history import ForceHistory
+from rodimpact.io.config import load_global_config, load_project
+from rodimpact.solvers.fem1d.options import FEM1DOptions
+from rodimpact.solvers.fem1d.solver import solve_fem1d
+from rodimpact.contact.hertz import HertzLaw, hertz_constant
+from rodimpact.model.materials import Material
+from rodimpact.model.responses import Rod
+from rodimpact.workflow.runner import run_case
+from rodimpact.model.problem import ImpactProblem
+from rodimpact.solvers.sem.options import SEMOptions
+from rodimpact.solvers.sem.solver import solve_sem
+from rodimpact.solvers.sem.history import ForceHistory
 
 STEEL = Material(2.1e11, 0.30, 7800.0, "steel")
 ROOT = __import__("pathlib").Path(__file__).resolve().parents[1]
 
 
 def model_problem():
-    return ImpactProblem(0.5, 1.0, hertz_constant(0.01, STEEL), Rod(0.5, 5e-5, STEEL))
+    return ImpactProblem(0.5, 1.0, HertzLaw(hertz_constant(0.01, STEEL)), Rod(0.5, 5e-5, STEEL))
 
 
 def fem(problem, **options):
@@ -105,7 +108,7 @@ def test_energy_is_conserved_up_to_the_contact_quadrature():
 def test_second_contact_matches_the_sem():
     """Steel ball of 0.71 g on the thin 301 mm aluminium rod strikes twice."""
     alu = Material(7.342e10, 0.34, 2696.6, "aluminium")
-    problem = ImpactProblem(0.71e-3, 0.3225, hertz_constant(2.78e-3, STEEL, alu), Rod(0.301, math.pi * 1e-6, alu))
+    problem = ImpactProblem(0.71e-3, 0.3225, HertzLaw(hertz_constant(2.78e-3, STEEL, alu)), Rod(0.301, math.pi * 1e-6, alu))
     sem = solve_sem(problem, SEMOptions(steps_per_contact=2000))
     result = fem(problem)
     assert result.n_contacts == sem.n_contacts == 2
@@ -114,7 +117,7 @@ def test_second_contact_matches_the_sem():
 
 
 def test_free_far_end():
-    problem = ImpactProblem(0.5, 1.0, hertz_constant(0.01, STEEL), Rod(0.5, 5e-5, STEEL, "free"))
+    problem = ImpactProblem(0.5, 1.0, HertzLaw(hertz_constant(0.01, STEEL)), Rod(0.5, 5e-5, STEEL, "free"))
     sem = solve_sem(problem, SEMOptions(steps_per_contact=2000))
     result = fem(problem, element="P2", elements=60)
     assert result.contact_time_s == pytest.approx(sem.contact_time_s, rel=1e-4)
@@ -123,10 +126,13 @@ def test_free_far_end():
 
 def test_too_coarse_settings_are_refused_with_the_value_needed(caplog):
     problem = model_problem()
-    with pytest.raises(ValueError, match=r"elements=1 .* needs elements >= \d+"):
+    with pytest.raises(ValueError, match=r"elements=1\b.*needs elements >= \d+"):
         solve_fem1d(problem, FEM1DOptions(element="P1", elements=1))
+    t_contact = problem.rigid_contact.contact_time_s
     with pytest.raises(ValueError, match=r"dt_s=.* needs dt_s <= .*steps_per_contact >= 20"):
-        solve_fem1d(problem, FEM1DOptions(steps_per_contact=10))
+        solve_fem1d(problem, FEM1DOptions(dt_s=t_contact / 10))
+    with pytest.raises(ValueError, match=r"^steps_per_contact must be >= 20, got 10$"):
+        FEM1DOptions(steps_per_contact=10)
     with caplog.at_level("WARNING"):
         result = solve_fem1d(problem, FEM1DOptions(element="P1", elements=3, steps_per_contact=100))
     assert "elements=3 gives only" in caplog.text and "recommended" in result.extra["warnings"]

@@ -6,17 +6,9 @@ import numpy as np
 import pytest
 from scipy.integrate import cumulative_trapezoid, quad, solve_ivp
 
-from rodimpact.hertz import HERTZ_TIME_FACTOR, effective_modulus, hertz_constant, hertz_rigid_impact
-from rodimpact.materials import Material
-from rodimpact.responses import (
-    Rod,
-    impactor_impulse_response,
-    impactor_ramp_response,
-    paper_rod_ramp_response,
-    rod_impulse_response,
-    rod_ramp_response,
-    rod_step_response,
-)
+from rodimpact.contact.hertz import HERTZ_TIME_FACTOR, effective_modulus, hertz_constant, hertz_rigid_impact
+from rodimpact.model.materials import Material
+from rodimpact.model.responses import (Rod, impactor_impulse_response, impactor_ramp_response, paper_rod_ramp_response, rod_impulse_response, rod_ramp_response, rod_step_response)
 
 STEEL = Material(2.1e11, 0.30, 7800.0, "steel")
 ALU = Material(7.342e10, 0.34, 2696.6, "aluminium")

@@ -7,9 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from rodimpact.fem import meshes
-from rodimpact.fem.meshes import (ball_mesh, cap_mesh, hertz_mesh_sizes, rod_mesh,
-                                  surface_nodes)
+from rodimpact.solvers.fem_axi import meshes
+from rodimpact.solvers.fem_axi.meshes import ball_mesh, cap_mesh, hertz_mesh_sizes, rod_mesh, surface_nodes
 
 MIN_ANGLE_DEG = 20.0  # measured: 26.7 (hemisphere) to 28.7 degrees
 SPHERE_RTOL = 1e-12

@@ -11,11 +11,13 @@ import math
 import numpy as np
 import pytest
 
-from rodimpact.config import load_global_config, load_project
-from rodimpact.hertz import hertz_constant
-from rodimpact.materials import Material
-from rodimpact.responses import Rod
-from rodimpact.sem import ImpactProblem, SEMOptions, solve_sem
+from rodimpact.io.config import load_global_config, load_project
+from rodimpact.contact.hertz import HertzLaw, hertz_constant
+from rodimpact.model.materials import Material
+from rodimpact.model.responses import Rod
+from rodimpact.model.problem import ImpactProblem
+from rodimpact.solvers.sem.options import SEMOptions
+from rodimpact.solvers.sem.solver import solve_sem
 
 ROOT = __import__("pathlib").Path(__file__).resolve().parents[1]
 
@@ -28,7 +30,7 @@ def contact_times(variant: str, radius_factor: float) -> tuple[np.ndarray, np.nd
         rod_mat = Material.from_mapping(case["rod"]["material"])
         rod = Rod(case["rod"]["length_m"], case["rod"]["area_m2"], rod_mat)
         k = hertz_constant(radius_factor * case["impactor"]["radius_m"], ball, rod_mat)
-        problem = ImpactProblem(case["impactor"]["mass_kg"], case["impactor"]["velocity_m_s"], k, rod)
+        problem = ImpactProblem(case["impactor"]["mass_kg"], case["impactor"]["velocity_m_s"], HertzLaw(k), rod)
         ours.append(1e6 * solve_sem(problem, SEMOptions(steps_per_contact=400)).contact_time_s)
         paper.append(case["published"]["sem"]["contact_time_us"])
     return np.array(ours), np.array(paper)

@@ -1,4 +1,4 @@
-"""Tests of rodimpact.provenance: canonical JSON, hashing, code and library versions."""
+"""Tests of rodimpact.io.provenance: canonical JSON, hashing, code and library versions."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import rodimpact
-from rodimpact import provenance
+from rodimpact.io import provenance
 
 REPO_ROOT = Path(__file__).resolve().parents[1]
 VERSION_RE = re.compile(

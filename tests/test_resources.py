@@ -1,4 +1,4 @@
-"""Job resources estimated from the case (rodimpact.resources): what they follow, that they
+"""Job resources estimated from the case (rodimpact.workflow.resources): what they follow, that they
 cover what a real run takes, and that bad input is refused by name."""
 
 from __future__ import annotations
@@ -11,12 +11,13 @@ from pathlib import Path
 
 import pytest
 
-from rodimpact.bench import fem_bench_runs, resource_margins, sem_bench_runs
-from rodimpact.config import load_global_config, load_project
-from rodimpact.resources import (MIN_MEM_MB, MIN_RUNTIME_MIN, PRESENTATION, SAFETY, JobResources,
-                                 estimate_resources, estimate_sequence, fem_axi_dofs)
-from rodimpact.sources import module_sources
-from rodimpact.studies import level_case
+from rodimpact.workflow.bench_plan import fem_bench_runs, sem_bench_runs
+from rodimpact.workflow.bench import resource_margins
+from rodimpact.io.config import load_global_config, load_project
+from rodimpact.workflow.resources import (MIN_MEM_MB, MIN_RUNTIME_MIN, PRESENTATION, SAFETY, JobResources, estimate_resources, estimate_sequence)
+from rodimpact.solvers.fem_axi.cost import fem_axi_dofs
+from rodimpact.workflow.sources import module_sources
+from rodimpact.analysis.studies import level_case
 
 REPO = Path(__file__).resolve().parents[1]
 SRC = REPO / "src"
@@ -128,25 +129,28 @@ def test_presentation_is_constant_and_small():
 
 def test_resources_are_not_solver_code():
     """The solvers' rerun trigger lists their sources: a new calibration reruns no solver."""
-    solver = {Path(f).name for f in module_sources(SRC, ["rodimpact.runner"])}
+    solver = {Path(f).name for f in module_sources(SRC, ["rodimpact.workflow.runner"])}
     assert "resources.py" not in solver
-    assert "resources.py" in {Path(f).name for f in module_sources(SRC, ["rodimpact.bench"])}
+    assert "resources.py" in {Path(f).name for f in module_sources(SRC, ["rodimpact.workflow.bench"])}
 
 
 def test_dof_bound_covers_the_meshes(model):
     """The closed-form DOF bound against the meshes fem_axi builds (coarse, so quick)."""
-    from rodimpact.fem.fem_axi import AxiImpact, FEMAxiOptions, _build
+    from rodimpact.solvers.fem_axi.problem import AxiImpact
+    from rodimpact.solvers.fem_axi.options import FEMAxiOptions
+    from rodimpact.solvers.fem_axi.solver import build_model as _build
 
     for case in (with_numerics(model, "fem_axi", **COARSE_AXI),
                  with_numerics(model, "fem_axi", elements_across=6, element="P1")):
-        rod, imp, *_ = _build(AxiImpact.from_case(case), FEMAxiOptions.from_mapping(case["numerics"]["fem_axi"]))
+        model = _build(AxiImpact.from_case(case), FEMAxiOptions.from_settings(case["numerics"]["fem_axi"]))
+        rod, imp = model.rod, model.impactor
         built = rod.basis.N + imp.basis.N
         assert built <= fem_axi_dofs(case) <= 3 * built
 
 
 _MEASURE = r"""
 import json, resource, sys, time
-from rodimpact.runner import run_case
+from rodimpact.workflow.runner import run_case
 case, method = json.loads(sys.argv[1]), sys.argv[2]
 started = time.perf_counter()
 result = run_case(case, method)

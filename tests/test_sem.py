@@ -7,21 +7,25 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from rodimpact.hertz import hertz_constant
-from rodimpact.materials import Material
-from rodimpact.responses import Rod
-from rodimpact.sem import ImpactProblem, SEMOptions, local_maxima, solve_sem
+from rodimpact.contact.hertz import HertzLaw, hertz_constant
+from rodimpact.model.materials import Material
+from rodimpact.model.responses import Rod
+from rodimpact.model.problem import ImpactProblem
+from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
+from rodimpact.analysis.signals import local_maxima
+from rodimpact.solvers.sem.solver import solve_sem
 
 STEEL = Material(2.1e11, 0.30, 7800.0, "steel")
 
 
 def model_problem(far_end="fixed"):
     """Table 1, column Model."""
-    return ImpactProblem(0.5, 1.0, hertz_constant(0.01, STEEL), Rod(0.5, 5e-5, STEEL, far_end))
+    return ImpactProblem(0.5, 1.0, HertzLaw(hertz_constant(0.01, STEEL)), Rod(0.5, 5e-5, STEEL, far_end))
 
 
 def solve(problem, n, scheme="implicit", **kw):
-    result = solve_sem(problem, SEMOptions(scheme=scheme, steps_per_contact=n, **kw))
+    options = (SEMOptions if scheme == "implicit" else PaperSEMOptions)(steps_per_contact=n, **kw)
+    result = solve_sem(problem, options)
     assert result.success, result.message
     return result
 
@@ -33,8 +37,8 @@ def observed_order(steps, errors):
 
 def test_rigid_rod_limit_is_the_closed_form_hertz_impact():
     """A rod of enormous impedance does not move: the impact is Hertz's on a rigid wall."""
-    problem = ImpactProblem(0.5, 1.0, hertz_constant(0.01, STEEL), Rod(0.5, 1.0e5, STEEL))
-    closed = problem.rigid_hertz
+    problem = ImpactProblem(0.5, 1.0, HertzLaw(hertz_constant(0.01, STEEL)), Rod(0.5, 1.0e5, STEEL))
+    closed = problem.rigid_contact
     result = solve(problem, 2000)
     assert result.n_contacts == 1
     assert result.contact_time_s == pytest.approx(closed.contact_time_s, rel=1e-6)
@@ -48,8 +52,8 @@ def test_rigid_rod_limit_is_the_closed_form_hertz_impact():
 def test_semi_infinite_rod_matches_the_equivalent_ode():
     """No reflection within the contact: u' = P/Z, m x'' = -P, P = k (x - u)^(3/2)."""
     rod = Rod(math.inf, 1e-6, STEEL)  # a thin wire: the rod's compliance dominates
-    problem = ImpactProblem(0.01, 1.0, hertz_constant(0.005, STEEL), rod)
-    m, k, z = problem.mass_kg, problem.hertz_k, rod.impedance
+    problem = ImpactProblem(0.01, 1.0, HertzLaw(hertz_constant(0.005, STEEL)), rod)
+    m, k, z = problem.mass_kg, problem.contact.k, rod.impedance
 
     def rhs(t, y):
         p = k * max(y[0] - y[2], 0.0) ** 1.5
@@ -72,7 +76,7 @@ def test_semi_infinite_rod_matches_the_equivalent_ode():
     force = result.contact_force[: len(force_ode)]
     assert np.max(np.abs(force - force_ode)) < 2e-5 * np.max(force_ode)
     # the rod matters here: the contact lasts far longer than on a rigid wall
-    assert t_end > 3 * problem.rigid_hertz.contact_time_s
+    assert t_end > 3 * problem.rigid_contact.contact_time_s
 
 
 @pytest.fixture(scope="module")
@@ -136,17 +140,17 @@ def test_contact_end_is_located_between_steps(reference):
 def test_implicit_scheme_stable_where_the_papers_scheme_is_not():
     """A thin wire (small impedance Z, stiff contact k_c = dP/dalpha): the lagged force is
     unstable for steps beyond about 2 Z / k_c (NOTES.md item 7); the implicit scheme is not."""
-    problem = ImpactProblem(0.01, 1.0, hertz_constant(0.005, STEEL), Rod(1.0, 1e-6, STEEL))
+    problem = ImpactProblem(0.01, 1.0, HertzLaw(hertz_constant(0.005, STEEL)), Rod(1.0, 1e-6, STEEL))
     fine = solve(problem, 1000)
-    alpha_peak = (fine.peak_force_N.max() / problem.hertz_k) ** (2.0 / 3.0)
-    contact_stiffness = 1.5 * problem.hertz_k * math.sqrt(alpha_peak)
+    alpha_peak = (fine.peak_force_N.max() / problem.contact.k) ** (2.0 / 3.0)
+    contact_stiffness = 1.5 * problem.contact.k * math.sqrt(alpha_peak)
     dt = 4.0 * problem.rod.impedance / contact_stiffness
     implicit = solve_sem(problem, SEMOptions(dt_s=dt))
     assert implicit.success and implicit.n_contacts == fine.n_contacts
     assert abs(implicit.contact_time_s / fine.contact_time_s - 1) < 1e-2
     assert np.all(implicit.contact_force >= 0) and np.all(np.isfinite(implicit.contact_force))
     assert abs(implicit.energy_error) < 1e-2
-    paper = solve_sem(problem, SEMOptions(scheme="paper", dt_s=dt, allow_unstable=True))
+    paper = solve_sem(problem, PaperSEMOptions(dt_s=dt, allow_unstable=True))
     assert paper.energy_error < -1.0  # the explicit scheme creates energy...
     assert paper.contact_force.max() > 10 * fine.contact_force.max()
     assert not paper.success and "unstable" in paper.message  # ...and says so
@@ -155,7 +159,7 @@ def test_implicit_scheme_stable_where_the_papers_scheme_is_not():
 def test_second_contact_is_detected_and_resolution_independent():
     """Steel ball of 0.71 g on a thin aluminium rod 301 mm long: the ball strikes twice."""
     alu = Material(7.342e10, 0.34, 2696.6, "aluminium")
-    problem = ImpactProblem(0.71e-3, 0.3225, hertz_constant(2.78e-3, STEEL, alu),
+    problem = ImpactProblem(0.71e-3, 0.3225, HertzLaw(hertz_constant(2.78e-3, STEEL, alu)),
                             Rod(0.301, math.pi * 1e-6, alu))
     results = [solve(problem, n) for n in (1000, 4000)]
     for r in results:
@@ -185,8 +189,8 @@ def test_local_maxima_refines_a_parabola_exactly():
 
 
 def test_options_are_validated():
-    with pytest.raises(ValueError, match="scheme"):
-        SEMOptions(scheme="rk4")
+    with pytest.raises(ValueError, match="steps_per_contact must be given"):
+        PaperSEMOptions(steps_per_contact=None)
     with pytest.raises(ValueError, match="dt_s"):
         SEMOptions(dt_s=-1e-6)
     with pytest.raises(ValueError, match="steps_per_contact"):

@@ -1,4 +1,4 @@
-"""The SEM's step: the paper scheme's stability limit (derived in rodimpact.sem.stability,
+"""The SEM's step: the paper scheme's stability limit (derived in rodimpact.solvers.sem.stability,
 verified here), its refusal of unstable steps, and the implicit scheme's automatic step."""
 
 import math
@@ -6,18 +6,22 @@ import math
 import numpy as np
 import pytest
 
-from rodimpact.config import ConfigError, load_global_config, load_project
-from rodimpact.hertz import hertz_constant
-from rodimpact.materials import Material
-from rodimpact.responses import Rod
-from rodimpact.sem import ImpactProblem, SEMOptions, UnstableStepError, paper_step_limit, solve_sem
-from rodimpact.sem.stability import sawtooth_amplitude
+from rodimpact.io.project import ConfigError
+from rodimpact.io.config import load_global_config, load_project
+from rodimpact.contact.hertz import HertzLaw, hertz_constant
+from rodimpact.model.materials import Material
+from rodimpact.model.responses import Rod
+from rodimpact.model.problem import ImpactProblem
+from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
+from rodimpact.solvers.sem.stability import UnstableStepError, paper_step_limit
+from rodimpact.solvers.sem.solver import solve_sem
+from rodimpact.analysis.signals import sawtooth_amplitude
 
 STEEL = Material(2.1e11, 0.30, 7800.0, "steel")
 
 
 def model_problem():
-    return ImpactProblem(0.5, 1.0, hertz_constant(0.01, STEEL), Rod(0.5, 5e-5, STEEL))
+    return ImpactProblem(0.5, 1.0, HertzLaw(hertz_constant(0.01, STEEL)), Rod(0.5, 5e-5, STEEL))
 
 
 def _jury_stable(h, kc, z, m):
@@ -41,7 +45,7 @@ def test_linearised_paper_scheme_loses_stability_at_two_z_over_kc(z, m):
 def heavy_on_thin_wire():
     """0.2 kg on a semi-infinite steel wire of 1 mm^2: a long plateau of nearly constant
     approach, where a sawtooth grows or decays cleanly."""
-    problem = ImpactProblem(0.2, 1.0, hertz_constant(0.005, STEEL), Rod(math.inf, 1e-6, STEEL))
+    problem = ImpactProblem(0.2, 1.0, HertzLaw(hertz_constant(0.005, STEEL)), Rod(math.inf, 1e-6, STEEL))
     reference = solve_sem(problem, SEMOptions(steps_per_contact=320))
     return problem, reference
 
@@ -51,7 +55,7 @@ def test_paper_scheme_stable_just_below_its_limit_unstable_just_above(heavy_on_t
     limit = paper_step_limit(problem, approach_m=float(np.max(reference.approach)))
     late = {}
     for factor in (0.9, 1.1):
-        result = solve_sem(problem, SEMOptions(scheme="paper", dt_s=factor * limit, allow_unstable=True))
+        result = solve_sem(problem, PaperSEMOptions(dt_s=factor * limit, allow_unstable=True))
         window = (result.time > 50 * limit) & (result.time < 1000 * limit)
         late[factor] = sawtooth_amplitude(result.contact_force[window])
         assert np.all(np.isfinite(result.contact_force)) and np.all(result.contact_force >= 0)
@@ -75,8 +79,8 @@ def test_paper_scheme_refuses_an_unstable_step():
     problem = model_problem()
     limit = paper_step_limit(problem)
     with pytest.raises(UnstableStepError, match=r"stability limit 2 Z / k_c = .*allow_unstable"):
-        solve_sem(problem, SEMOptions(scheme="paper", dt_s=1.01 * limit))
-    assert solve_sem(problem, SEMOptions(scheme="paper", dt_s=0.2 * limit)).n_steps > 0
+        solve_sem(problem, PaperSEMOptions(dt_s=1.01 * limit))
+    assert solve_sem(problem, PaperSEMOptions(dt_s=0.2 * limit)).n_steps > 0
 
 
 def test_config_refuses_an_unstable_paper_step_before_any_job(tmp_path):

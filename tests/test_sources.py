@@ -4,7 +4,7 @@ from pathlib import Path
 
 import pytest
 
-from rodimpact.sources import module_sources
+from rodimpact.workflow.sources import module_sources
 
 SRC = Path(__file__).resolve().parents[1] / "src"
 
@@ -14,16 +14,16 @@ def names(files):
 
 
 def test_solver_closure_has_the_physics_and_not_the_presentation():
-    files = names(module_sources(SRC, ["rodimpact.runner"]))
-    assert {"runner.py", "store.py", "hertz.py", "responses.py", "sem/solver.py", "sem/history.py",
-            "sem/__init__.py", "__init__.py"} <= files
-    assert not files & {"figures.py", "tables.py", "bench.py", "artifacts.py"}
+    files = names(module_sources(SRC, ["rodimpact.workflow.runner"]))
+    assert {"workflow/runner.py", "io/store.py", "contact/hertz.py", "model/responses.py",
+            "solvers/registry.py", "solvers/sem/options.py", "__init__.py"} <= files
+    assert not any(f.startswith("present/") for f in files) and "workflow/bench.py" not in files
 
 
 def test_presentation_closure_has_no_solver():
-    files = names(module_sources(SRC, ["rodimpact.artifacts"]))
-    assert {"artifacts.py", "figures.py", "tables.py", "store.py", "atomic.py"} <= files
-    assert not any(f.startswith("sem/") for f in files)
+    files = names(module_sources(SRC, ["rodimpact.present.artifacts"]))
+    assert {"present/artifacts.py", "present/figures.py", "present/tables.py", "io/store.py", "io/atomic.py"} <= files
+    assert not any(f.endswith(("solver.py", "stepper.py")) for f in files)
 
 
 def test_unknown_entry_module_is_an_error():

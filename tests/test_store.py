@@ -1,4 +1,4 @@
-"""Tests of rodimpact.store: HDF5 run files with provenance, written atomically."""
+"""Tests of rodimpact.io.store: HDF5 run files with provenance, written atomically."""
 
 from __future__ import annotations
 
@@ -12,8 +12,8 @@ import h5py
 import numpy as np
 import pytest
 
-from rodimpact import provenance, store
-from rodimpact.store import StoreError, read_run, read_summary, write_run
+from rodimpact.io import atomic, provenance, store
+from rodimpact.io.store import StoreError, read_run, read_summary, write_run
 
 RTOL = 0.0  # float64 is stored losslessly: exact round trip expected
 N = 6001  # > 4096 elements: exercises compression
@@ -196,24 +196,24 @@ def test_not_a_run_file(tmp_path: Path) -> None:
         read_run(path)
 
 
-@pytest.mark.parametrize("where", ["_write_summary", "_fsync"])
+@pytest.mark.parametrize("module, where", [(store, "_write_summary"), (atomic, "_fsync_file")])
 def test_failed_write_leaves_nothing(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, where: str
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, module: Any, where: str
 ) -> None:
     def boom(*args: Any, **kwargs: Any) -> None:
         raise OSError("disk full (simulated)")
 
     target = tmp_path / "out" / "run.h5"
-    monkeypatch.setattr(store, where, boom)  # runs after all datasets are written
+    monkeypatch.setattr(module, where, boom)  # runs after all datasets are written
     with pytest.raises(OSError, match="simulated"):
         write_good(target)
     assert not target.exists()
     assert leftovers(target.parent) == []
 
 
-@pytest.mark.parametrize("where", ["_write_summary", "_fsync"])
+@pytest.mark.parametrize("module, where", [(store, "_write_summary"), (atomic, "_fsync_file")])
 def test_failed_rewrite_keeps_existing_file(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, where: str
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, module: Any, where: str
 ) -> None:
     target = write_good(tmp_path / "run.h5")
     before = target.read_bytes()
@@ -221,7 +221,7 @@ def test_failed_rewrite_keeps_existing_file(
     def boom(*args: Any, **kwargs: Any) -> None:
         raise KeyboardInterrupt  # also BaseException subclasses clean up
 
-    monkeypatch.setattr(store, where, boom)
+    monkeypatch.setattr(module, where, boom)
     with pytest.raises(KeyboardInterrupt):
         write_good(target, method="fem", wall_time_s=9.0)
     assert target.read_bytes() == before
@@ -232,15 +232,15 @@ def test_failed_rewrite_keeps_existing_file(
 
 def test_temporary_file_name(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     seen: list[str] = []
-    real_fsync = store._fsync
+    real_fsync = atomic._fsync_file
 
     def spy(path: Path) -> None:
         seen.append(Path(path).name)
         real_fsync(path)
 
-    monkeypatch.setattr(store, "_fsync", spy)
+    monkeypatch.setattr(atomic, "_fsync_file", spy)
     write_good(tmp_path / "run.h5")
-    assert re.fullmatch(r"run\.h5\.tmp\..+", seen[0])
+    assert re.fullmatch(r"run\.tmp-[0-9a-f]+\.h5", seen[0])
     assert leftovers(tmp_path) == []
 
 

@@ -10,12 +10,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from rodimpact.config import load_global_config, load_project
-from rodimpact.runner import SolverFailed, Timing, run_to_file
-from rodimpact.store import read_run
-from rodimpact.stress import map_frame, stability_frame, violations
-from rodimpact.studies import level_case, map_point_case, map_point_names, reference_case
-from rodimpact.work_precision import observed_orders, work_precision_frame
+from rodimpact.io.config import load_global_config, load_project
+from rodimpact.workflow.runner import SolverFailed, Timing, run_to_file
+from rodimpact.io.store import read_run
+from rodimpact.analysis.stability_study import map_frame, stability_frame, violations
+from rodimpact.analysis.studies import level_case, map_point_case, map_point_names, reference_case
+from rodimpact.analysis.work_precision import observed_orders, work_precision_frame
 
 ROOT = Path(__file__).resolve().parents[1]
 

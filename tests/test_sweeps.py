@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 from snakemake.utils import Paramspace
 
-from rodimpact.config import load_global_config, load_project
-from rodimpact.sweeps import SWEEP_PARAMETERS, sweep_frame, sweep_point_case, sweep_values
-from rodimpact.tables import sweep_results_frame
+from rodimpact.io.config import load_global_config, load_project
+from rodimpact.analysis.sweeps import SWEEP_PARAMETERS, sweep_frame, sweep_point_case, sweep_values
+from rodimpact.present.tables import sweep_results_frame
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -114,7 +114,7 @@ def test_every_parameter_sets_its_field(project) -> None:
 def test_contact_time_along_the_sweep_follows_hertz_for_a_rigid_rod(project) -> None:
     """On a stiff short rod the contact is Hertzian: t ~ m^(2/5) R^(-1/5), i.e. t ~ d for a
     solid ball. The sweep's SEM runs show it: fitted log-log slope 1 within 0.05."""
-    from rodimpact.runner import run_case
+    from rodimpact.workflow.runner import run_case
 
     case = project.sweeps["ball_sweep-r10_l30"]
     diameters = [1e-3, 2e-3, 4e-3]
@@ -125,8 +125,8 @@ def test_contact_time_along_the_sweep_follows_hertz_for_a_rigid_rod(project) -> 
 
 
 def test_sweep_table_reads_the_points(tmp_path: Path, project) -> None:
-    from rodimpact.runner import run_to_file
-    from rodimpact.store import read_summary
+    from rodimpact.workflow.runner import run_to_file
+    from rodimpact.io.store import read_summary
 
     case = project.sweeps["ball_sweep-r1_l30"]
     paths = [run_to_file(sweep_point_case(case, {"ball_diameter_m": d}, f"d{d}"), "sem", tmp_path / f"{d}.h5")

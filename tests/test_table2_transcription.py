@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from rodimpact.config import load_global_config, load_project
+from rodimpact.io.config import load_global_config, load_project
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -33,9 +33,9 @@ import pytest
 import yaml
 from PIL import Image
 
-from rodimpact.audit import audit
-from rodimpact.config import METHOD_SETTINGS, load_global_config, load_project
-from rodimpact.store import REQUIRED_SUMMARY, read_run
+from rodimpact.workflow.audit import audit
+from rodimpact.io.config import METHOD_SETTINGS, load_global_config, load_project
+from rodimpact.io.store import REQUIRED_SUMMARY, read_run
 
 pytestmark = pytest.mark.workflow
 
@@ -498,7 +498,7 @@ def test_provenance_audit_fails_on_hand_edits_and_stale_artifacts(built: Path, t
     model_yaml = project / "config/cases/model.yaml"
     model_yaml.write_text(model_yaml.read_text().replace("velocity_m_s: 1.0\n", "velocity_m_s: 1.1\n"))
 
-    proc = subprocess.run([sys.executable, "-m", "rodimpact.audit", "--root", str(project)],
+    proc = subprocess.run([sys.executable, "-m", "rodimpact.workflow.audit", "--root", str(project)],
                           capture_output=True, text=True, check=False)
     assert proc.returncode == 1, proc.stdout + proc.stderr
     failed = {}

@@ -4,7 +4,7 @@ import re
 import sys
 from pathlib import Path
 
-from snakemake.utils import Paramspace, validate
+from snakemake.utils import Paramspace
 
 # The workflow runs the code of its own checkout (src/), in this process and in its jobs,
 # whatever else is installed: the sources snakemake tracks are the sources that run.
@@ -14,16 +14,20 @@ sys.path.insert(0, SRC_DIR)
 # remote jobs set it too.
 os.environ.update(PYTHONPATH=os.pathsep.join(filter(None, [SRC_DIR, os.environ.get("PYTHONPATH")])))
 
-from rodimpact.config import METHODS, ConfigError, load_project
-from rodimpact.studies import level_case, map_point_case, map_point_names, reference_case
-from rodimpact.sources import module_sources
-from rodimpact.sweeps import sweep_frame, sweep_point_case
+from rodimpact.analysis.studies import level_case, map_point_case, map_point_names, reference_case
+from rodimpact.analysis.sweeps import sweep_frame, sweep_point_case
+from rodimpact.io.config import METHODS, load_project
+from rodimpact.io.project import ConfigError
+from rodimpact.solvers.registry import METHODS as METHOD_REGISTRY
+from rodimpact.workflow.sources import module_sources
 
-validate(config, "../schemas/config.schema.yaml")
+# The whole configuration is checked here, against the schemas and the method registry,
+# before any job; the checked config (every default filled in) replaces snakemake's.
 try:
     PROJECT = load_project(config, root=workflow.basedir)
 except ConfigError as error:
     sys.exit(f"rodimpact: invalid configuration: {error}")
+config.update(PROJECT.config)
 
 
 def sources(*entry_modules):
@@ -31,9 +35,18 @@ def sources(*entry_modules):
     return [os.path.relpath(p, workflow.basedir) for p in module_sources(SRC_DIR, entry_modules)]
 
 
-SRC_SOLVE = sources("rodimpact.runner", "rodimpact.logs")
-SRC_PRESENT = sources("rodimpact.artifacts", "rodimpact.logs")
-SRC_BENCH = sources("rodimpact.bench", "rodimpact.atomic", "rodimpact.logs")
+# A solver rule depends on the runner and on its own method's solver (the registry names it).
+SRC_RUN = ("rodimpact.workflow.runner", "rodimpact.workflow.logs")
+SOLVER_SOURCES = {name: sources(*SRC_RUN, spec.solver_module) for name, spec in METHOD_REGISTRY.items()}
+
+
+def solver_sources(method=None):
+    """Input function: the sources of the method ``method(wildcards)`` (default: the wildcard) runs."""
+    return lambda wildcards: SOLVER_SOURCES[method(wildcards) if method else wildcards.method]
+
+
+SRC_PRESENT = sources("rodimpact.present.artifacts", "rodimpact.workflow.logs")
+SRC_BENCH = sources("rodimpact.workflow.bench", "rodimpact.io.atomic", "rodimpact.workflow.logs")
 TABLE2_VARIANTS = list(PROJECT.variants.get("table2", {}))
 
 

@@ -4,7 +4,7 @@
 rule solve:
     """Run one method on one case; the HDF5 file appears whole or not at all."""
     input:
-        code=SRC_SOLVE,
+        code=solver_sources(),
     output:
         h5="results/runs/{case}/{method}.h5",
     params:
@@ -24,7 +24,7 @@ rule solve:
 rule solve_level:
     """One level of a work-precision sweep: the case with the level's numerics, timed."""
     input:
-        code=SRC_SOLVE,
+        code=solver_sources(),
     output:
         h5="results/convergence/{case}/{method}_level{level}.h5",
     params:
@@ -48,7 +48,7 @@ rule solve_level:
 rule solve_stress:
     """One method on one stress case; a failure is stored as data (the study checks it)."""
     input:
-        code=SRC_SOLVE,
+        code=solver_sources(),
     output:
         h5="results/stress/{case}/{method}.h5",
     params:
@@ -68,7 +68,7 @@ rule solve_stress:
 rule solve_stress_reference:
     """The sem reference of a stress case, at the study's reference tolerance."""
     input:
-        code=SRC_SOLVE,
+        code=solver_sources(lambda w: "sem"),
     output:
         h5="results/stress/{case}/reference.h5",
     params:
@@ -88,7 +88,7 @@ rule solve_stress_reference:
 rule solve_map_point:
     """One point of the stability map with one method (or its sem reference)."""
     input:
-        code=SRC_SOLVE,
+        code=solver_sources(map_method_of),
     output:
         h5="results/stability_map/{point}/{map_method}.h5",
     params:

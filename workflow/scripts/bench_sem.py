@@ -1,7 +1,7 @@
 """Snakemake adapter: SEM wall time against accuracy on the case 'model'."""
 
-from rodimpact.bench import benchmark_sem, write_benchmark
-from rodimpact.logs import script_logging
+from rodimpact.workflow.bench import benchmark_sem, write_benchmark
+from rodimpact.workflow.logs import script_logging
 
 with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
     frame = benchmark_sem(snakemake.params.case)  # noqa: F821

@@ -1,7 +1,7 @@
 """Snakemake adapter: contact time against ball mass, per rod geometry variant."""
 
-from rodimpact.artifacts import make_fig_table2
-from rodimpact.logs import script_logging
+from rodimpact.present.artifacts import make_fig_table2
+from rodimpact.workflow.logs import script_logging
 
 with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
     make_fig_table2(snakemake.input.runs, snakemake.params.variants,  # noqa: F821

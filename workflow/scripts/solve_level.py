@@ -1,7 +1,7 @@
 """Snakemake adapter: one level of a work-precision sweep, timed, written to its HDF5 file."""
 
-from rodimpact.logs import script_logging
-from rodimpact.runner import Timing, run_to_file
+from rodimpact.workflow.logs import script_logging
+from rodimpact.workflow.runner import Timing, run_to_file
 
 with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
     params = snakemake.params  # noqa: F821

@@ -1,7 +1,7 @@
 """Snakemake adapter: one point of a parameter sweep, written to its HDF5 file."""
 
-from rodimpact.logs import script_logging
-from rodimpact.runner import run_to_file
+from rodimpact.workflow.logs import script_logging
+from rodimpact.workflow.runner import run_to_file
 
 with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
     params = snakemake.params  # noqa: F821

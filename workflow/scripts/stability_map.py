@@ -1,7 +1,7 @@
 """Snakemake adapter: the stability map of the SEM schemes (table and figure)."""
 
-from rodimpact.artifacts import make_stability_map
-from rodimpact.logs import script_logging
+from rodimpact.present.artifacts import make_stability_map
+from rodimpact.workflow.logs import script_logging
 
 with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
     out, params = snakemake.output, snakemake.params  # noqa: F821

@@ -1,0 +1,183 @@
+"""The contact-law interface: what every solver asks of a quasi-static contact law.
+
+A law gives the contact force P as a function of the approach alpha (the mutual
+convergence of impactor and rod end, m; alpha <= 0 is a gap and carries no force). The
+solvers never assume a power law: they use only the methods below.
+
+- :meth:`ContactLaw.force` P(alpha), N;
+- :meth:`ContactLaw.stiffness` dP/dalpha, N/m;
+- :meth:`ContactLaw.energy` the stored energy int_0^alpha P, J;
+- :meth:`ContactLaw.approach` the approach at a given force (the inverse of P), m;
+- :meth:`ContactLaw.solve_step` the one root of alpha + b P(alpha) = a (b > 0), the implicit
+  step of every scheme whose approach is affine in the new force, alpha = A - B P;
+- :meth:`ContactLaw.contact_radius` the radius of the contact patch, m (for meshes and output);
+- :meth:`ContactLaw.rigid_impact` the impact of a rigid mass on a rigid flat, the time and
+  force scales of every method (the stability limit, the automatic step, the cost model).
+
+A law must be monotone: P(0) = 0, P increasing and P' >= 0 for alpha > 0, so that the step
+equation has exactly one root for b > 0. :meth:`solve_step` and :meth:`rigid_impact` have
+generic implementations (safeguarded Newton; quadrature of the energy integral) that a law
+may replace with closed forms.
+"""
+
+from __future__ import annotations
+
+import abc
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.integrate import quad
+from scipy.optimize import brentq
+
+__all__ = ["ContactLaw", "RigidImpact", "StepNotConverged"]
+
+#: Newton iterations :meth:`ContactLaw.solve_step` takes at most.
+MAX_STEP_ITERATIONS = 60
+
+
+class StepNotConverged(ArithmeticError):
+    """The step equation alpha + b P(alpha) = a was not solved (a law that is not monotone)."""
+
+
+@dataclass(frozen=True)
+class RigidImpact:
+    """A rigid mass striking a rigid flat through the contact law (no wave in either body).
+
+    Attributes
+    ----------
+    max_approach_m : float
+        alpha_max, where the law's stored energy equals the impact energy m v0^2 / 2, m.
+    contact_time_s : float
+        Duration of the contact, s: 2 int_0^alpha_max d alpha / sqrt(v0^2 - 2 E(alpha) / m).
+    peak_force_N : float
+        P(alpha_max), N.
+    """
+
+    max_approach_m: float
+    contact_time_s: float
+    peak_force_N: float
+
+
+def _check_positive(**values: float) -> None:
+    for name, value in values.items():
+        if not (math.isfinite(value) and value > 0):
+            raise ValueError(f"{name} must be > 0, got {value!r}")
+
+
+class ContactLaw(abc.ABC):
+    """A monotone quasi-static contact law P(alpha) (see the module docstring).
+
+    Subclasses are frozen dataclasses holding the law's parameters; ``name`` is the law's
+    name in a case file (``contact: {law: <name>}``).
+    """
+
+    name: str = ""
+
+    @abc.abstractmethod
+    def force(self, approach_m: float) -> float:
+        """Contact force P(alpha), N (0 for alpha <= 0)."""
+
+    @abc.abstractmethod
+    def stiffness(self, approach_m: float) -> float:
+        """Tangent stiffness dP/dalpha, N/m (0 for alpha <= 0)."""
+
+    @abc.abstractmethod
+    def energy(self, approach_m: ArrayLike) -> NDArray[np.float64] | float:
+        """Stored energy int_0^alpha P d alpha, J; 0 for alpha <= 0. Shape as ``approach_m``."""
+
+    @abc.abstractmethod
+    def approach(self, force_N: float) -> float:
+        """The approach at which the law carries ``force_N`` (>= 0), m."""
+
+    def contact_radius(self, approach_m: ArrayLike) -> NDArray[np.float64] | float | None:
+        """Radius of the contact patch, m (shape as ``approach_m``); None when the law has no
+        geometry (a law that is only a force-approach curve)."""
+        return None
+
+    def summary(self) -> dict[str, float | str]:
+        """The law's name and parameters, stored with every run (``contact_law``, ...)."""
+        return {"contact_law": self.name}
+
+    def solve_step(self, a: float, b: float, guess: float) -> tuple[float, int]:
+        """The root alpha >= 0 of alpha + b P(alpha) = a, and the iteration count.
+
+        Parameters
+        ----------
+        a : float
+            The approach the step would reach with no force, m (> 0).
+        b : float
+            The compliance of the step, m/N (>= 0; > 0 makes the root unique).
+        guess : float
+            A first guess, m (clipped into the bracket [0, a]).
+
+        Returns
+        -------
+        alpha : float
+            The root, m.
+        iterations : int
+            Newton iterations taken.
+
+        Notes
+        -----
+        f(alpha) = alpha + b P(alpha) - a increases on [0, a] from -a to b P(a) >= 0, so the
+        root is bracketed; Newton's steps are kept inside the shrinking bracket (bisection
+        when a step leaves it).
+        """
+        lo, hi = 0.0, a
+        alpha = min(max(guess, lo), hi)
+        for iteration in range(1, MAX_STEP_ITERATIONS + 1):
+            f = alpha + b * self.force(alpha) - a
+            if f == 0.0:
+                return alpha, iteration
+            if f < 0.0:
+                lo = alpha
+            else:
+                hi = alpha
+            slope = 1.0 + b * self.stiffness(alpha)
+            alpha_new = alpha - f / slope
+            if not (lo < alpha_new < hi):
+                alpha_new = 0.5 * (lo + hi)
+            if abs(alpha_new - alpha) <= 1e-15 * alpha_new or alpha_new == alpha:
+                return alpha_new, iteration
+            alpha = alpha_new
+        raise StepNotConverged(f"the step of the {self.name or type(self).__name__} law did not converge "
+                               f"(a={a!r}, b={b!r})")
+
+    def rigid_impact(self, mass_kg: float, velocity_m_s: float) -> RigidImpact:
+        """The impact of a rigid mass on a rigid flat through this law.
+
+        Parameters
+        ----------
+        mass_kg : float
+            Impactor mass m, kg (> 0).
+        velocity_m_s : float
+            Impact velocity v0, m/s (> 0).
+
+        Returns
+        -------
+        RigidImpact
+            By quadrature of the energy integral: alpha_max from E(alpha_max) = m v0^2 / 2;
+            the contact time 2 int_0^alpha_max d alpha / v(alpha) with v^2 = 2 (E(alpha_max)
+            - E(alpha)) / m, integrated in u = sqrt(alpha_max - alpha), which removes the
+            inverse square root at the turning point.
+        """
+        _check_positive(mass_kg=mass_kg, velocity_m_s=velocity_m_s)
+        kinetic = 0.5 * mass_kg * velocity_m_s**2
+        upper = velocity_m_s * 1e-9
+        while float(self.energy(upper)) < kinetic:
+            upper *= 4.0
+        alpha_max = brentq(lambda x: float(self.energy(x)) - kinetic, 0.0, upper, xtol=1e-300, rtol=4e-16)
+
+        def integrand(u: float) -> float:
+            # d alpha = 2 u du; v = sqrt(2 (E_max - E(alpha)) / m), E_max - E = int_alpha^alpha_max P
+            alpha = alpha_max - u * u
+            stored = quad(self.force, alpha, alpha_max, epsabs=0.0, epsrel=1e-13)[0]
+            if stored > 0.0:
+                return 2.0 * u / math.sqrt(2.0 * stored / mass_kg)
+            return 2.0 / math.sqrt(2.0 * self.force(alpha_max) / mass_kg)  # the limit u -> 0
+
+        half = quad(integrand, 0.0, math.sqrt(alpha_max), epsabs=0.0, epsrel=1e-12, limit=200)[0]
+        return RigidImpact(max_approach_m=alpha_max, contact_time_s=2.0 * half,
+                           peak_force_N=self.force(alpha_max))

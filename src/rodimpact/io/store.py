@@ -1,0 +1,381 @@
+"""HDF5 storage of one solver run with provenance, written atomically.
+
+HDF5 schema of one run (``schema_version`` 1)
+---------------------------------------------
+One file per run (one case solved by one method); SI units throughout::
+
+    /                          root group
+      @case_id           str    case identifier, config["id"]
+      @method            str    solver method, e.g. "sem"
+      @config_json       str    canonical JSON of the fully resolved case + numerics
+      @config_sha256     str    hex SHA-256 of config_json (UTF-8)
+      @code_version      str    "{version}+g{commit}[.dirty]" or "{version}+unknown"
+      @library_versions  str    canonical JSON {"python": ..., "numpy": ..., ...}
+      @wall_time_s       float  solver wall-clock time (s)
+      @created_utc       str    ISO 8601 UTC time, e.g. "2018-05-01T12:00:00+00:00"
+      @schema_version    int    1
+      @data_sha256       str    provenance.data_sha256 of config, method, series and summary
+      time                    float64 (n,)    s    always present
+      contact_force           float64 (n,)    N    optional
+      approach                float64 (n,)    m    optional
+      impactor_displacement   float64 (n,)    m    optional
+      impactor_velocity       float64 (n,)    m/s  optional
+      rod_end_displacement    float64 (n,)    m    optional
+      <other name>            float64 (n,) or (n, k), e.g. 2-D station histories
+        every dataset: @units (str), @description (str); first dimension n = len(time);
+        gzip level 4 + shuffle when larger than 4096 elements
+      summary/                 group, attributes only
+        @contact_time_s        float       duration of contact (s)
+        @peak_force_N          float (p,)  contact force maxima, possibly empty (N)
+        @peak_time_s           float (p,)  times of those maxima (s)
+        @rebound_velocity_m_s  float       impactor velocity after separation (m/s)
+        @energy_error          float       energy balance error reported by the solver (-)
+        @<other name>          float, int, bool or str scalar, or 1-D numeric array
+                               (e.g. contact_start_s, contact_end_s, n_contacts,
+                               success, status, message, n_steps)
+
+Writes go through :func:`rodimpact.io.atomic.atomic_output` (a temporary file beside the
+target, fsynced and moved onto it with :func:`os.replace`); a failed write leaves no
+temporary file and the target unchanged.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import logging
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from datetime import datetime, timezone
+from numbers import Integral, Real
+from pathlib import Path
+from typing import Any
+
+import h5py
+import numpy as np
+
+from rodimpact.io import provenance
+from rodimpact.io.atomic import atomic_output
+
+logger = logging.getLogger(__name__)
+
+__all__ = ["REQUIRED_SUMMARY", "SCHEMA_VERSION", "RunRecord", "StoreError"]
+__all__ += ["read_run", "read_summary", "write_run"]
+
+SCHEMA_VERSION = 1
+#: Summary attributes every run must provide; the two peak arrays have equal length.
+REQUIRED_SUMMARY: tuple[str, ...] = (
+    "contact_time_s", "peak_force_N", "peak_time_s", "rebound_velocity_m_s", "energy_error",
+)  # fmt: skip
+_SUMMARY_ARRAYS = ("peak_force_N", "peak_time_s")
+_STR_ATTRS = tuple(
+    "case_id method config_json config_sha256 code_version library_versions created_utc".split()
+)
+_ROOT_ATTRS = (*_STR_ATTRS, "wall_time_s", "schema_version")
+_SUMMARY_GROUP = "summary"
+_COMPRESS_MIN_ELEMENTS = 4096
+_COMPRESSION = {"compression": "gzip", "compression_opts": 4, "shuffle": True}
+
+
+class StoreError(RuntimeError):
+    """A file is not a valid rodimpact run file (missing data, hash mismatch, ...)."""
+
+
+@dataclass(frozen=True)
+class RunRecord:
+    """Contents of one stored run; fields mirror the HDF5 schema above (``wall_time_s`` in s).
+
+    ``config``/``library_versions`` are parsed JSON. ``series`` maps name to a float64 array
+    (n,) or (n, k), ``units``/``descriptions`` keyed alike (all empty from :func:`read_summary`).
+    ``summary``: Python float/int/bool/str scalars and 1-D numpy arrays.
+    """
+
+    path: Path
+    case_id: str
+    method: str
+    config: dict
+    config_sha256: str
+    code_version: str
+    library_versions: dict
+    wall_time_s: float
+    created_utc: str
+    series: dict[str, np.ndarray]
+    units: dict[str, str]
+    summary: dict[str, Any]
+    descriptions: dict[str, str] = field(default_factory=dict)
+    data_sha256: str = ""  # empty: written before the digest was stored
+
+
+def _check_config(config: Mapping[str, Any]) -> tuple[str, str]:
+    """Return ``(case_id, config_json)`` of a resolved case configuration."""
+    if "id" not in config:
+        raise ValueError("config must contain the case identifier 'id'")
+    if not isinstance(config["id"], str) or not config["id"]:
+        raise ValueError(f"config['id'] must be a non-empty str, got {config['id']!r}")
+    try:
+        return config["id"], provenance.canonical_json(dict(config))
+    except (TypeError, ValueError) as exc:
+        raise type(exc)(f"config is not plain JSON data: {exc}") from exc
+
+
+def _all_str(values: tuple) -> bool:
+    return all(isinstance(value, str) for value in values)
+
+
+def _check_series(
+    series: Mapping[str, tuple[np.ndarray, str, str]],
+) -> list[tuple[str, np.ndarray, str, str]]:
+    """Validate the series and return them as float64 arrays, ``time`` first."""
+    if "time" not in series:
+        raise ValueError("series must contain 'time'")
+    checked: list[tuple[str, np.ndarray, str, str]] = []
+    for name in ["time", *(name for name in series if name != "time")]:
+        if not isinstance(name, str) or not name or "/" in name or name in (".", _SUMMARY_GROUP):
+            raise ValueError(f"series name {name!r} is not a valid dataset name")
+        entry = series[name]
+        if not (isinstance(entry, tuple) and len(entry) == 3 and _all_str(entry[1:])):
+            raise TypeError(f"series[{name!r}] must be a tuple (array, units, description)")
+        values, units, description = entry
+        array = np.asarray(values)
+        if array.dtype.kind not in "biuf":
+            raise TypeError(f"series[{name!r}] must be real numeric, got dtype {array.dtype}")
+        array = np.ascontiguousarray(array, dtype=np.float64)
+        n_time = checked[0][1].shape[0] if checked else -1
+        if name == "time" and array.ndim != 1:
+            raise ValueError(f"series['time'] must be 1-D, got shape {array.shape}")
+        if name != "time" and (array.ndim not in (1, 2) or array.shape[0] != n_time):
+            raise ValueError(
+                f"series[{name!r}] has shape {array.shape}; expected 1-D or 2-D with "
+                f"first dimension len(time) = {n_time}"
+            )
+        checked.append((name, array, units, description))
+    return checked
+
+
+def _summary_value(key: str, value: Any) -> Any:
+    """Normalise one summary value to a type h5py stores faithfully."""
+    if isinstance(value, (bool, np.bool_, str)):
+        return np.bool_(value) if not isinstance(value, str) else value
+    if isinstance(value, (Integral, Real)):
+        return np.int64(value) if isinstance(value, Integral) else np.float64(value)
+    if isinstance(value, (list, tuple, np.ndarray)):
+        array = np.asarray(value)
+        if array.ndim != 1:
+            raise ValueError(f"summary[{key!r}] must be scalar or 1-D, got shape {array.shape}")
+        if array.size == 0 or array.dtype.kind in "biuf":
+            kinds = {"b": np.bool_, "i": np.int64, "u": np.int64}
+            return array.astype(kinds.get(array.dtype.kind, np.float64))
+    raise TypeError(
+        f"summary[{key!r}] has unsupported type {type(value).__name__}; "
+        "use float, int, bool, str or a 1-D numeric array"
+    )
+
+
+def _check_summary(summary: Mapping[str, Any]) -> dict[str, Any]:
+    """Validate the summary attributes and return normalised values."""
+    if missing := [key for key in REQUIRED_SUMMARY if key not in summary]:
+        raise ValueError(f"summary is missing required key(s) {missing}")
+    checked: dict[str, Any] = {}
+    for key, value in summary.items():
+        if not isinstance(key, str) or not key:
+            raise TypeError(f"summary keys must be non-empty str, got {key!r}")
+        checked[key] = _summary_value(key, value)
+    for key in REQUIRED_SUMMARY:
+        value, is_array = checked[key], key in _SUMMARY_ARRAYS
+        if is_array != isinstance(value, np.ndarray) or np.asarray(value).dtype.kind not in "iuf":
+            kind = "a 1-D float array" if is_array else "a real number"
+            raise TypeError(f"summary[{key!r}] must be {kind}, got {type(summary[key]).__name__}")
+        checked[key] = value.astype(np.float64)
+    n_force, n_time = checked["peak_force_N"].size, checked["peak_time_s"].size
+    if n_force != n_time:
+        raise ValueError(f"summary peak_force_N/peak_time_s lengths differ: {n_force} != {n_time}")
+    return checked
+
+
+def _write_summary(h5: h5py.File, summary: Mapping[str, Any]) -> None:
+    h5.create_group(_SUMMARY_GROUP, track_order=True).attrs.update(summary)
+
+
+def write_run(
+    path: str | Path,
+    *,
+    config: Mapping[str, Any],
+    method: str,
+    series: Mapping[str, tuple[np.ndarray, str, str]],
+    summary: Mapping[str, Any],
+    wall_time_s: float,
+    code_version: str | None = None,
+) -> Path:
+    """Write one solver run to an HDF5 file atomically (schema in the module docstring).
+
+    Parameters
+    ----------
+    path : str or Path
+        Target file; its parent directory is created if needed.
+    config : mapping
+        Fully resolved case + numerics, plain JSON data; must contain ``"id"``.
+    method : str
+        Solver method name.
+    series : mapping of str to (array, units, description)
+        Must contain ``"time"`` (shape (n,), s); other arrays have shape (n,) or (n, k).
+    summary : mapping of str to scalar, str or 1-D array
+        Must contain ``contact_time_s`` (s), ``peak_force_N`` (N, shape (p,)),
+        ``peak_time_s`` (s, shape (p,)), ``rebound_velocity_m_s`` (m/s), ``energy_error``.
+    wall_time_s : float
+        Solver wall-clock time (s), finite and non-negative.
+    code_version : str, optional
+        Defaults to :func:`rodimpact.io.provenance.code_version`.
+
+    Returns
+    -------
+    Path
+        The written file.
+
+    Raises
+    ------
+    ValueError, TypeError
+        Invalid argument (named in the message); nothing is written.
+    OSError
+        Writing failed; the target is unchanged and no temporary file remains.
+    """
+    for name, arg in (("config", config), ("series", series), ("summary", summary)):
+        if not isinstance(arg, Mapping):
+            raise TypeError(f"{name} must be a mapping, got {type(arg).__name__}")
+    path = Path(path)
+    case_id, config_json = _check_config(config)
+    if not isinstance(method, str) or not method:
+        raise ValueError(f"method must be a non-empty str, got {method!r}")
+    checked_series = _check_series(series)
+    checked_summary = _check_summary(summary)
+    real = isinstance(wall_time_s, Real) and not isinstance(wall_time_s, bool)
+    if not (real and math.isfinite(wall_time_s) and wall_time_s >= 0):
+        raise ValueError(f"wall_time_s must be a finite number >= 0, got {wall_time_s!r}")
+    code_version = provenance.code_version() if code_version is None else code_version
+    if not isinstance(code_version, str) or not code_version:
+        raise ValueError(f"code_version must be a non-empty str, got {code_version!r}")
+
+    root_attrs: dict[str, Any] = {
+        "case_id": case_id,
+        "method": method,
+        "config_json": config_json,
+        "config_sha256": hashlib.sha256(config_json.encode("utf-8")).hexdigest(),
+        "code_version": code_version,
+        "library_versions": provenance.canonical_json(provenance.library_versions()),
+        "wall_time_s": np.float64(wall_time_s),
+        "created_utc": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+        "schema_version": np.int64(SCHEMA_VERSION),
+        "data_sha256": provenance.data_sha256(config_json, method, {n: (a, u, d) for n, a, u, d in checked_series},
+                                              checked_summary),
+    }
+    with atomic_output(path) as tmp:
+        with h5py.File(tmp, "x", track_order=True) as h5:
+            h5.attrs.update(root_attrs)
+            for name, array, units, description in checked_series:
+                big = array.size > _COMPRESS_MIN_ELEMENTS
+                dataset = h5.create_dataset(name, data=array, **(_COMPRESSION if big else {}))
+                dataset.attrs.update({"units": units, "description": description})
+            _write_summary(h5, checked_summary)
+            h5.flush()
+    logger.info("wrote run %s/%s to %s (%d bytes)", case_id, method, path, path.stat().st_size)
+    return path
+
+
+def _attr_value(value: Any) -> Any:
+    """Convert an h5py attribute value to a Python scalar or 1-D numpy array."""
+    if isinstance(value, np.ndarray) and value.ndim > 0:
+        return np.array(value)
+    if isinstance(value, (np.generic, np.ndarray)):
+        value = value.item()
+    return value.decode("utf-8") if isinstance(value, bytes) else value
+
+
+def _read_series(h5: h5py.File, path: Path) -> tuple[dict, dict, dict]:
+    """Read all root datasets: ``(series, units, descriptions)``."""
+    datasets = {name: obj for name, obj in h5.items() if isinstance(obj, h5py.Dataset)}
+    n_time = h5["time"].shape[0] if h5["time"].ndim == 1 else -1
+    for name, obj in datasets.items():
+        if not _all_str(tuple(_attr_value(obj.attrs.get(a)) for a in ("units", "description"))):
+            raise StoreError(f"{path}: dataset {name!r} lacks a str units or description")
+        if obj.ndim not in (1, 2) or obj.shape[0] != n_time:
+            raise StoreError(f"{path}: dataset {name!r} has shape {obj.shape}, n = {n_time}")
+    return (
+        {name: np.asarray(obj[()], dtype=np.float64) for name, obj in datasets.items()},
+        {name: _attr_value(obj.attrs["units"]) for name, obj in datasets.items()},
+        {name: _attr_value(obj.attrs["description"]) for name, obj in datasets.items()},
+    )
+
+
+def _read_record(path: str | Path, *, verify: bool, with_series: bool) -> RunRecord:
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"path does not exist or is not a file: {path}")
+    if not h5py.is_hdf5(path):
+        raise StoreError(f"{path} is not an HDF5 file (not a rodimpact run file)")
+    with h5py.File(path, "r") as h5:
+        attrs = {key: _attr_value(h5.attrs[key]) for key in (*_ROOT_ATTRS, "data_sha256") if key in h5.attrs}
+        if missing := [key for key in _ROOT_ATTRS if key not in attrs]:
+            raise StoreError(f"{path} is not a rodimpact run file: missing root attrs {missing}")
+        if attrs["schema_version"] != SCHEMA_VERSION:
+            raise StoreError(f"{path}: unsupported schema_version {attrs['schema_version']!r}")
+        if [key for key in _STR_ATTRS if not isinstance(attrs[key], str)]:
+            raise StoreError(f"{path}: root attributes {list(_STR_ATTRS)} must all be str")
+        if not isinstance(h5.get("time"), h5py.Dataset):
+            raise StoreError(f"{path}: missing required dataset 'time'")
+        if not isinstance(h5.get(_SUMMARY_GROUP), h5py.Group):
+            raise StoreError(f"{path}: missing required group '{_SUMMARY_GROUP}'")
+        summary = {key: _attr_value(value) for key, value in h5[_SUMMARY_GROUP].attrs.items()}
+        if missing := [key for key in REQUIRED_SUMMARY if key not in summary]:
+            raise StoreError(f"{path}: missing required summary attributes {missing}")
+        series, units, descriptions = _read_series(h5, path) if with_series else ({}, {}, {})
+    try:
+        config = json.loads(attrs["config_json"])
+        libraries = json.loads(attrs["library_versions"])
+    except json.JSONDecodeError as exc:
+        raise StoreError(f"{path}: config_json or library_versions is not JSON: {exc}") from exc
+    if verify:
+        digest = hashlib.sha256(attrs["config_json"].encode("utf-8")).hexdigest()
+        if digest != attrs["config_sha256"]:
+            raise StoreError(f"{path}: config_sha256 mismatch; config_json was modified")
+        if not isinstance(config, dict) or config.get("id") != attrs["case_id"]:
+            raise StoreError(f"{path}: case_id {attrs['case_id']!r} does not match config['id']")
+    logger.debug("read run %s (series=%s)", path, with_series)
+    return RunRecord(
+        path, attrs["case_id"], attrs["method"], config, attrs["config_sha256"],
+        attrs["code_version"], libraries, float(attrs["wall_time_s"]), attrs["created_utc"],
+        series, units, summary, descriptions, str(attrs.get("data_sha256", "")),
+    )  # fmt: skip
+
+
+def read_run(path: str | Path, *, verify: bool = True) -> RunRecord:
+    """Read a run file written by :func:`write_run`.
+
+    Parameters
+    ----------
+    path : str or Path
+        Run file.
+    verify : bool, default True
+        Recompute the SHA-256 of the stored ``config_json``, compare it with
+        ``config_sha256`` and check ``case_id`` against ``config["id"]``.
+
+    Returns
+    -------
+    RunRecord
+        Provenance, summary, and all series (float64, shape (n,) or (n, k)).
+
+    Raises
+    ------
+    FileNotFoundError
+        If ``path`` does not exist.
+    StoreError
+        If the file is not a valid run file or verification fails.
+    """
+    return _read_record(path, verify=verify, with_series=True)
+
+
+def read_summary(path: str | Path, *, verify: bool = True) -> RunRecord:
+    """Fast :func:`read_run` (same parameters and exceptions) without the series.
+
+    The returned :class:`RunRecord` has empty ``series``, ``units`` and ``descriptions``.
+    """
+    return _read_record(path, verify=verify, with_series=False)

@@ -1,0 +1,195 @@
+"""One function per artifact of the workflow: read HDF5 runs, write tables and figures.
+
+The workflow's scripts call these and nothing else; tests call them directly.
+"""
+
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+from typing import Any, Mapping, Sequence
+
+from rodimpact.analysis.stability_study import StudyViolation, map_frame, stability_frame, violations
+from rodimpact.analysis.work_precision import observed_orders, work_precision_frame
+from rodimpact.io.sidecar import provenance_record, write_provenance
+from rodimpact.io.store import read_run
+from rodimpact.present.figures import (plot_contact_force, plot_station_displacement, plot_table2_contact_time, save_figure)
+from rodimpact.present.study_figures import plot_stability_map, plot_work_precision
+from rodimpact.present.tables import (comparison_frame, load_records, sweep_results_frame, table2_frame, variants_summary, write_table)
+
+__all__ = ["make_comparison", "make_fig2", "make_fig4", "make_fig_table2", "make_stability",
+           "make_stability_map", "make_sweep_table", "make_table2", "make_table2_variants", "make_work_precision",
+           "make_work_precision_figure"]
+
+log = logging.getLogger(__name__)
+
+TABLE2_CAPTION = ("Table 2: contact time of steel balls on the aluminium rod at 0.3225 m/s, "
+                  "rod geometry variant {variant}. Times in us; errors |model - measured| / measured in %.")
+
+
+def _by_variant(runs: Sequence[str | Path], variants: Sequence[str]):
+    records = load_records(runs)
+    grouped = {v: [r for r in records if r.config.get("variant") == v] for v in variants}
+    return records, {v: table2_frame(recs) for v, recs in grouped.items() if recs}
+
+
+def make_table2(runs: Sequence[str | Path], variant: str, *, csv: str | Path, md: str | Path,
+                tex: str | Path, provenance: str | Path) -> None:
+    """Table 2 for one geometry variant, with its provenance sidecar."""
+    records = load_records(runs)
+    wrong = sorted({r.case_id for r in records if r.config.get("variant") != variant})
+    if wrong:
+        raise ValueError(f"runs: cases {wrong} do not belong to variant {variant!r}")
+    frame = table2_frame(records)
+    write_table(frame, csv=csv, md=md, tex=tex, caption=TABLE2_CAPTION.format(variant=variant))
+    write_provenance(provenance, records, [csv, md, tex])
+    log.info("table 2 (%s): %d rows from %d runs", variant, len(frame), len(records))
+
+
+def make_table2_variants(runs: Sequence[str | Path], variants: Sequence[str], *, csv: str | Path,
+                         md: str | Path, provenance: str | Path) -> None:
+    """Per variant and method, the mean and max error against the measurements."""
+    records, frames = _by_variant(runs, variants)
+    summary = variants_summary(frames)
+    write_table(summary, csv=csv, md=md, caption="Error against the measured contact times, per rod "
+                "geometry variant and method, next to the paper's own errors (%).")
+    write_provenance(provenance, records, [csv, md])
+
+
+def _one_case(records: Sequence, what: str) -> str:
+    """The single case id of ``records`` (a figure of one case)."""
+    cases = sorted({r.case_id for r in records})
+    if len(cases) != 1:
+        raise ValueError(f"runs: {what} shows one case, got {cases}")
+    return cases[0]
+
+
+def _save_figure(fig, records: Sequence, *, pdf: str | Path, png: str | Path, provenance: str | Path,
+                 title: str) -> None:
+    """Save a figure (its provenance in the PDF/PNG metadata) and its provenance sidecar."""
+    save_figure(fig, pdf=pdf, png=png, provenance=provenance_record(records, [pdf, png]), title=title)
+    write_provenance(provenance, records, [pdf, png])
+
+
+def _table_artifact(runs: Sequence[str | Path], build, *, csv: str | Path, md: str | Path,
+                    provenance: str | Path, caption: str, digits: int) -> None:
+    """Read the runs, build a frame from them, write it as CSV and Markdown with provenance."""
+    records = load_records(runs)
+    write_table(build(records), csv=csv, md=md, digits=digits, caption=caption)
+    write_provenance(provenance, records, [csv, md])
+
+
+def make_fig2(runs: Sequence[str | Path], *, pdf: str | Path, png: str | Path, provenance: str | Path) -> None:
+    """Fig. 2: contact force against time for one case, every method stored."""
+    records = [read_run(p) for p in runs]
+    case = _one_case(records, "Fig. 2")
+    fig = plot_contact_force(records, title=f"Contact force, case {case!r} (Fig. 2 of the paper)")
+    _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance,
+                 title="Fig. 2: contact force against time")
+
+
+def make_fig4(runs: Sequence[str | Path], fraction: float, *, pdf: str | Path, png: str | Path,
+              provenance: str | Path) -> None:
+    """Fig. 4: displacement of the cross-section at ``fraction`` of the rod length, every
+    stored run of one case that recorded stations."""
+    records = [read_run(p) for p in runs]
+    records = [r for r in records if "station_displacement" in r.series]
+    case = _one_case(records, "Fig. 4 (runs with station histories)")
+    fig = plot_station_displacement(records, fraction, title=(
+        f"Displacement at {fraction:g} of the rod length, case {case!r} (Fig. 4 of the paper)"))
+    _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance,
+                 title="Fig. 4: displacement of a cross-section of the rod against time")
+
+
+def make_fig_table2(runs: Sequence[str | Path], variants: Sequence[str], *, pdf: str | Path,
+                    png: str | Path, provenance: str | Path, sweep_runs: Sequence[str | Path] = ()) -> None:
+    """Contact time against ball mass per geometry variant, with the sweeps' curves."""
+    records, frames = _by_variant(runs, variants)
+    sweeps = load_records(sweep_runs)
+    fig = plot_table2_contact_time(frames, sweep_results_frame(sweeps))
+    _save_figure(fig, [*records, *sweeps], pdf=pdf, png=png, provenance=provenance,
+                 title="Table 2: contact time against ball mass")
+
+
+def make_sweep_table(runs: Sequence[str | Path], *, csv: str | Path, md: str | Path,
+                     provenance: str | Path) -> None:
+    """Every sweep point's contact time and force, one row per point and method."""
+    _table_artifact(runs, sweep_results_frame, csv=csv, md=md, provenance=provenance, digits=4, caption=(
+        "Parameter sweeps: contact time (first contact, us) and force maxima (N) at every point."))
+
+
+def make_comparison(runs: Sequence[str | Path], *, csv: str | Path, md: str | Path,
+                    provenance: str | Path) -> None:
+    """Fig. 2's numbers: contact time and each maximum per method, differences from the SEM,
+    and the paper's 11 % and 9 % beside them."""
+    _table_artifact(runs, comparison_frame, csv=csv, md=md, provenance=provenance, digits=3, caption=(
+        "Fig. 2, case 'model': contact time (us) and force maxima (kN) of the first contact per "
+        "method; differences from our SEM (%), next to the paper's FEM-SEM differences (%)."))
+
+
+WORK_PRECISION_CAPTION = (
+    "Error against run time: relative errors of each method's levels against the reference (the "
+    "Richardson extrapolation of the reference method's finest two levels; ref_err_* is its own "
+    "error estimate), wall time of one solve (median of the repeats) on the machine named.")
+
+
+def make_work_precision(runs: Sequence[str | Path], methods: Mapping[str, Any], fit_levels: int, *,
+                        csv: str | Path, orders_csv: str | Path, orders_md: str | Path,
+                        provenance: str | Path) -> None:
+    """The work-precision table and the fitted orders (with theory) of every method and case."""
+    records = [read_run(p) for p in runs]
+    frame = work_precision_frame(records, methods)
+    orders = observed_orders(frame, methods, fit_levels)
+    write_table(frame, csv=csv)
+    write_table(orders, csv=orders_csv, md=orders_md, digits=2, caption=(
+        f"Observed orders of convergence (log-log fit of the error against h = 1/resolution on the "
+        f"finest {fit_levels} levels whose error exceeds 10x the reference's), next to the theory."))
+    write_provenance(provenance, records, [csv, orders_csv, orders_md])
+    log.info("work precision: %d runs, %d cases", len(records), frame["case_id"].nunique())
+
+
+def make_work_precision_figure(runs: Sequence[str | Path], methods: Mapping[str, Any], fit_levels: int, *,
+                               pdf: str | Path, png: str | Path, provenance: str | Path) -> None:
+    """Error against wall time for one case: every method and quantity, orders in the legend."""
+    records = [read_run(p) for p in runs]
+    case = _one_case(records, "a work-precision figure")
+    frame = work_precision_frame(records, methods)
+    fig = plot_work_precision(frame, observed_orders(frame, methods, fit_levels), case)
+    _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance,
+                 title=f"Error against run time, case {case}")
+
+
+def make_stability(runs: Sequence[str | Path], references: Sequence[str | Path],
+                   tolerances: Mapping[str, Mapping[str, float]], *, csv: str | Path, md: str | Path,
+                   provenance: str | Path) -> None:
+    """The stress runs checked against the stated tolerances; raises when one is a violation
+    (a silent wrong answer), after logging the whole table."""
+    records = [read_run(p) for p in runs]
+    refs = {r.case_id: r for r in (read_run(p) for p in references)}
+    frame = stability_frame(records, refs, tolerances)
+    bad = violations(frame)
+    if bad:
+        log.error("stability table:\n%s", frame.to_string())
+        raise StudyViolation("stability study: runs that neither met their tolerances nor failed clearly:\n  "
+                           + "\n  ".join(bad))
+    write_table(frame, csv=csv, md=md, digits=6, caption=(
+        "Stress cases: every method's result checked (finite, force >= 0, energy balance and first "
+        "contact time within the method's stated tolerances against a sem reference at tolerance "
+        "1e-8), or its failure message."))
+    write_provenance(provenance, [*records, *refs.values()], [csv, md])
+    log.info("stability: %d runs, %d ok, %d failed clearly", len(frame), (frame["verdict"] == "ok").sum(),
+             frame["verdict"].str.startswith("failed").sum())
+
+
+def make_stability_map(runs: Sequence[str | Path], references: Sequence[str | Path],
+                       spec: Mapping[str, Any], *, csv: str | Path,
+                       pdf: str | Path, png: str | Path, provenance: str | Path) -> None:
+    """The stability map: the table of its points and the figure."""
+    records = [read_run(p) for p in runs]
+    refs = {r.config["row"]: r for r in (read_run(p) for p in references)}
+    frame = map_frame(records, refs, float(spec["accuracy"]))
+    write_table(frame, csv=csv)
+    fig = plot_stability_map(frame, int(spec["steps_per_contact"]), float(spec["accuracy"]))
+    prov = provenance_record([*records, *refs.values()], [csv, pdf, png])
+    save_figure(fig, pdf=pdf, png=png, provenance=prov, title="Stability map of the SEM schemes")
+    write_provenance(provenance, [*records, *refs.values()], [csv, pdf, png])

@@ -1,0 +1,14 @@
+"""The solvers: one package per method, the registry that declares them, and what they share.
+
+What lives here: :mod:`.registry` (:data:`~rodimpact.solvers.registry.METHODS`, each method
+declared once), :mod:`.options` (how a setting is declared), :mod:`.stepping` (the settings
+and limits every time-stepping solver shares), :mod:`.result` (the
+:class:`~rodimpact.solvers.result.ImpactResult` every solver returns), :mod:`.cost` (the
+cost model's shared pieces), and the methods' packages :mod:`.sem` (``sem``,
+``sem_paper``), :mod:`.fem1d` and :mod:`.fem_axi`.
+
+What it may import: :mod:`rodimpact.contact`, :mod:`rodimpact.model`,
+:mod:`rodimpact.analysis.signals`, numpy, scipy and scikit-fem; never the configuration,
+the storage, the presentation or the workflow. This ``__init__`` imports nothing, so that
+reading the registry loads no solver.
+"""

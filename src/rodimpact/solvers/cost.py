@@ -1,0 +1,54 @@
+"""The cost model every solver's estimate is built from: its steps, time and memory.
+
+Closed forms only (no solve, no mesh): the workflow evaluates them for every job when it
+plans the build (:mod:`rodimpact.workflow.resources`). Each method's own model lives in its
+package (``cost.py``) and is named by its registry entry. The per-unit costs are calibrated
+on the development machine (one core of a 2-core x86_64 VM) against the stored runs
+(docs/cluster.md, "Resources").
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from rodimpact.model.problem import ImpactProblem
+
+__all__ = ["Cost", "MIB", "SHORT_CONTACT", "SOLVE_S", "contact_duration", "horizon"]
+
+MIB = 2.0**20
+
+#: Every solve's fixed part, s: options, the end test's look-ahead, the result's arrays.
+SOLVE_S = 0.5
+#: Rigid-rod contact times within which a contact on a rod that carries the rigid-rod force is over.
+SHORT_CONTACT = 1.5
+
+
+@dataclass(frozen=True)
+class Cost:
+    """The cost model of one solve: its steps, its time (s) and its own memory (MiB)."""
+
+    steps: float
+    solve_s: float
+    mem_mib: float
+
+
+def contact_duration(problem: ImpactProblem) -> float:
+    """Upper-side duration of all contacts, s: :meth:`contact_time_estimate` (rigid-rod
+    contact time, the rod's spring, a wave round trip 2T); on a rod that carries the rigid-rod
+    force (Z v0 >= P_H) and whose round trip is longer than :data:`SHORT_CONTACT` rigid-rod
+    contact times, that many of them: the one contact is over before any reflection comes
+    back (measured: at most 1.23 Hertz times)."""
+    estimate = problem.contact_time_estimate()
+    rigid = problem.rigid_contact
+    short = SHORT_CONTACT * rigid.contact_time_s
+    if problem.rod.impedance * problem.velocity_m_s >= rigid.peak_force_N and short < problem.rod.reflection_period:
+        return min(estimate, short)
+    return estimate
+
+
+def horizon(problem: ImpactProblem, max_time_factor: float, contact_s: float, end_test_s: float) -> float:
+    """Time a run steps through, s: the contacts and the end test after them; at most the
+    solver's limit, ``max_time_factor`` contact time estimates."""
+    limit = max_time_factor * problem.contact_time_estimate()
+    return min(contact_s + end_test_s, limit)

@@ -1,0 +1,118 @@
+"""The rod as a 1D bar in scikit-fem: mesh, mass and stiffness, end and station probes."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal, Sequence
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import NDArray
+from skfem import Basis, BilinearForm, ElementLineP1, ElementLineP2, MeshLine, asm
+
+from rodimpact.model.responses import Rod
+
+__all__ = ["BarModel", "bar_model", "ELEMENTS"]
+
+ELEMENTS = {"P1": ElementLineP1, "P2": ElementLineP2}
+
+
+@dataclass(frozen=True)
+class BarModel:
+    """Assembled bar on its free degrees of freedom (the fixed far end eliminated).
+
+    Attributes
+    ----------
+    mass, stiffness : scipy.sparse.csc_matrix, shape (d, d)
+        rho S int u v dx and E S int u' v' dx on the free DOFs, kg and N/m.
+    end : int
+        Index (among the free DOFs) of the struck end's node, x = 0.
+    station_probes : scipy.sparse.csr_matrix, shape (k, d)
+        Displacement at the stations.
+    strain_probes : scipy.sparse.csr_matrix, shape (k, d)
+        Axial strain du/dx at the stations (central difference inside the elements, the
+        mean of the two sides at a node).
+    dof_spacing_m : float
+        Element length / element order.
+    n_elements : int
+    """
+
+    mass: sp.csc_matrix
+    stiffness: sp.csc_matrix
+    end: int
+    station_probes: sp.csr_matrix
+    strain_probes: sp.csr_matrix
+    dof_spacing_m: float
+    n_elements: int
+
+
+def bar_model(rod: Rod, element: Literal["P1", "P2"], n_elements: int,
+              stations_m: Sequence[float] = ()) -> BarModel:
+    """Assemble the bar 0 <= x <= l struck at x = 0 (the far end fixed or free).
+
+    Parameters
+    ----------
+    rod : Rod
+        The rod (finite length).
+    element : {"P1", "P2"}
+        Lagrange elements of order 1 or 2.
+    n_elements : int
+        Number of equal elements (>= 1).
+    stations_m : sequence of float
+        Positions of the probes, m from the struck end.
+    """
+    if element not in ELEMENTS:
+        raise ValueError(f"element must be one of {sorted(ELEMENTS)}, got {element!r}")
+    if int(n_elements) != n_elements or n_elements < 1:
+        raise ValueError(f"n_elements must be a positive integer, got {n_elements!r}")
+    length = rod.length_m
+    if not np.isfinite(length):
+        raise ValueError("fem1d needs a rod of finite length")
+    mesh = MeshLine(np.linspace(0.0, length, int(n_elements) + 1))
+    basis = Basis(mesh, ELEMENTS[element]())
+    e_s = rod.material.youngs_modulus_pa * rod.area_m2
+    rho_s = rod.material.density_kg_m3 * rod.area_m2
+
+    @BilinearForm
+    def mass_form(u, v, w):
+        return rho_s * u * v
+
+    @BilinearForm
+    def stiffness_form(u, v, w):
+        return e_s * u.grad[0] * v.grad[0]
+
+    mass = asm(mass_form, basis)
+    stiffness = asm(stiffness_form, basis)
+    free = np.arange(basis.N)
+    if rod.far_end == "fixed":
+        fixed = basis.get_dofs(lambda x: np.isclose(x[0], length)).all()
+        free = np.setdiff1d(free, fixed)
+    end_global = int(basis.get_dofs(lambda x: np.isclose(x[0], 0.0)).all()[0])
+    end = int(np.flatnonzero(free == end_global)[0])
+
+    stations = np.asarray(list(stations_m), dtype=float)
+    h_e = length / n_elements
+    delta = 1e-3 * h_e
+    if len(stations):
+        values = basis.probes(stations[None, :])
+        lo = np.clip(stations - delta, 0.0, length)
+        hi = np.clip(stations + delta, 0.0, length)
+        strain = (basis.probes(hi[None, :]) - basis.probes(lo[None, :])).multiply(1.0 / (hi - lo)[:, None])
+    else:
+        values = strain = sp.csr_matrix((0, basis.N))
+    return BarModel(
+        mass=mass[free][:, free].tocsc(),
+        stiffness=stiffness[free][:, free].tocsc(),
+        end=end,
+        station_probes=sp.csr_matrix(values)[:, free],
+        strain_probes=sp.csr_matrix(strain)[:, free],
+        dof_spacing_m=h_e / (1 if element == "P1" else 2),
+        n_elements=int(n_elements),
+    )
+
+
+def end_vector(model: BarModel) -> NDArray[np.float64]:
+    """Unit load at the struck end, shape (d,)."""
+    e0 = np.zeros(model.mass.shape[0])
+    e0[model.end] = 1.0
+    return e0

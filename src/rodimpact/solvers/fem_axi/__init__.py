@@ -1,0 +1,12 @@
+"""``fem_axi``: the axisymmetric continuum of rod and impactor with real (unilateral) contact.
+
+What lives here: :mod:`.problem` (the geometry of both bodies and the scales), :mod:`.options`
+(the settings), :mod:`.meshes` (meshes in the (r, z) half-plane), :mod:`.axisym` (the
+r-weighted elasticity forms), :mod:`.axibody` (one body's Newmark operators),
+:mod:`.solver` (:func:`~rodimpact.solvers.fem_axi.solver.solve_fem_axi`) and
+:mod:`.indentation` (the static indentation check).
+
+What it may import: :mod:`rodimpact.contact` (for the scales only: the continuum resolves
+the contact itself), :mod:`rodimpact.model`, :mod:`rodimpact.analysis.signals`, the shared
+pieces of :mod:`rodimpact.solvers`, scikit-fem. This ``__init__`` imports nothing.
+"""

@@ -1,0 +1,86 @@
+"""The cost model of a ``fem_axi`` run: an upper bound of the meshes' DOFs, times the steps."""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Mapping
+
+from rodimpact.model.problem import ImpactProblem
+from rodimpact.solvers.cost import MIB, SOLVE_S, Cost, contact_duration, horizon
+from rodimpact.solvers.fem_axi.options import FEMAxiOptions
+from rodimpact.solvers.fem_axi.problem import AxiImpact
+
+__all__ = ["fem_axi_cost", "fem_axi_dofs"]
+
+#: fem_axi: s per DOF of the set-up (meshes, factorisations), s per step and DOF (3.8e-7 to
+#: 5.7e-7 measured), bytes per DOF of the bound (sparse factors, the contact columns G, the
+#: meshes and bases: 3.7 KiB per actual DOF measured, 49511 DOFs in 281 MiB).
+FEM_AXI_SETUP_DOF_S = 1e-4
+FEM_AXI_DOF_STEP_S = 7e-7
+FEM_AXI_DOF_BYTES = 6000.0
+#: Triangles per (fine size)^2 of area in the refined zones of fem_axi's meshes: longest-edge
+#: refinement leaves edges between half the target and the target (4 to 16 for right
+#: triangles); 7 to 22 measured, the most at coarse levels, where constant terms weigh.
+FEM_AXI_TRIANGLES = 16.0
+#: Triangles a body's mesh has beyond the model (corners, the sphere's chords).
+FEM_AXI_EXTRA_TRIANGLES = 600.0
+
+
+def _refined_triangles(extent: float, coarse: float) -> float:
+    """Triangles, per :data:`FEM_AXI_TRIANGLES`, of a quarter plane meshed at the fine size
+    (the unit of length) within ``extent`` of the corner, then growing by half the distance
+    beyond it up to ``coarse``: pi/4 extent^2 + pi ((extent - 2)(1 - 1/coarse) + 2 ln coarse)."""
+    count = math.pi / 4.0 * extent**2
+    if coarse > 1.0:
+        count += math.pi * (max(extent - 2.0, 0.0) * (1.0 - 1.0 / coarse) + 2.0 * math.log(coarse))
+    return count
+
+
+def fem_axi_dofs(case: Mapping[str, Any]) -> int:
+    """Upper-side estimate of the DOFs of fem_axi's two meshes (rod and impactor), closed form.
+
+    The meshes (:mod:`rodimpact.solvers.fem_axi.meshes`) are fine (a_H / ``elements_across``,
+    a_H the contact radius estimated from the case's law) within ``contact_extent`` a_H of the contact point, graded beyond
+    at half the distance up to a coarse size (a/4 by a/2 cells in the rod of radius a, R/4
+    in the impactor), and coarse elsewhere. Vector P2 elements carry about 4 DOFs per
+    triangle, P1 about 1. The 40 stored fem_axi runs have 0.48 to 0.90 of it (free DOFs).
+
+    Parameters
+    ----------
+    case : mapping
+        A resolved case (``numerics.fem_axi``, ``impactor``, ``rod``).
+
+    Returns
+    -------
+    int
+        DOFs (rod + impactor), before the fixed ones are removed.
+    """
+    problem = AxiImpact.from_case(case)
+    options = FEMAxiOptions.from_settings(case["numerics"]["fem_axi"])
+    contact_radius = problem.scales().contact_radius_m
+    fine = contact_radius / options.elements_across
+    extent = options.contact_extent * options.elements_across
+    a, length = problem.rod_radius_m, problem.rod_length_m
+    rod = (_refined_triangles(extent, a / 4.0 / fine) * FEM_AXI_TRIANGLES
+           + 2.0 * 4.0 * math.ceil(2.0 * length / a))
+    height = 2.0 if problem.body == "sphere" else min(options.cap_height, 1.0)
+    radius = problem.sphere_radius_m
+    area = math.pi / 4.0 * (2.0 if problem.body == "sphere" else 1.0)  # R^2
+    impactor = (_refined_triangles(extent, radius * min(height, 1.0) / 4.0 / fine) * FEM_AXI_TRIANGLES
+                + 2.0 * area * 16.0 / min(height, 1.0) ** 2)
+    per_triangle = 4.0 if options.element == "P2" else 1.0
+    return int(math.ceil(per_triangle * (rod + impactor + 2.0 * FEM_AXI_EXTRA_TRIANGLES)))
+
+
+def fem_axi_cost(case: Mapping[str, Any], options: FEMAxiOptions) -> Cost:
+    """The steps, time and memory of one ``fem_axi`` solve of ``case`` (a resolved case)."""
+    axi = AxiImpact.from_case(case)
+    problem = ImpactProblem.from_case(case)
+    step = options.step(axi.scales().contact_time_s)
+    # its end test waits max(2T, a quarter of the contact) after the contact
+    contact = contact_duration(problem)
+    span = horizon(problem, options.max_time_factor, contact, max(problem.rod.reflection_period, 0.25 * contact))
+    dofs = fem_axi_dofs(case)
+    steps = span / step + 1.0
+    return Cost(steps=steps, solve_s=SOLVE_S + dofs * (FEM_AXI_SETUP_DOF_S + FEM_AXI_DOF_STEP_S * steps),
+                mem_mib=dofs * FEM_AXI_DOF_BYTES / MIB)

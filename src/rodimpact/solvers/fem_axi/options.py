@@ -1,0 +1,40 @@
+"""Numerical options of ``fem_axi`` (the axisymmetric continuum model)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import ClassVar
+
+from rodimpact.solvers.options import OptionError, setting
+from rodimpact.solvers.stepping import SteppingOptions
+
+__all__ = ["FEMAxiOptions"]
+
+
+@dataclass(frozen=True)
+class FEMAxiOptions(SteppingOptions):
+    """Numerics of ``fem_axi``: axisymmetric continuum of rod and impactor, frictionless unilateral contact."""
+
+    DESCRIPTION: ClassVar[str] = ("Numerics of fem_axi, the axisymmetric continuum model of rod and impactor with "
+                                  "frictionless unilateral contact (Lagrange multipliers).")
+
+    steps_per_contact: int | None = setting(
+        300, "Time steps per contact time on a rigid rod, when dt_s is null.", kind=int, nullable=True, minimum=20)
+    element: str = setting("P2", "Lagrange element of both bodies' triangles.", kind=str, choices=("P1", "P2"))
+    elements_across: int = setting(
+        10, "Elements across the largest contact radius, estimated from the contact law before meshing.",
+        kind=int, minimum=2)
+    contact_extent: float = setting(
+        1.5, "Radius of the fine mesh and of the candidate contact zone, in estimated contact radii.",
+        exclusive_minimum=1)
+    cap_height: float = setting(
+        1.0, "Impactor body 'cap' only: height of the elastic cap, in sphere radii.", exclusive_minimum=0, maximum=1)
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if self.dt_s is None and self.steps_per_contact is None:
+            raise OptionError("steps_per_contact", "must be given when dt_s is null")
+
+    def step(self, contact_time_s: float) -> float:
+        """The time step, s, for a contact time on a rigid rod of ``contact_time_s``."""
+        return self.dt_s if self.dt_s is not None else contact_time_s / self.steps_per_contact

@@ -1,0 +1,326 @@
+"""``fem_axi``: axisymmetric elastodynamics of the rod and the impactor with frictionless
+unilateral contact (Lagrange multipliers), in scikit-fem.
+
+No Hertz law anywhere: the contact force is the sum of the multipliers, each the
+per-radian nodal force that keeps one impactor surface node from entering the rod's end
+face (2 pi times their sum is the force). Per step, with both bodies' Newmark matrices
+factorised once and G = K_eff^-1 B^T precomputed for the candidate contact nodes:
+
+    g_free = g0 + B q_free,   lambda >= 0,  g_free + (B G) lambda >= 0,  complementary,
+
+a small LCP solved exactly as non-negative least squares on the Cholesky factor of B G;
+then q = q_free + G lambda.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import time as _time
+from dataclasses import dataclass, field
+from typing import Any, Sequence
+
+import numpy as np
+import scipy.sparse as sp
+from numpy.typing import NDArray
+from scipy.linalg import cholesky, solve_triangular
+from scipy.optimize import nnls
+from skfem import Basis, ElementTriP1, ElementTriP2, ElementVector
+
+from rodimpact.analysis.signals import local_maxima
+from rodimpact.solvers.fem_axi.axibody import AxiBody, dofs_of
+from rodimpact.solvers.fem_axi.axisym import axis_dofs, axisym_mass, axisym_stiffness, cross_section_mean_uz
+from rodimpact.solvers.fem_axi.meshes import ball_mesh, cap_mesh, rod_mesh
+from rodimpact.solvers.fem_axi.options import FEMAxiOptions
+from rodimpact.solvers.fem_axi.problem import AxiImpact, AxiScales
+from rodimpact.solvers.options import OptionError
+from rodimpact.solvers.result import ImpactResult
+from rodimpact.solvers.stepping import limit_reached
+
+__all__ = ["AxiModel", "build_model", "solve_fem_axi"]
+
+log = logging.getLogger(__name__)
+
+#: Force maxima must stand out by this fraction of the largest force (see _result).
+PEAK_PROMINENCE = 0.02
+#: Elements across the largest (estimated) contact radius below which a run warns.
+RECOMMENDED_ELEMENTS_ACROSS = 10
+
+
+@dataclass(frozen=True)
+class AxiModel:
+    """The two bodies assembled, the contact's candidate nodes and the scales they were sized by.
+
+    ``B_rod`` and ``B_imp`` (shape (c, d_rod) and (c, d_imp)) map each body's DOFs to the
+    closing of the c candidate gaps; ``gap0`` (c,) is the initial gap, ``r_c`` (c,) the
+    candidates' radii, m.
+    """
+
+    rod: AxiBody
+    impactor: AxiBody
+    B_rod: Any
+    B_imp: Any
+    gap0: NDArray[np.float64]
+    r_c: NDArray[np.float64]
+    scales: AxiScales
+    fine_size_m: float
+
+
+@dataclass
+class _History:
+    """Histories recorded at every step (lists; :func:`_result` turns them into arrays)."""
+
+    t: list[float] = field(default_factory=list)
+    force: list[float] = field(default_factory=list)
+    radius: list[float] = field(default_factory=list)
+    x: list[float] = field(default_factory=list)
+    w: list[float] = field(default_factory=list)
+    u_face: list[float] = field(default_factory=list)
+    kin_i: list[float] = field(default_factory=list)
+    str_i: list[float] = field(default_factory=list)
+    kin_r: list[float] = field(default_factory=list)
+    str_r: list[float] = field(default_factory=list)
+    stations: list[NDArray[np.float64]] = field(default_factory=list)
+    starts: list[float] = field(default_factory=lambda: [0.0])
+    ends: list[float] = field(default_factory=list)
+    n_lcp: int = 0
+
+
+@dataclass(frozen=True)
+class _Outcome:
+    status: str
+    message: str
+    h: float
+    wall_time_s: float
+
+
+def _basis(mesh, element: str) -> Basis:
+    return Basis(mesh, ElementVector(ElementTriP2() if element == "P2" else ElementTriP1()))
+
+
+def _volume(basis: Basis) -> float:
+    """Volume of the meshed solid of revolution, m^3 (2 pi * integral of r dA)."""
+    ones = np.zeros(basis.N)
+    ones[basis.nodal_dofs[1]] = 1.0
+    if basis.facet_dofs.size:
+        ones[basis.facet_dofs[1]] = 1.0
+    return 2 * math.pi * float(ones @ (axisym_mass(basis, 1.0) @ ones))
+
+
+def build_model(problem: AxiImpact, options: FEMAxiOptions) -> AxiModel:
+    scales = problem.scales()
+    a_contact = scales.contact_radius_m
+    if options.elements_across < RECOMMENDED_ELEMENTS_ACROSS:
+        log.warning("elements_across=%d: fewer than %d elements across the largest contact radius "
+                    "(a convergence-study level, not a result)", options.elements_across,
+                    RECOMMENDED_ELEMENTS_ACROSS)
+    fine = a_contact / options.elements_across
+    extent = options.contact_extent * a_contact
+    R = problem.sphere_radius_m
+    rod = rod_mesh(problem.rod_radius_m, problem.rod_length_m, fine, extent)
+    rod_basis = _basis(rod.mesh, options.element)
+    removed = axis_dofs(rod_basis)
+    if problem.far_end == "fixed":
+        far = rod.boundaries["far"]
+        removed = np.union1d(removed, np.union1d(dofs_of(rod_basis, far, 0), dofs_of(rod_basis, far, 1)))
+    rod_body = AxiBody(rod_basis, axisym_stiffness(rod_basis, problem.rod_material.youngs_modulus_pa,
+                                                   problem.rod_material.poisson_ratio),
+                       axisym_mass(rod_basis, problem.rod_material.density_kg_m3), removed)
+    mat = problem.impactor_material
+    if problem.body == "sphere":
+        imp = ball_mesh(R, fine, extent)
+        imp_basis = _basis(imp.mesh, options.element)
+        density = problem.mass_kg / _volume(imp_basis)  # the meshed ball weighs exactly m
+        imp_body = AxiBody(imp_basis, axisym_stiffness(imp_basis, mat.youngs_modulus_pa, mat.poisson_ratio),
+                           axisym_mass(imp_basis, density), axis_dofs(imp_basis))
+    else:
+        height = options.cap_height * R
+        imp = cap_mesh(R, height, fine, extent)
+        imp_basis = _basis(imp.mesh, options.element)
+        back = imp.boundaries["back"]
+        cap_mass = mat.density_kg_m3 * _volume(imp_basis)
+        if cap_mass >= problem.mass_kg:
+            raise OptionError("cap_height", f"={options.cap_height}: the elastic cap ({cap_mass:.3g} kg) outweighs "
+                                            f"the impactor ({problem.mass_kg:.3g} kg); use a smaller cap_height")
+        imp_body = AxiBody(imp_basis, axisym_stiffness(imp_basis, mat.youngs_modulus_pa, mat.poisson_ratio),
+                           axisym_mass(imp_basis, mat.density_kg_m3),
+                           np.union1d(axis_dofs(imp_basis), dofs_of(imp_basis, back, 0)),
+                           rigid=dofs_of(imp_basis, back, 1), rigid_mass_kg=problem.mass_kg - cap_mass)
+    # candidate contact nodes: the impactor's surface u_z DOFs within the extent
+    surface_uz = dofs_of(imp_basis, imp.boundaries["surface"], 1)
+    locs = imp_basis.doflocs[:, surface_uz]
+    keep = (locs[0] <= extent) & (locs[1] >= -2.0 * extent)  # near the contact point, not the far pole
+    surface_uz, locs = surface_uz[keep], locs[:, keep]
+    order = np.argsort(locs[0])
+    surface_uz, locs = surface_uz[order], locs[:, order]
+    pick = sp.csr_matrix((np.ones(len(surface_uz)), (np.arange(len(surface_uz)), surface_uz)),
+                         shape=(len(surface_uz), imp_basis.N))
+    B_imp = -imp_body.reduce_rows(pick)
+    B_rod = rod_body.uz_probe_rows(np.vstack([locs[0], np.zeros(len(locs[0]))]))
+    # the rod face is z = 0; the sphere's surface at radius r lies at z = -(R - sqrt(R^2 - r^2))
+    gap0 = R - np.sqrt(R**2 - locs[0] ** 2)
+    return AxiModel(rod=rod_body, impactor=imp_body, B_rod=B_rod, B_imp=B_imp, gap0=gap0, r_c=locs[0],
+                  scales=scales, fine_size_m=fine)
+
+
+def _crossing(previous: float, last: float, h: float) -> float:
+    """Where a force that vanishes like (t_c - t)^(3/2) reaches zero after its last positive
+    value ``last`` (``previous`` one step earlier): P^(2/3) extrapolated linearly, in (0, h]."""
+    y0, y1 = previous ** (2.0 / 3.0), last ** (2.0 / 3.0)
+    if y1 >= y0:
+        return 0.5 * h
+    return min(h, y1 / (y0 - y1) * h)
+
+
+def solve_fem_axi(problem: AxiImpact, options: FEMAxiOptions | None = None,
+                  stations: Sequence[float] = ()) -> ImpactResult:
+    """Solve the impact with the axisymmetric continuum model.
+
+    Parameters
+    ----------
+    problem : AxiImpact
+    options : FEMAxiOptions, optional
+    stations : sequence of float
+        Fractions of the rod length from the struck end where the cross-section-averaged
+        axial displacement (and strain) are recorded, shape (n, k).
+
+    Returns
+    -------
+    ImpactResult
+        Contact force (2 pi times the sum of the multipliers), contact intervals and
+        maxima; ``approach`` is the impactor's displacement (its rigid part, or the ball's
+        centre of mass) minus the mean displacement of the rod's end face; extra series:
+        ``contact_radius`` and the energies (``contact_energy`` holds the impactor's
+        strain energy); extra summary: mesh and DOF counts, the largest contact radius.
+    """
+    options = FEMAxiOptions() if options is None else options
+    started = _time.perf_counter()
+    model = build_model(problem, options)
+    rod, imp, B_rod, B_imp, gap0, r_c = model.rod, model.impactor, model.B_rod, model.B_imp, model.gap0, model.r_c
+    t_contact = model.scales.contact_time_s
+    h = options.step(t_contact)
+    rod.factorise(h)
+    imp.factorise(h)
+    G_rod = np.column_stack([rod.solve(col) for col in B_rod.T.toarray().T])
+    G_imp = np.column_stack([imp.solve(col) for col in B_imp.T.toarray().T])
+    chol = cholesky(B_rod @ G_rod + B_imp @ G_imp, lower=True)
+    rod.start(0.0)
+    imp.start(problem.velocity_m_s)
+    length = problem.rod_length_m
+    face = rod.reduce_rows(cross_section_mean_uz(rod.basis, 0.0, problem.rod_radius_m))
+    delta = 1e-4 * length
+    rows = [rod.reduce_rows(cross_section_mean_uz(rod.basis, z, problem.rod_radius_m))
+            for s in stations for z in (s * length, max(s * length - delta, 0.0), min(s * length + delta, length))]
+    probes = sp.vstack(rows).tocsr() if rows else None
+    mean_weights = imp.momentum_weights / (imp.total_mass_kg / (2 * math.pi))
+
+    c_rod = math.sqrt(problem.rod_material.youngs_modulus_pa / problem.rod_material.density_kg_m3)
+    spring = math.pi * math.sqrt(problem.mass_kg * length / (problem.rod_material.youngs_modulus_pa
+                                                             * math.pi * problem.rod_radius_m**2))
+    t_max = options.max_time_factor * (t_contact + spring + 2 * length / c_rod)
+    hist = _History()
+
+    def record(t: float, force: float, radius: float) -> None:
+        hist.t.append(t)
+        hist.force.append(force)
+        hist.radius.append(radius)
+        hist.x.append(float(mean_weights @ imp.q))
+        hist.w.append(float(mean_weights @ imp.v))
+        hist.u_face.append(float((face @ rod.q)[0]))
+        hist.kin_i.append(imp.kinetic_energy())
+        hist.str_i.append(imp.strain_energy())
+        hist.kin_r.append(rod.kinetic_energy())
+        hist.str_r.append(rod.strain_energy())
+        if probes is not None:
+            hist.stations.append(probes @ rod.q)
+
+    record(0.0, 0.0, 0.0)
+    starts, ends, in_contact = hist.starts, hist.ends, True
+    t = 0.0
+    status, message = "failed", ""
+    while True:
+        q_rod, q_imp = rod.predict(), imp.predict()
+        gap = gap0 + B_rod @ q_rod + B_imp @ q_imp
+        lam = np.zeros(len(gap0))
+        if gap.min() < 0.0:
+            lam, _ = nnls(chol.T, -solve_triangular(chol, gap, lower=True), maxiter=50 * len(gap0))
+            q_rod = q_rod + G_rod @ lam
+            q_imp = q_imp + G_imp @ lam
+            hist.n_lcp += 1
+        rod.advance(q_rod)
+        imp.advance(q_imp)
+        t += h
+        force = 2 * math.pi * float(lam.sum())
+        active = lam > 0
+        record(t, force, float(r_c[active].max()) if active.any() else 0.0)
+        if in_contact and force == 0.0:
+            p = hist.force
+            ends.append(t - h + _crossing(p[-3] if len(p) > 2 else 0.0, p[-2], h))
+            in_contact = False
+        elif not in_contact and force > 0.0:
+            starts.append(t - h)
+            in_contact = True
+        if not in_contact and ends:
+            # a heuristic (unlike the SEM's and fem1d's tests): the impactor no faster than the
+            # rod's centre of mass, and clear of the rod for one round trip of its waves
+            window = max(2.0 * length / c_rod, 0.25 * (ends[-1] - starts[-1]))
+            if t - ends[-1] >= window and hist.w[-1] <= (0.0 if problem.far_end == "fixed"
+                                                            else float(rod.momentum_weights @ rod.v)
+                                                            / (rod.total_mass_kg / (2 * math.pi))):
+                status, message = "completed", f"{len(ends)} contact(s); clear of the rod for {window:.3g} s"
+                break
+        limit = limit_reached(starts, ends, t, t_max, options.max_contacts)
+        if limit:
+            status, message = limit
+            break
+    return _result(problem, model, hist, tuple(float(s) for s in stations),
+                   _Outcome(status, message, h, _time.perf_counter() - started))
+
+
+def _result(problem: AxiImpact, model: AxiModel, hist: _History, stations: tuple[float, ...],
+            outcome: _Outcome) -> ImpactResult:
+    rod, imp, length = model.rod, model.impactor, problem.rod_length_m
+    time = np.asarray(hist.t)
+    force = np.asarray(hist.force)
+    x, u_face = np.asarray(hist.x), np.asarray(hist.u_face)
+    kin_i, str_i = np.asarray(hist.kin_i), np.asarray(hist.str_i)
+    kin_r, str_r = np.asarray(hist.kin_r), np.asarray(hist.str_r)
+    total = kin_i + str_i + kin_r + str_r
+    energy_error = float((total[0] - total[-1]) / total[0])
+    ends_a = np.asarray(hist.ends)
+    # nodes enter the contact one at a time: ripples far smaller than the physical maxima
+    peak_t, peak_p = local_maxima(time, force, min_prominence=PEAK_PROMINENCE * force.max())
+    radius = np.asarray(hist.radius)
+    series = {
+        "contact_radius": (radius, "m", "radius of the outermost impactor node in contact"),
+        "impactor_kinetic_energy": (kin_i, "J", "kinetic energy of the impactor (elastic part and rigid part)"),
+        "contact_energy": (str_i, "J", "strain energy of the impactor (holds what a contact law lumps into the contact)"),
+        "rod_energy": (kin_r + str_r, "J", "energy in the rod (kinetic + strain)"),
+        "rod_kinetic_energy": (kin_r, "J", "kinetic energy of the rod"),
+        "rod_strain_energy": (str_r, "J", "strain energy of the rod"),
+    }
+    extra: dict[str, Any] = {"rod_dofs": int(rod.n), "impactor_dofs": int(imp.n),
+                             "rod_elements": int(rod.basis.mesh.t.shape[1]),
+                             "impactor_elements": int(imp.basis.mesh.t.shape[1]),
+                             "fine_size_m": float(model.fine_size_m),
+                             "estimated_contact_radius_m": float(model.scales.contact_radius_m),
+                             "max_contact_radius_m": float(radius.max()), "n_lcp_solves": int(hist.n_lcp),
+                             "impactor_mass_kg": float(imp.total_mass_kg)}
+    if stations:
+        values = np.asarray(hist.stations).reshape(len(time), len(stations), 3)
+        series["station_displacement"] = (values[:, :, 0], "m", "cross-section mean axial displacement at station_x_m")
+        series["station_strain"] = ((values[:, :, 2] - values[:, :, 1]) / (2e-4 * length), "1",
+                                    "cross-section mean axial strain at station_x_m (negative in compression)")
+        extra["station_x_m"] = np.asarray([s * length for s in stations])
+    status, message, h = outcome.status, outcome.message, outcome.h
+    if status != "failed" and not math.isfinite(energy_error):
+        status, message = "failed", "non-finite energy balance"
+    return ImpactResult(
+        success=status != "failed", status=status, message=message, scheme="fem_axi-newmark-lcp", dt_s=h,
+        time=time, contact_force=force, approach=x - u_face, impactor_displacement=x,
+        impactor_velocity=np.asarray(hist.w), rod_end_displacement=u_face,
+        contact_start_s=np.asarray(hist.starts[: len(ends_a)]), contact_end_s=ends_a,
+        peak_time_s=peak_t, peak_force_N=peak_p, rebound_velocity_m_s=float(hist.w[-1]),
+        rod_energy_J=float(kin_r[-1] + str_r[-1]), energy_error=energy_error, n_steps=len(time) - 1,
+        n_newton_iterations=0, n_events=len(ends_a), wall_time_s=outcome.wall_time_s, extra=extra, extra_series=series,
+    )

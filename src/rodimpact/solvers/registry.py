@@ -1,0 +1,145 @@
+"""The methods, each declared once: what every other part of the project reads about a method.
+
+:data:`METHODS` maps a method's name (as a case's ``methods`` lists it) to a :class:`Method`:
+its options class (the settings, with their docs, units and bounds), the problem its solver
+takes, its solver, its cost model, and how it is presented (label, line style, colour,
+theoretical order, the paper's column it is compared with). The configuration check, the
+runner, the resource estimates, the tables, the figures and the workflow all read this
+table; adding a method is its own package under :mod:`rodimpact.solvers` and one entry here.
+
+The solver and the cost model are named by their dotted paths and imported only when a run
+is solved or estimated, so that reading the registry (the configuration check of every
+workflow job) loads no solver and no scikit-fem, and so that a rule's source inputs
+(:mod:`rodimpact.workflow.sources`) can name exactly the modules of its method
+(:attr:`Method.solver_module`): a change to one method reruns that method's runs only, and
+a new calibration of a cost model reruns none.
+"""
+
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass
+from typing import Any, Callable, Mapping
+
+from rodimpact.model.problem import ImpactProblem
+from rodimpact.solvers.cost import Cost
+from rodimpact.solvers.fem1d.options import FEM1DOptions
+from rodimpact.solvers.fem_axi.options import FEMAxiOptions
+from rodimpact.solvers.fem_axi.problem import AxiImpact
+from rodimpact.solvers.options import Options
+from rodimpact.solvers.result import ImpactResult
+from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
+
+__all__ = ["METHODS", "Method", "UnknownMethod", "method"]
+
+
+class UnknownMethod(KeyError):
+    """A method name that is not in :data:`METHODS` (``name``: the name asked for)."""
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+        super().__init__(name)
+
+    def __str__(self) -> str:
+        return f"unknown method {self.name!r}; known: {', '.join(METHODS)}"
+
+
+@dataclass(frozen=True)
+class Method:
+    """One computation method.
+
+    Attributes
+    ----------
+    name : str
+        The name a case uses (``methods: [...]``), a file name part and a table column prefix.
+    options : type[Options]
+        Its settings (``numerics.<name>``): a frozen dataclass of :func:`~rodimpact.solvers.options.setting` fields.
+    problem : callable
+        ``problem(case) -> problem``: what the solver solves, built from a resolved case.
+    solver : str
+        ``"module:function"`` of the driver, ``function(problem, options, stations=...) -> ImpactResult``.
+    cost : str
+        ``"module:function"`` of its closed-form cost model, ``function(case, options) -> Cost``
+        (:mod:`rodimpact.solvers.cost`).
+    label : str
+        Its name in words, for legends and captions.
+    order : float
+        Theoretical order of convergence in the step (and mesh) size.
+    family : {"sem", "fem"}
+        The paper's column (its SEM or its FEM) it is compared with.
+    style : str
+        Matplotlib line style of its curves.
+    color : str
+        Matplotlib colour of its curves.
+    """
+
+    name: str
+    options: type[Options]
+    problem: Callable[[Mapping[str, Any]], Any]
+    solver: str
+    cost: str
+    label: str
+    order: float
+    family: str
+    style: str
+    color: str
+
+    def options_of(self, settings: Mapping[str, Any]) -> Options:
+        """This method's options from a resolved ``numerics.<name>`` mapping.
+
+        Raises
+        ------
+        rodimpact.solvers.options.OptionError
+            A setting is out of bounds (its name in ``field``).
+        """
+        return self.options.from_settings(settings)
+
+    @property
+    def solver_module(self) -> str:
+        """The dotted name of the module its solver lives in."""
+        return self.solver.partition(":")[0]
+
+    def solve(self, case: Mapping[str, Any], settings: Mapping[str, Any]) -> ImpactResult:
+        """Solve ``case`` with the resolved settings ``settings``."""
+        driver = _load(self.solver)
+        return driver(self.problem(case), self.options_of(settings), stations=case.get("stations", ()))
+
+    def estimate(self, case: Mapping[str, Any], settings: Mapping[str, Any]) -> Cost:
+        """The cost model of solving ``case`` with the resolved settings ``settings``."""
+        return _load(self.cost)(case, self.options_of(settings))
+
+
+def _load(path: str) -> Callable[..., Any]:
+    module, _, function = path.partition(":")
+    return getattr(importlib.import_module(module), function)
+
+
+#: Every method, in the order tables and legends list them.
+METHODS: dict[str, Method] = {m.name: m for m in (
+    Method(name="sem", options=SEMOptions, problem=ImpactProblem.from_case,
+           solver="rodimpact.solvers.sem.solver:solve_sem", cost="rodimpact.solvers.sem.cost:sem_cost",
+           label="SEM, implicit scheme", order=2.0, family="sem", style="-", color="C0"),
+    Method(name="sem_paper", options=PaperSEMOptions, problem=ImpactProblem.from_case,
+           solver="rodimpact.solvers.sem.solver:solve_sem", cost="rodimpact.solvers.sem.cost:sem_cost",
+           label="SEM, the paper's explicit scheme", order=1.0, family="sem", style="--", color="C1"),
+    Method(name="fem1d", options=FEM1DOptions, problem=ImpactProblem.from_case,
+           solver="rodimpact.solvers.fem1d.solver:solve_fem1d", cost="rodimpact.solvers.fem1d.cost:fem1d_cost",
+           label="FEM, 1D bar", order=2.0, family="fem", style="-.", color="C2"),
+    Method(name="fem_axi", options=FEMAxiOptions, problem=AxiImpact.from_case,
+           solver="rodimpact.solvers.fem_axi.solver:solve_fem_axi", cost="rodimpact.solvers.fem_axi.cost:fem_axi_cost",
+           label="FEM, axisymmetric continuum", order=2.0, family="fem", style=":", color="C3"),
+)}
+
+
+def method(name: str) -> Method:
+    """The method called ``name``.
+
+    Raises
+    ------
+    UnknownMethod
+        No such method (the message lists the known ones).
+    """
+    try:
+        return METHODS[name]
+    except (KeyError, TypeError):
+        raise UnknownMethod(name) from None

@@ -1,0 +1,45 @@
+"""The cost model of an SEM run (``sem``, ``sem_paper``): steps, and per step one history
+term per wave round trip 2T since the impact (the SEM's history sum)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Mapping
+
+from rodimpact.model.problem import ImpactProblem
+from rodimpact.solvers.cost import MIB, SOLVE_S, Cost, contact_duration, horizon
+from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
+from rodimpact.solvers.sem.stability import tolerance_step
+
+__all__ = ["sem_cost"]
+
+#: SEM, s per step and s per step and wave round trip since the impact (history terms);
+#: least-squares fits of the stored runs give 8 and 3 us (implicit), 2 and 2 us (paper);
+#: the largest per step: 250 us at 17 round trips (a run spending its step budget).
+SEM_STEP_S = 20e-6
+SEM_REFLECTION_S = 10e-6
+#: SEM memory per stored step (Python lists of the state and the history, then the
+#: result's arrays; the step-doubling check's run is alive next to it), bytes: 750 at most
+#: measured (613479 steps, 549 MiB).
+SEM_STEP_BYTES = 1000.0
+#: The automatic step's total work in steps of its final run (the run at twice the step,
+#: 1.37 measured at most with the step below).
+SEM_AUTO_WORK = 1.5
+
+
+def sem_cost(case: Mapping[str, Any], options: SEMOptions | PaperSEMOptions) -> Cost:
+    """The steps, time and memory of one SEM solve of ``case`` (a resolved case)."""
+    problem = ImpactProblem.from_case(case)
+    period = problem.rod.reflection_period
+    # the run ends with the contact (its end test looks ahead without stepping)
+    span = horizon(problem, options.max_time_factor, contact_duration(problem), 0.0)
+    step, work = options.step(problem), 1.0
+    if options.automatic_step:
+        # the first guess may be floored at a step count; the check halves it down to the
+        # step the tolerance asks for
+        step, work = min(step, tolerance_step(problem, options.tolerance)), SEM_AUTO_WORK
+    stored = min(span / step, float(options.max_steps)) + 1.0
+    rounds = 1.0 + (0.5 * span / period if math.isfinite(period) else 0.0)
+    stations = len(case.get("stations", ()))
+    return Cost(steps=stored, solve_s=SOLVE_S + work * stored * (SEM_STEP_S + SEM_REFLECTION_S * rounds),
+                mem_mib=stored * (SEM_STEP_BYTES + 64.0 * stations) / MIB)

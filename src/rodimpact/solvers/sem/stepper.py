@@ -1,0 +1,301 @@
+"""One SEM run at a fixed step: the state, the two schemes' steps, the stop tests and the
+result (the driver, :func:`rodimpact.solvers.sem.solve_sem`, chooses and checks the step)."""
+
+from __future__ import annotations
+
+import logging
+import math
+import time as _time
+from typing import Any
+
+import numpy as np
+from scipy.optimize import brentq
+
+from rodimpact.analysis.signals import ZIGZAG_UNSTABLE, local_maxima, sawtooth_amplitude, zigzag_steps
+from rodimpact.model.problem import ImpactProblem
+from rodimpact.solvers.result import ImpactResult
+from rodimpact.solvers.sem.history import ForceHistory
+from rodimpact.solvers.sem.stability import paper_step_limit
+
+__all__ = ["run_fixed_step"]
+
+log = logging.getLogger(__name__)
+
+_MAX_WINDOW_SAMPLES = 400_000
+
+
+class _Stepper:
+    """State of one run; the scheme-specific part is ``step``."""
+
+    def __init__(self, problem: ImpactProblem, options: Any, h: float) -> None:
+        self.problem = problem
+        self.options = options
+        self.m = problem.mass_kg
+        self.law = problem.contact
+        self.h = h
+        self.implicit = options.scheme == "implicit"
+        self.hist = ForceHistory(problem.rod, linear=self.implicit)
+        self.x, self.v, self.u, self.alpha = [0.0], [problem.velocity_m_s], [0.0], [0.0]
+        self.starts: list[float] = [0.0]
+        self.ends: list[float] = []
+        self.in_contact = True
+        self.n_newton = 0
+        self.n_events = 0
+
+    # -- kinematics over a step with the scheme's force representation -------------------
+    def _impactor(self, h: float, p_new: float) -> tuple[float, float]:
+        x, v, p = self.x[-1], self.v[-1], self.hist.P[-1]
+        if self.implicit:
+            return (x + v * h - h * h * (p / 3.0 + p_new / 6.0) / self.m,
+                    v - 0.5 * h * (p + p_new) / self.m)
+        return x + v * h - 0.5 * h * h * p / self.m, v - h * p / self.m
+
+    def _free_approach(self, h: float) -> float:
+        """Approach at t_last + h if the force reached zero there (implicit scheme)."""
+        x_new, _ = self._impactor(h, 0.0)
+        known, _ = self.hist.rod_step_terms(h)
+        return x_new - known
+
+    def _accept(self, h: float, p_new: float, u_new: float, x_new: float, v_new: float) -> None:
+        self.hist.append(self.hist.t[-1] + h, p_new)
+        self.x.append(x_new)
+        self.v.append(v_new)
+        self.u.append(u_new)
+        self.alpha.append(x_new - u_new)
+
+    # -- one step ------------------------------------------------------------------------
+    def step(self) -> None:
+        if self.implicit:
+            self._step_implicit()
+        else:
+            self._step_paper()
+
+    def _step_implicit(self) -> None:
+        h, m, law = self.h, self.m, self.law
+        p_n, alpha_n = self.hist.P[-1], self.alpha[-1]
+        known, coef = self.hist.rod_step_terms(h)
+        x_pred, _ = self._impactor(h, 0.0)
+        a = x_pred - known
+        b = h * h / (6.0 * m) + coef
+        if a > 0.0 and not self.in_contact and alpha_n < 0.0:
+            # a new contact begins inside this step: its start becomes a node
+            event = self._event_step(h)
+            if event is not None:
+                self._event_node(event)
+                self.in_contact = True
+                self.starts.append(self.hist.t[-1])
+                return
+        if a > 0.0:
+            guess = 2.0 * alpha_n - self.alpha[-2] if len(self.alpha) > 1 else a
+            alpha_new, iterations = law.solve_step(a, b, guess)
+            self.n_newton += iterations
+            p_new = law.force(alpha_new)
+            x_new, v_new = self._impactor(h, p_new)
+            self._accept(h, p_new, known + coef * p_new, x_new, v_new)
+            if not self.in_contact:
+                self.in_contact = True
+                self.starts.append(self.hist.t[-2])
+            return
+        event = self._event_step(h) if self.in_contact and alpha_n > 0.0 else None
+        if event is not None:
+            # the contact ends inside this step: its end becomes a node
+            self._event_node(event)
+        else:
+            x_new, v_new = self._impactor(h, 0.0)
+            self._accept(h, 0.0, known, x_new, v_new)
+        if self.in_contact:
+            self.in_contact = False
+            self.ends.append(self.hist.t[-1])
+
+    def _event_step(self, h: float) -> float | None:
+        """Length of the step to the zero of the free approach inside (0, h), or None when
+        round-off leaves no sign change (the event is then at the current node)."""
+        if self._free_approach(0.0) * self._free_approach(h) >= 0.0:
+            return None
+        self.n_events += 1
+        return brentq(self._free_approach, 0.0, h, xtol=1e-15 * self.hist.t[-1] + 1e-300, rtol=8.9e-16)
+
+    def _event_node(self, h: float) -> None:
+        x_new, v_new = self._impactor(h, 0.0)
+        known, _ = self.hist.rod_step_terms(h)
+        self._accept(h, 0.0, known, x_new, v_new)
+
+    def _step_paper(self) -> None:
+        h = self.h
+        x_new, v_new = self._impactor(h, self.hist.P[-1])
+        known, _ = self.hist.rod_step_terms(h)
+        alpha_new = x_new - known
+        p_new = self.law.force(alpha_new)
+        alpha_n, t_n = self.alpha[-1], self.hist.t[-1]
+        self._accept(h, p_new, known, x_new, v_new)
+        if self.in_contact and alpha_new <= 0.0:
+            self.in_contact = False
+            frac = alpha_n / (alpha_n - alpha_new) if alpha_n > alpha_new else 1.0
+            self.ends.append(t_n + frac * h)
+        elif not self.in_contact and alpha_new > 0.0:
+            self.in_contact = True
+            frac = -alpha_n / (alpha_new - alpha_n) if alpha_new > alpha_n else 0.0
+            self.starts.append(t_n + frac * h)
+
+    # -- termination -----------------------------------------------------------------------
+    def rod_mean_velocity(self) -> float:
+        """Mean velocity of the rod end after the force stopped (free end: rigid drift)."""
+        rod = self.problem.rod
+        if rod.far_end == "free" and math.isfinite(rod.length_m):
+            return self.hist.Q[-1] / rod.mass_kg
+        return 0.0
+
+    def no_further_contact(self) -> bool:
+        """True when, with no force, the impactor can never reach the rod again.
+
+        After the force stops the fixed rod's end motion is periodic (period 4T) from 4T
+        on, the free rod's is a drift plus a 2T-periodic motion. If the impactor moves away
+        at least as fast as that mean motion and stays clear over a window of 8T, it stays
+        clear for ever.
+        """
+        if self.v[-1] > self.rod_mean_velocity():
+            return False
+        period = self.problem.rod.reflection_period
+        if not math.isfinite(period):
+            return True
+        window = 4.0 * period
+        n = min(_MAX_WINDOW_SAMPLES, max(2, int(math.ceil(window / self.h)) + 1))
+        t0 = self.hist.t[-1]
+        times = t0 + np.linspace(0.0, window, n)[1:]
+        x = self.x[-1] + self.v[-1] * (times - t0)
+        return bool(np.all(x - self.hist.rod_displacement(times) < 0.0))
+
+
+def run_fixed_step(problem: ImpactProblem, options: Any, h: float, stations: tuple[float, ...],
+                   started: float, extra: dict) -> ImpactResult:
+    """One run at the fixed step ``h``."""
+    st = _Stepper(problem, options, h)
+    t_max = options.max_time_factor * problem.contact_time_estimate()
+    # the contact energy never exceeds the impact energy, so P <= the rigid-rod contact force
+    force_bound = 10.0 * problem.rigid_contact.peak_force_N
+    status, message = "failed", ""
+    checked_end = 0
+    while True:
+        st.step()
+        if len(st.ends) > checked_end and not st.in_contact:
+            checked_end = len(st.ends)
+            if st.no_further_contact():
+                status, message = "completed", f"{len(st.ends)} contact(s); no further contact possible"
+                break
+        if len(st.starts) > options.max_contacts:
+            status = "truncated"
+            message = f"stopped at max_contacts={options.max_contacts}; later contacts not computed"
+            st.starts.pop()
+            break
+        if st.hist.t[-1] >= t_max:
+            status = "truncated" if st.ends else "failed"
+            message = (f"time horizon {t_max:.6g} s (max_time_factor={options.max_time_factor}) reached"
+                       + ("" if st.ends else " before the first contact ended"))
+            break
+        if st.hist.P[-1] > force_bound:
+            status = "failed"
+            message = (f"diverged: the force {st.hist.P[-1]:.4g} N exceeds 10 times the rigid-rod Hertz force "
+                       f"{problem.rigid_contact.peak_force_N:.4g} N, which bounds it (energy); the step "
+                       f"dt_s={h:.4g} s is unstable")
+            break
+        if len(st.hist.t) > options.max_steps:
+            status = "truncated" if st.ends else "failed"
+            message = (f"step budget max_steps={options.max_steps} spent at t={st.hist.t[-1]:.6g} s with "
+                       f"dt_s={h:.4g} s" + ("" if st.ends else " before the first contact ended"))
+            break
+    if st.in_contact:
+        st.starts = st.starts[: len(st.ends)]
+    return _result(st, status, message, _time.perf_counter() - started, stations, extra)
+
+
+def _histories(st: _Stepper, stations: tuple[float, ...], rod_energy: np.ndarray) -> tuple[dict, dict]:
+    """Station histories (d'Alembert) and energies as extra series; station positions."""
+    t = np.asarray(st.hist.t)
+    alpha = np.asarray(st.alpha)
+    series = {
+        "impactor_kinetic_energy": (0.5 * st.m * np.asarray(st.v) ** 2, "J", "kinetic energy of the impactor"),
+        "contact_energy": (st.law.energy(alpha), "J", "energy stored in the contact, int_0^alpha P (the contact law)"),
+        "rod_energy": (rod_energy, "J", "energy in the rod: work done on it by the contact force"),
+    }
+    extra = {}
+    radius = st.law.contact_radius(alpha)
+    if radius is not None:
+        series["contact_radius"] = (radius, "m", "radius of the contact patch (the contact law; Hertz: sqrt(R alpha))")
+    if stations:
+        length = st.problem.rod.length_m
+        xs = [s * length for s in stations]
+        series["station_displacement"] = (
+            np.column_stack([st.hist.displacement_at(x, t) for x in xs]), "m",
+            "axial displacement of the cross-sections at station_x_m (d'Alembert, from the contact force)")
+        series["station_strain"] = (
+            np.column_stack([st.hist.strain_at(x, t) for x in xs]), "1",
+            "axial strain du/dx at station_x_m (negative in compression; d'Alembert)")
+        extra["station_x_m"] = np.asarray(xs)
+    return series, extra
+
+
+def _scales(problem: ImpactProblem) -> dict[str, float]:
+    """The case's scales, stored so that presentation never recomputes physics."""
+    rigid = problem.rigid_contact
+    return {**problem.contact.summary(), "rod_impedance_kg_s": problem.rod.impedance,
+            "rigid_contact_time_s": rigid.contact_time_s, "rigid_contact_force_N": rigid.peak_force_N,
+            "paper_step_limit_s": paper_step_limit(problem)}
+
+
+def _result(st: _Stepper, status: str, message: str, wall: float,
+            stations: tuple[float, ...] = (), extra_summary: dict | None = None) -> ImpactResult:
+    t = np.asarray(st.hist.t)
+    p = np.asarray(st.hist.P)
+    u = np.asarray(st.u)
+    alpha = np.asarray(st.alpha)
+    # work done on the rod, with the scheme's own force representation
+    mean_force = 0.5 * (p[1:] + p[:-1]) if st.implicit else p[:-1]
+    rod_work = np.concatenate([[0.0], np.cumsum(mean_force * np.diff(u))])
+    rod_energy = float(rod_work[-1])
+    series, extra = _histories(st, stations, rod_work)
+    problem = st.problem
+    ke_in = problem.kinetic_energy_J
+    ke_out = 0.5 * problem.mass_kg * st.v[-1] ** 2
+    hertz_left = float(problem.contact.energy(alpha[-1]))
+    energy_error = (ke_in - ke_out - rod_energy - hertz_left) / ke_in
+    peak_t, peak_p = local_maxima(t, p)
+    sawtooth = sawtooth_amplitude(p)
+    zigzag = zigzag_steps(p)
+    if not (np.all(np.isfinite(p)) and math.isfinite(energy_error)):
+        status, message = "failed", "non-finite force or energy balance (the scheme diverged)"
+    elif status != "failed" and abs(energy_error) > st.options.energy_tolerance:
+        kind = "gained" if energy_error < 0 else "lost"
+        status, message = "failed", (
+            f"energy balance off: {abs(energy_error):.3g} of the impact energy {kind}, beyond "
+            f"energy_tolerance={st.options.energy_tolerance:.3g}"
+            + (f"; the force zig-zags step to step over {zigzag} steps (amplitude {sawtooth:.2f}): "
+               "unstable step" if zigzag >= ZIGZAG_UNSTABLE else ""))
+    log.info("SEM %s: %s (%s), %d steps, contact time %.6g s", st.options.scheme, status, message,
+             len(t) - 1, (st.ends[0] - st.starts[0]) if st.ends else math.nan)
+    return ImpactResult(
+        success=status != "failed",
+        status=status,
+        message=message,
+        scheme=st.options.scheme,
+        dt_s=st.h,
+        time=t,
+        contact_force=p,
+        approach=alpha,
+        impactor_displacement=np.asarray(st.x),
+        impactor_velocity=np.asarray(st.v),
+        rod_end_displacement=u,
+        contact_start_s=np.asarray(st.starts[: len(st.ends)]),
+        contact_end_s=np.asarray(st.ends),
+        peak_time_s=peak_t,
+        peak_force_N=peak_p,
+        rebound_velocity_m_s=float(st.v[-1]),
+        rod_energy_J=rod_energy,
+        energy_error=float(energy_error),
+        n_steps=len(t) - 1,
+        n_newton_iterations=st.n_newton,
+        n_events=st.n_events,
+        wall_time_s=wall,
+        extra={**extra, "sawtooth_amplitude": sawtooth, "zigzag_steps": zigzag, **_scales(problem),
+               **(extra_summary or {})},
+        extra_series=series,
+    )

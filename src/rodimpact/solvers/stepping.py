@@ -1,0 +1,42 @@
+"""What the three time-stepping solvers share: their common settings and their stop limits."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from rodimpact.solvers.options import Options, setting
+
+__all__ = ["SteppingOptions", "limit_reached"]
+
+
+@dataclass(frozen=True)
+class SteppingOptions(Options):
+    """The settings every time-stepping method has (its own class adds the rest)."""
+
+    dt_s: float | None = setting(
+        None, "Fixed time step; null chooses it from the case: the contact time on a rigid rod "
+        "divided by steps_per_contact (or, for sem with steps_per_contact null, the step for tolerance).",
+        unit="s", nullable=True, exclusive_minimum=0)
+    steps_per_contact: int | None = setting(
+        None, "Time steps per contact time on a rigid rod, when dt_s is null.", kind=int, nullable=True, minimum=1)
+    max_time_factor: float = setting(
+        100.0, "Simulated time limit as a multiple of the estimated contact time.", exclusive_minimum=1)
+    max_contacts: int = setting(
+        50, "Largest number of successive contacts (the impactor re-striking the rod) that are followed.",
+        kind=int, minimum=1)
+
+
+def limit_reached(starts: list[float], ends: list[float], t: float, t_max: float,
+                  max_contacts: int) -> tuple[str, str] | None:
+    """The limits a time-stepping solver shares: too many contacts, or the time horizon.
+
+    Returns (status, message) when a limit is reached (dropping the contact start beyond
+    ``max_contacts``), else None.
+    """
+    if len(starts) > max_contacts:
+        starts.pop()
+        return "truncated", f"stopped at max_contacts={max_contacts}; later contacts not computed"
+    if t >= t_max:
+        status = "truncated" if ends else "failed"
+        return status, f"time horizon {t_max:.6g} s reached" + ("" if ends else " before the first contact ended")
+    return None
