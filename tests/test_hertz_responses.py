@@ -74,7 +74,7 @@ def rod():
 
 
 def test_ramp_response_matches_papers_printed_formulas(rod):
-    """NOTES.md item 1: the printed 'unit impulse' reactions are unit-ramp responses."""
+    """docs/paper-notes.md, "Impulse responses": the printed 'unit impulse' reactions are unit-ramp responses."""
     period = rod.reflection_period  # 2T
     t = np.linspace(0.0, 3.0 * period, 3001)[1:]
     assert rod_ramp_response(t, rod) == pytest.approx(paper_rod_ramp_response(t, rod), rel=1e-12)

@@ -139,7 +139,7 @@ def test_contact_end_is_located_between_steps(reference):
 
 def test_implicit_scheme_stable_where_the_papers_scheme_is_not():
     """A thin wire (small impedance Z, stiff contact k_c = dP/dalpha): the lagged force is
-    unstable for steps beyond about 2 Z / k_c (NOTES.md item 7); the implicit scheme is not."""
+    unstable for steps beyond about 2 Z / k_c (docs/paper-notes.md, "The paper's scheme"); the implicit scheme is not."""
     problem = ImpactProblem(0.01, 1.0, HertzLaw(hertz_constant(0.005, STEEL)), Rod(1.0, 1e-6, STEEL))
     fine = solve(problem, 1000)
     alpha_peak = (fine.peak_force_N.max() / problem.contact.k) ** (2.0 / 3.0)

@@ -2,9 +2,9 @@
 
 (1) The config holds exactly the printed numbers (after the documented unit conversions).
 (2) The printed error columns follow from the printed times, |model - measured| / measured,
-    to the paper's rounding (NOTES.md item 5).
+    to the paper's rounding (docs/paper-notes.md, "Table 2").
 (3) The printed masses are those of solid steel balls of the printed diameters, read in mm
-    (NOTES.md item 3).
+    (docs/paper-notes.md, "Table 2").
 """
 
 from __future__ import annotations
@@ -30,7 +30,7 @@ PRINTED = [
     (12.73, 8.46, 111.10, 121.71, 64.82, 9.54, 41.66),
 ]
 HALF_DIGIT = 0.005  # every time, error, mass and diameter is printed to 0.01 of its unit
-STEEL_DENSITY = 7800.0  # kg/m^3 (NOTES.md items 3 and 6)
+STEEL_DENSITY = 7800.0  # kg/m^3 (docs/paper-notes.md, "Table 2" and "Materials")
 
 
 @pytest.fixture(scope="module")

@@ -156,6 +156,7 @@ class HertzLaw(ContactLaw):
     k: float
     sphere_radius_m: float | None = None
     name = "hertz"
+    label = "Hertz"
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.k) and self.k > 0):

@@ -70,10 +70,12 @@ class ContactLaw(abc.ABC):
     """A monotone quasi-static contact law P(alpha) (see the module docstring).
 
     Subclasses are frozen dataclasses holding the law's parameters; ``name`` is the law's
-    name in a case file (``contact: {law: <name>}``).
+    name in a case file (``contact: {law: <name>}``), ``label`` its name in words.
     """
 
     name: str = ""
+    #: The law's name in words, for messages, legends and captions.
+    label: str = ""
 
     @abc.abstractmethod
     def force(self, approach_m: float) -> float:
@@ -168,7 +170,7 @@ class ContactLaw(abc.ABC):
         upper = velocity_m_s * 1e-9
         while float(self.energy(upper)) < kinetic:
             upper *= 4.0
-        alpha_max = brentq(lambda x: float(self.energy(x)) - kinetic, 0.0, upper, xtol=1e-300, rtol=4e-16)
+        alpha_max = brentq(lambda x: float(self.energy(x)) - kinetic, 0.0, upper, xtol=1e-300, rtol=8.9e-16)
 
         def integrand(u: float) -> float:
             # d alpha = 2 u du; v = sqrt(2 (E_max - E(alpha)) / m), E_max - E = int_alpha^alpha_max P

@@ -104,6 +104,8 @@ def _checked_config(config: Any, source: _File, schemas: Schemas) -> dict:
     config = {} if config is None else copy.deepcopy(config)
     config = dict(config) if isinstance(config, Mapping) else config
     source.check(config, schemas, CONFIG_SCHEMA, fill=True)
+    for method, block in config.get("numerics", {}).items():  # each method's settings in declaration order
+        config["numerics"][method] = {name: block[name] for name in METHOD_REGISTRY[method].options.names()}
     return config
 
 

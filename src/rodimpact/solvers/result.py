@@ -61,7 +61,7 @@ class ImpactResult:
     rod_energy_J : float
         Work done on the rod by the contact force, J (the energy left in the rod).
     energy_error : float
-        (KE_in - KE_out - rod_energy - Hertz energy left) / KE_in.
+        (KE_in - KE_out - rod_energy - energy left in the contact law) / KE_in.
     n_steps, n_newton_iterations, n_events : int
         Cost counters: accepted nodes, Newton iterations, located contact events.
     wall_time_s : float

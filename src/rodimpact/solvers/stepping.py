@@ -26,17 +26,32 @@ class SteppingOptions(Options):
         kind=int, minimum=1)
 
 
-def limit_reached(starts: list[float], ends: list[float], t: float, t_max: float,
-                  max_contacts: int) -> tuple[str, str] | None:
-    """The limits a time-stepping solver shares: too many contacts, or the time horizon.
+def limit_reached(starts: list[float], ends: list[float], t: float, t_max: float, options: SteppingOptions
+                  ) -> tuple[str, str] | None:
+    """The limits every time-stepping solver shares: too many contacts, or the time horizon.
 
-    Returns (status, message) when a limit is reached (dropping the contact start beyond
-    ``max_contacts``), else None.
+    Parameters
+    ----------
+    starts, ends : list of float
+        The contact starts and ends so far, s (a start beyond ``options.max_contacts`` is dropped).
+    t : float
+        The time reached, s.
+    t_max : float
+        The time horizon, s (``options.max_time_factor`` times the solver's contact-time estimate).
+    options : SteppingOptions
+        ``max_contacts`` and ``max_time_factor``.
+
+    Returns
+    -------
+    (status, message) or None
+        ``truncated`` (or ``failed`` before the first contact ended) and why, when a limit is
+        reached; None otherwise.
     """
-    if len(starts) > max_contacts:
+    if len(starts) > options.max_contacts:
         starts.pop()
-        return "truncated", f"stopped at max_contacts={max_contacts}; later contacts not computed"
+        return "truncated", f"stopped at max_contacts={options.max_contacts}; later contacts not computed"
     if t >= t_max:
         status = "truncated" if ends else "failed"
-        return status, f"time horizon {t_max:.6g} s reached" + ("" if ends else " before the first contact ended")
+        return status, (f"time horizon {t_max:.6g} s (max_time_factor={options.max_time_factor}) reached"
+                        + ("" if ends else " before the first contact ended"))
     return None

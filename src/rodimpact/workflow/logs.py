@@ -20,7 +20,7 @@ def script_logging(log_path: str | Path, level: int = logging.INFO) -> Iterator[
     logging.basicConfig(level=level, handlers=handlers, force=True,
                         format="%(asctime)s %(levelname)s %(name)s: %(message)s")
     logging.getLogger("skfem").setLevel(logging.WARNING)  # per-assembly chatter
-    logger = logging.getLogger("rodimpact.script")
+    logger = logging.getLogger(f"{__package__}.script")  # loggers are named after their module
     try:
         yield logger
     except BaseException:

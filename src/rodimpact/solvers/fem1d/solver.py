@@ -185,7 +185,7 @@ def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
                 setup.rod_momentum @ v):
             status, message = "completed", f"{len(ends)} contact(s); no further contact possible"
             break
-        limit = limit_reached(starts, ends, t, t_max, options.max_contacts)
+        limit = limit_reached(starts, ends, t, t_max, options)
         if limit:
             status, message = limit
             break

@@ -269,7 +269,7 @@ def solve_fem_axi(problem: AxiImpact, options: FEMAxiOptions | None = None,
                                                             / (rod.total_mass_kg / (2 * math.pi))):
                 status, message = "completed", f"{len(ends)} contact(s); clear of the rod for {window:.3g} s"
                 break
-        limit = limit_reached(starts, ends, t, t_max, options.max_contacts)
+        limit = limit_reached(starts, ends, t, t_max, options)
         if limit:
             status, message = limit
             break

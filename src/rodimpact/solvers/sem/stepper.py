@@ -16,6 +16,7 @@ from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.result import ImpactResult
 from rodimpact.solvers.sem.history import ForceHistory
 from rodimpact.solvers.sem.stability import paper_step_limit
+from rodimpact.solvers.stepping import limit_reached
 
 __all__ = ["run_fixed_step"]
 
@@ -182,20 +183,15 @@ def run_fixed_step(problem: ImpactProblem, options: Any, h: float, stations: tup
             if st.no_further_contact():
                 status, message = "completed", f"{len(st.ends)} contact(s); no further contact possible"
                 break
-        if len(st.starts) > options.max_contacts:
-            status = "truncated"
-            message = f"stopped at max_contacts={options.max_contacts}; later contacts not computed"
-            st.starts.pop()
-            break
-        if st.hist.t[-1] >= t_max:
-            status = "truncated" if st.ends else "failed"
-            message = (f"time horizon {t_max:.6g} s (max_time_factor={options.max_time_factor}) reached"
-                       + ("" if st.ends else " before the first contact ended"))
+        limit = limit_reached(st.starts, st.ends, st.hist.t[-1], t_max, options)
+        if limit:
+            status, message = limit
             break
         if st.hist.P[-1] > force_bound:
             status = "failed"
-            message = (f"diverged: the force {st.hist.P[-1]:.4g} N exceeds 10 times the rigid-rod Hertz force "
-                       f"{problem.rigid_contact.peak_force_N:.4g} N, which bounds it (energy); the step "
+            message = (f"diverged: the force {st.hist.P[-1]:.4g} N exceeds 10 times the rigid-rod "
+                       f"{st.law.label or st.law.name} force {problem.rigid_contact.peak_force_N:.4g} N, which "
+                       "bounds it (energy); the step "
                        f"dt_s={h:.4g} s is unstable")
             break
         if len(st.hist.t) > options.max_steps:
@@ -256,8 +252,8 @@ def _result(st: _Stepper, status: str, message: str, wall: float,
     problem = st.problem
     ke_in = problem.kinetic_energy_J
     ke_out = 0.5 * problem.mass_kg * st.v[-1] ** 2
-    hertz_left = float(problem.contact.energy(alpha[-1]))
-    energy_error = (ke_in - ke_out - rod_energy - hertz_left) / ke_in
+    contact_left = float(problem.contact.energy(alpha[-1]))
+    energy_error = (ke_in - ke_out - rod_energy - contact_left) / ke_in
     peak_t, peak_p = local_maxima(t, p)
     sawtooth = sawtooth_amplitude(p)
     zigzag = zigzag_steps(p)

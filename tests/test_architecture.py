@@ -1,0 +1,152 @@
+"""The architecture, checked: packages by concern, imports only downwards, no cycles, and a
+configuration check that loads no solver.
+
+The layers, lowest first (a package may import its own modules and the layers below it):
+contact < model < analysis < solvers < io < present < workflow. Every import counts,
+inside functions too, read from the source with :mod:`ast`.
+"""
+
+from __future__ import annotations
+
+import ast
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+SRC = Path(__file__).resolve().parents[1] / "src"
+PACKAGE = SRC / "rodimpact"
+LAYERS = ("contact", "model", "analysis", "solvers", "io", "present", "workflow")
+#: Lines a module may have before it must be split (the project's rule: small modules).
+MAX_LINES = 450
+
+
+def _module_name(path: Path) -> str:
+    parts = path.relative_to(SRC).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def _imports(path: Path) -> list[tuple[str, int]]:
+    """Every rodimpact module ``path`` imports (absolute or relative, at any depth), with its line."""
+    module = _module_name(path)
+    package = module if path.name == "__init__.py" else module.rpartition(".")[0]
+    found = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            found += [(alias.name, node.lineno) for alias in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                anchor = package.split(".")[: len(package.split(".")) - node.level + 1]
+                base = ".".join(anchor + ([node.module] if node.module else []))
+            else:
+                base = node.module or ""
+            found.append((base, node.lineno))
+            found += [(f"{base}.{alias.name}", node.lineno) for alias in node.names
+                      if _is_module(f"{base}.{alias.name}")]
+    return [(name, line) for name, line in found if name == "rodimpact" or name.startswith("rodimpact.")]
+
+
+def _is_module(name: str) -> bool:
+    base = SRC.joinpath(*name.split("."))
+    return base.with_suffix(".py").is_file() or (base / "__init__.py").is_file()
+
+
+def _layer(module: str) -> int | None:
+    parts = module.split(".")
+    return LAYERS.index(parts[1]) if len(parts) > 1 and parts[1] in LAYERS else None
+
+
+def _modules() -> list[Path]:
+    return sorted(PACKAGE.rglob("*.py"))
+
+
+def test_every_module_lives_in_a_package_of_a_concern():
+    loose = [p.name for p in PACKAGE.glob("*.py") if p.name != "__init__.py"]
+    assert loose == []
+    assert sorted(p.name for p in PACKAGE.iterdir() if p.is_dir() and p.name != "__pycache__") == sorted(LAYERS)
+
+
+def test_every_package_says_what_lives_there_and_what_it_may_import():
+    for init in PACKAGE.rglob("__init__.py"):
+        if init.parent == PACKAGE:
+            continue
+        doc = ast.get_docstring(ast.parse(init.read_text(encoding="utf-8"))) or ""
+        assert "What lives here" in doc and "may import" in doc, init
+
+
+def test_imports_run_only_downwards():
+    wrong = []
+    for path in _modules():
+        own = _layer(_module_name(path))
+        for name, line in _imports(path):
+            target = _layer(name)
+            if own is not None and target is not None and target > own:
+                wrong.append(f"{path.relative_to(SRC)}:{line} imports {name} (layer {LAYERS[target]} above "
+                             f"{LAYERS[own]})")
+    assert wrong == []
+
+
+def test_there_are_no_import_cycles():
+    graph = {_module_name(p): {n for n, _ in _imports(p) if _is_module(n)} - {_module_name(p)} for p in _modules()}
+    state: dict[str, int] = {}
+    cycles = []
+
+    def visit(node: str, stack: list[str]) -> None:
+        state[node] = 1
+        for nxt in sorted(graph.get(node, ())):
+            if nxt.startswith(node + ".") or node.startswith(nxt + "."):
+                continue  # a package and its own modules
+            if state.get(nxt) == 1:
+                cycles.append(" -> ".join(stack[stack.index(nxt):] + [nxt]) if nxt in stack else f"{node} -> {nxt}")
+            elif nxt not in state:
+                visit(nxt, stack + [nxt])
+        state[node] = 2
+
+    for module in sorted(graph):
+        if module not in state:
+            visit(module, [module])
+    assert cycles == []
+
+
+def test_modules_are_small():
+    long = {str(p.relative_to(SRC)): n for p in _modules() if (n := len(p.read_text().splitlines())) > MAX_LINES}
+    assert long == {}
+
+
+def test_the_configuration_check_loads_no_solver_no_mesh_and_no_plotting():
+    """What snakemake imports to check the configuration before any job: the registry and the
+    options, never a solver, scikit-fem or matplotlib."""
+    code = ("import sys, rodimpact.io.config, rodimpact.workflow.resources, rodimpact.workflow.bench_plan; "
+            "print('\\n'.join(sorted(sys.modules)))")
+    loaded = set(subprocess.run([sys.executable, "-c", code], check=True, capture_output=True,
+                                text=True).stdout.split())
+    assert not {m for m in loaded if m.split(".")[0] in ("skfem", "matplotlib")}
+    solvers = {m for m in loaded if m.endswith((".solver", ".stepper", ".history", ".bar", ".meshes", ".axisym",
+                                                 ".axibody"))}
+    assert solvers == set()
+    assert "rodimpact.solvers.registry" in loaded
+
+
+def _literal_strings(node: ast.AST) -> set[str]:
+    items = node.keys if isinstance(node, ast.Dict) else getattr(node, "elts", [])
+    return {item.value for item in items if isinstance(item, ast.Constant) and isinstance(item.value, str)}
+
+
+def test_no_module_writes_out_the_list_of_methods():
+    """The methods are declared once, in the registry; nothing else holds a list of them (a
+    tuple, list, set or dict literal naming every method)."""
+    sys.path.insert(0, str(SRC))
+    from rodimpact.solvers.registry import METHODS
+
+    holders = []
+    for path in _modules():
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, (ast.Tuple, ast.List, ast.Set, ast.Dict)) and set(METHODS) <= _literal_strings(node):
+                holders.append(f"{path.relative_to(SRC)}:{node.lineno}")
+    for path in sorted((SRC.parent / "workflow").rglob("*.smk")) + sorted((SRC.parent / "workflow").rglob("*.yaml")):
+        text = path.read_text(encoding="utf-8")
+        if all(f"{name}" in text for name in METHODS) and "fem_axi" in text and "sem_paper" in text \
+                and any(f"[{', '.join(METHODS)}]" in line or f"{', '.join(METHODS)}" in line for line in text.splitlines()):
+            holders.append(str(path.relative_to(SRC.parent)))
+    assert holders == []
