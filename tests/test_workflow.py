@@ -36,7 +36,8 @@ from PIL import Image
 from rodimpact.workflow.audit import audit
 from rodimpact.io.config import load_global_config, load_project
 from rodimpact.solvers.registry import METHODS as REGISTRY
-from rodimpact.io.store import REQUIRED_SUMMARY, read_run
+from rodimpact.io.casefile import read_case_file
+from rodimpact.io.store import REQUIRED_SUMMARY, read_run, read_summary
 
 pytestmark = pytest.mark.workflow
 
@@ -346,6 +347,23 @@ def test_full_build_produces_every_artifact(built: Path, expected: dict) -> None
     assert not [p for p in (built / "results").rglob("*") if ".tmp" in p.name]
 
 
+def test_every_run_records_the_case_file_it_was_made_from(built: Path, expected: dict) -> None:
+    """The chain's first stage: each run's case, with its scales and costs, is a file the run
+    names (path, SHA-256 and case hash), and the file holds exactly the run's case."""
+    for path in expected["runs"]:
+        record = read_summary(built / path)
+        reference = record.config["run"]["case_file"]
+        assert reference["path"] == f"results/cases/{record.case_id}.yaml"
+        case_file = read_case_file(built / reference["path"])
+        assert reference["config_sha256"] == case_file["config_sha256"]
+        assert case_file["case"] == {key: value for key, value in record.config.items() if key != "run"}
+        derived = case_file["derived"]
+        assert set(derived["methods"]) == set(record.config["methods"])
+        assert derived["rigid_rod"]["contact_time_s"] > 0 and derived["rod"]["impedance_kg_s"] > 0
+        for method in derived["methods"].values():
+            assert method["time_step_s"] > 0 and method["steps"] > 1 and method["job"]["mem_mb"] >= 500
+
+
 def test_every_run_file_has_provenance_and_summary(built: Path, expected: dict) -> None:
     for path in expected["runs"]:
         with h5py.File(built / path, "r") as h5:
@@ -528,15 +546,17 @@ def test_target_plans_only_its_jobs(tmp_path: Path) -> None:
     target = "results/tables/table2_r1_l30.csv"
     run = snakemake(project, "-n", "-j2", target)
     assert run.returncode == 0, run.describe()
-    assert job_stats(run.output) == {"solve": 18, "table2": 1}, run.describe()
-    # Which files: the six r1_l30 balls by both methods and the four outputs of the table2 job.
+    assert job_stats(run.output) == {"case_file": 6, "solve": 18, "table2": 1}, run.describe()
+    # Which files: the six r1_l30 balls' case files, their runs by the three methods and the
+    # four outputs of the table2 job.
     rows = summary(project, target)
     balls = [c["id"] for c in project_cases(project).cases_in("table2", "r1_l30")]
     assert pending(rows, "solve") == {run_path(ball, m) for ball in balls for m in ("sem", "fem1d", "fem_axi")}
     assert pending(rows, "table2") == {
         f"results/tables/table2_r1_l30.{ext}" for ext in ("csv", "md", "tex", "provenance.json")
     }
-    assert pending(rows) == pending(rows, "solve") | pending(rows, "table2")
+    assert pending(rows, "case_file") == {f"results/cases/{ball}.yaml" for ball in balls}
+    assert pending(rows) == pending(rows, "case_file") | pending(rows, "solve") | pending(rows, "table2")
     assert not (project / "results").exists(), "a dry run must not write results"
 
 
@@ -573,8 +593,8 @@ def test_new_row_in_table2_yaml_is_computed(built: Path, tmp_path: Path) -> None
 
     run = snakemake(project, "-j2", "results/tables/table2_r10_l30.csv", timeout=BUILD_TIMEOUT_S)
     assert run.returncode == 0, run.describe()
-    # The existing runs are reused: the new ball by both methods, then the table.
-    assert job_stats(run.output) == {"solve": 3, "table2": 1}, run.describe()
+    # The existing runs are reused: the new ball's case file, its three runs, then the table.
+    assert job_stats(run.output) == {"case_file": 1, "solve": 3, "table2": 1}, run.describe()
 
     record = read_run(project / run_path(new_case, "sem"))
     assert record.config["measured"]["contact_time_us"] == 75.0
@@ -604,8 +624,8 @@ def test_new_case_file_is_picked_up(tmp_path: Path) -> None:
     target = run_path("my_ball", "sem")
     run = snakemake(project, "-n", "-j2", target)
     assert run.returncode == 0, run.describe()
-    assert job_stats(run.output) == {"solve": 1}, run.describe()
-    assert pending(summary(project, target)) == {target}
+    assert job_stats(run.output) == {"case_file": 1, "solve": 1}, run.describe()
+    assert pending(summary(project, target)) == {target, "results/cases/my_ball.yaml"}
     resolved = project_cases(project)
     assert resolved.sets["my_experiment"] == ["my_ball"]
     assert resolved.cases["my_ball"]["rod"]["area_m2"] == pytest.approx(1.0e-4)
@@ -634,10 +654,11 @@ def test_changed_case_value_reruns_only_that_case(built: Path, tmp_path: Path) -
     assert run.returncode == 0, run.describe()
     # model's runs and what shows them, and the studies built on model: its work-precision
     # levels (3 methods x 3 levels in the copy) and the stability map, whose base case it is
-    assert job_stats(run.output) == {"solve": 4, "fig2": 1, "fig4": 1, "fig2_comparison": 1, "all": 1,
-                                     "solve_level": 9, "work_precision_table": 1, "work_precision_figure": 1,
-                                     "solve_map_point": 12, "stability_map": 1}, run.describe()
-    rows = summary(project)
+    assert job_stats(run.output) == {"case_file": 1, "solve": 4, "fig2": 1, "fig4": 1, "fig2_comparison": 1,
+                                     "all": 1, "solve_level": 9, "work_precision_table": 1,
+                                     "work_precision_figure": 1, "solve_map_point": 12,
+                                     "stability_map": 1}, run.describe()
+    assert pending(rows := summary(project), "case_file") == {"results/cases/model.yaml"}
     assert pending(rows, "solve") == {run_path("model", m) for m in ("sem", "sem_paper", "fem1d", "fem_axi")}
     assert pending(rows, "fig2") == {
         "results/figures/fig2_contact_force.pdf", "results/figures/fig2_contact_force.png",
@@ -648,22 +669,48 @@ def test_changed_case_value_reruns_only_that_case(built: Path, tmp_path: Path) -
 
 def test_code_change_reruns_the_solvers(built: Path, tmp_path: Path) -> None:
     project = clone_built(built, tmp_path / "project")
-    with open(project / "src/rodimpact/hertz.py", "a", encoding="utf-8") as handle:
+    with open(project / "src/rodimpact/contact/hertz.py", "a", encoding="utf-8") as handle:
         handle.write("# touched\n")  # content changes, so the checksum changes too
 
     run = snakemake(project, "-n", "-j2")
     assert run.returncode == 0, run.describe()
     stats = job_stats(run.output)
     assert stats.get("solve") == 76, run.describe()
-    assert "Updated input files: src/rodimpact/hertz.py" in run.output
+    assert "Updated input files: src/rodimpact/contact/hertz.py" in run.output
     rows = summary(project)
     assert pending(rows, "solve") == {row["output_file"] for row in rows if row["rule"] == "solve"}
+
+
+def test_a_methods_code_change_reruns_only_its_runs(built: Path, tmp_path: Path) -> None:
+    """A rule depends on its own method's solver (the registry names it): a change to fem_axi
+    reruns fem_axi's runs and what shows them, and no run of another method."""
+    project = clone_built(built, tmp_path / "project")
+    with open(project / "src/rodimpact/solvers/fem_axi/solver.py", "a", encoding="utf-8") as handle:
+        handle.write("# touched\n")
+    run = snakemake(project, "-n", "-j2")
+    assert run.returncode == 0, run.describe()
+    rows = summary(project)
+    reruns = {row["output_file"] for row in rows if row["plan"] == "update pending" and row["output_file"].endswith(".h5")}
+    assert pending(rows, "solve") == {run_path(c["id"], "fem_axi") for c in project_cases(project).cases.values()
+                                      if "fem_axi" in c["methods"] and c["set"] in ("model", "table2")}
+    assert reruns and all("fem_axi" in path for path in reruns), sorted(reruns)
+
+
+def test_a_new_cost_calibration_rewrites_the_case_files_and_reruns_no_solver(built: Path, tmp_path: Path) -> None:
+    project = clone_built(built, tmp_path / "project")
+    with open(project / "src/rodimpact/solvers/sem/cost.py", "a", encoding="utf-8") as handle:
+        handle.write("# touched\n")
+    run = snakemake(project, "-n", "-j2")
+    assert run.returncode == 0, run.describe()
+    stats = job_stats(run.output)
+    assert stats.get("case_file") == len(list((project / "results/cases").glob("*.yaml"))), run.describe()
+    assert not {rule for rule in stats if rule.startswith("solve")}, run.describe()
 
 
 def test_figure_code_change_reruns_no_solver(built: Path, tmp_path: Path) -> None:
     """Each rule depends on the modules its script imports, not on the whole package."""
     project = clone_built(built, tmp_path / "project")
-    with open(project / "src/rodimpact/figures.py", "a", encoding="utf-8") as handle:
+    with open(project / "src/rodimpact/present/figures.py", "a", encoding="utf-8") as handle:
         handle.write("# touched\n")
     run = snakemake(project, "-n", "-j2")
     assert run.returncode == 0, run.describe()

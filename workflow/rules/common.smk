@@ -45,6 +45,9 @@ def solver_sources(method=None):
     return lambda wildcards: SOLVER_SOURCES[method(wildcards) if method else wildcards.method]
 
 
+# The case file's code: its module, and each method's cost model (named by the registry).
+SRC_CASES = sources("rodimpact.workflow.cases", "rodimpact.workflow.logs",
+                    *(spec.cost.partition(":")[0] for spec in METHOD_REGISTRY.values()))
 SRC_PRESENT = sources("rodimpact.present.artifacts", "rodimpact.workflow.logs")
 SRC_BENCH = sources("rodimpact.workflow.bench", "rodimpact.io.atomic", "rodimpact.workflow.logs")
 TABLE2_VARIANTS = list(PROJECT.variants.get("table2", {}))
@@ -62,6 +65,19 @@ wildcard_constraints:
     point="m[0-9]+_z[0-9]+",
     map_method=one_of(["sem", "sem_paper", "reference"]),
     sweep_point="[A-Za-z0-9_.~+\-]+",
+
+
+def resolved_case_of(wildcards):
+    """The resolved case (or sweep case) of a case file."""
+    case = PROJECT.cases.get(wildcards.case) or PROJECT.sweeps.get(wildcards.case)
+    if case is None:
+        raise ValueError(f"unknown case {wildcards.case!r}; known: {sorted([*PROJECT.cases, *PROJECT.sweeps])}")
+    return case
+
+
+def case_file(case_id):
+    """The case file a solver rule takes as input (``case_id(wildcards)`` or a fixed id)."""
+    return lambda w: ancient(f"results/cases/{case_id(w) if callable(case_id) else case_id}.yaml")
 
 
 def runs_of(cases):

@@ -4,6 +4,7 @@
 rule solve:
     """Run one method on one case; the HDF5 file appears whole or not at all."""
     input:
+        case=case_file(lambda w: w.case),
         code=solver_sources(),
     output:
         h5="results/runs/{case}/{method}.h5",
@@ -24,6 +25,7 @@ rule solve:
 rule solve_level:
     """One level of a work-precision sweep: the case with the level's numerics, timed."""
     input:
+        case=case_file(lambda w: w.case),
         code=solver_sources(),
     output:
         h5="results/convergence/{case}/{method}_level{level}.h5",
@@ -48,6 +50,7 @@ rule solve_level:
 rule solve_stress:
     """One method on one stress case; a failure is stored as data (the study checks it)."""
     input:
+        case=case_file(lambda w: w.case),
         code=solver_sources(),
     output:
         h5="results/stress/{case}/{method}.h5",
@@ -68,6 +71,7 @@ rule solve_stress:
 rule solve_stress_reference:
     """The sem reference of a stress case, at the study's reference tolerance."""
     input:
+        case=case_file(lambda w: w.case),
         code=solver_sources(lambda w: "sem"),
     output:
         h5="results/stress/{case}/reference.h5",
@@ -88,6 +92,7 @@ rule solve_stress_reference:
 rule solve_map_point:
     """One point of the stability map with one method (or its sem reference)."""
     input:
+        case=case_file(lambda w: MAP["base_case"]),
         code=solver_sources(map_method_of),
     output:
         h5="results/stability_map/{point}/{map_method}.h5",

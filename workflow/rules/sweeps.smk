@@ -5,6 +5,7 @@
 rule solve_sweep_point:
     """One point of a case's sweep, one method; a failure stops the build like a case's."""
     input:
+        case=case_file(lambda w: w.case),
         code=solver_sources(),
     output:
         h5="results/sweeps/{case}/{method}/{sweep_point}.h5",

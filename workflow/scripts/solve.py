@@ -4,4 +4,5 @@ from rodimpact.workflow.logs import script_logging
 from rodimpact.workflow.runner import run_to_file
 
 with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
-    run_to_file(snakemake.params.case, snakemake.params.method, snakemake.output.h5)  # noqa: F821
+    run_to_file(snakemake.params.case, snakemake.params.method, snakemake.output.h5,  # noqa: F821
+                case_file=snakemake.input.case)  # noqa: F821

@@ -5,4 +5,5 @@ from rodimpact.workflow.runner import run_to_file
 
 with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
     params = snakemake.params  # noqa: F821
-    run_to_file(params.case, params.method, snakemake.output.h5, study=params.study)  # noqa: F821
+    run_to_file(params.case, params.method, snakemake.output.h5, study=params.study,  # noqa: F821
+                case_file=snakemake.input.case)  # noqa: F821

@@ -26,8 +26,10 @@ SHORT_CONTACT = 1.5
 
 @dataclass(frozen=True)
 class Cost:
-    """The cost model of one solve: its steps, its time (s) and its own memory (MiB)."""
+    """The cost model of one solve: its time step (s), its steps, its time (s) and its own
+    memory (MiB)."""
 
+    time_step_s: float
     steps: float
     solve_s: float
     mem_mib: float

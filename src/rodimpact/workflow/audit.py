@@ -3,8 +3,9 @@
 ``make provenance`` (``python -m rodimpact.workflow.audit``) checks every file under ``results/``:
 
 * an HDF5 run: its config hash matches its config, its content digest (``data_sha256``,
-  over config, series and summary) matches its content, and it was made by the libraries
-  installed now;
+  over config, series and summary) matches its content, it was made by the libraries
+  installed now, and the case file it records still holds its case;
+* a case file (``results/cases/*.yaml``): its case has the hash it was written with;
 * a table or figure: a provenance sidecar (``*.provenance.json``) lists it with the SHA-256
   of its bytes as written, and every input run the sidecar names still has the config and
   content hashes the artifact was made from;
@@ -31,6 +32,7 @@ from pathlib import Path
 from typing import Any
 
 from rodimpact.io.provenance import canonical_json, commit_exists, data_sha256, file_sha256, find_repo_root, library_versions
+from rodimpact.io.casefile import read_case_file
 from rodimpact.io.store import StoreError, read_run, read_summary
 
 logger = logging.getLogger(__name__)
@@ -106,12 +108,35 @@ def audit_run(path: str | Path, libraries: Mapping[str, str], repo_root: Path | 
                   for name, values in record.series.items()}
         if data_sha256(canonical_json(record.config), record.method, series, record.summary) != record.data_sha256:
             problems.append("content differs from its digest: changed after it was written")
+    problems += case_file_problems(record.config.get("run", {}).get("case_file"))
     changed = sorted(name for name, version in record.library_versions.items()
                      if libraries.get(name, version) != version)
     if changed:
         problems.append("made with other library versions: " + ", ".join(
             f"{name} {record.library_versions[name]} (now {libraries[name]})" for name in changed))
     return Finding(str(path), "run", tuple(problems), (record.code_version,), (record.config_sha256,))
+
+
+def case_file_problems(reference: Mapping[str, Any] | None) -> list[str]:
+    """Whether the case file a run records still holds the case the run was made from."""
+    if not reference:
+        return []
+    try:
+        record = read_case_file(reference["path"])
+    except (OSError, ValueError) as error:
+        return [f"its case file {reference['path']} is not readable: {error}"]
+    if record["config_sha256"] != reference["config_sha256"]:
+        return [f"its case file {reference['path']} holds another case now (the case was edited)"]
+    return []
+
+
+def audit_case_file(path: str | Path) -> Finding:
+    """Check one case file: it is one, and its case has the hash it was written with."""
+    try:
+        record = read_case_file(path)
+    except (OSError, ValueError) as error:
+        return Finding(str(path), "case", (str(error),))
+    return Finding(str(path), "case", (), (), (record["config_sha256"],))
 
 
 def _input_problems(entry: Mapping[str, Any], runs: dict[str, Any]) -> list[str]:
@@ -207,6 +232,8 @@ def audit(root: str | Path = ".", *, results: str = "results", workflow: bool = 
         for path in files:
             if path.endswith(".h5"):
                 found[path] = audit_run(path, libraries, repo_root)
+            elif path.startswith(f"{results}/cases/") and path.endswith(".yaml"):
+                found[path] = audit_case_file(path)
             elif path.endswith(_SIDECAR):
                 for finding in audit_sidecar(path, runs, repo_root):
                     if finding.path in found and finding.path != path:  # listed twice: keep both verdicts
@@ -221,7 +248,7 @@ def audit(root: str | Path = ".", *, results: str = "results", workflow: bool = 
         if path in exempt:
             continue
         finding = found.get(path) or Finding(path, "unknown", ("no provenance record lists it",))
-        if ".tmp." in Path(path).name:
+        if ".tmp." in Path(path).name or ".tmp-" in Path(path).name:
             finding = _merged(finding, ("a temporary file left by an interrupted write",))
         if workflow and path not in status:
             finding = _merged(finding, ("not an output of the current workflow and config (left from an old one?)",))

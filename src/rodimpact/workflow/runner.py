@@ -10,6 +10,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from rodimpact.io.casefile import case_file_reference
 from rodimpact.io.store import write_run
 from rodimpact.solvers.registry import METHODS, UnknownMethod
 from rodimpact.solvers.result import ImpactResult
@@ -72,7 +73,7 @@ def _failure_record(error: BaseException) -> tuple[dict, dict]:
 
 def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: int | None = None, *,
                 keep_failed: bool = False, timing: Timing | None = None,
-                study: Mapping[str, Any] | None = None) -> Path:
+                study: Mapping[str, Any] | None = None, case_file: str | Path | None = None) -> Path:
     """Solve and write ``path`` (HDF5, atomically); returns the path.
 
     Only the outputs the case lists are stored.
@@ -89,11 +90,21 @@ def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: i
         ``machine`` it ran on.
     study : mapping, optional
         The study this run belongs to and its sweep parameters, stored in the config.
+    case_file : path, optional
+        The case file the run was made from (``results/cases/{case}.yaml``): its path, its
+        SHA-256 and its case's hash are stored in the config (``run.case_file``).
+
+    Raises
+    ------
+    ValueError
+        ``case_file`` holds another case than this run's (stale or edited).
     """
     timed, timing = timing is not None, Timing() if timing is None else timing
     config = run_config(case, method, level)
     if study is not None:
         config["run"]["study"] = dict(study)
+    if case_file is not None:
+        config["run"]["case_file"] = case_file_reference(case_file)
     walls: list[float] = []
     result = error = None
     while True:

@@ -1,0 +1,55 @@
+"""The case file's format: written by the workflow's first stage, read back by every run.
+
+A case file (``results/cases/{case}.yaml``) is YAML: ``format`` (:data:`CASE_FILE_VERSION`),
+``case_id``, ``config_sha256`` (:func:`rodimpact.io.provenance.config_sha256` of the case),
+``case`` (the resolved case) and ``derived`` (its scales and costs) or, for a sweep case,
+``points`` (each point's values and derived scales); see :mod:`rodimpact.workflow.cases`.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any, Mapping
+
+import yaml
+
+from rodimpact.io.atomic import atomic_output
+from rodimpact.io.provenance import config_sha256, file_sha256
+
+__all__ = ["CASE_FILE_VERSION", "case_file_reference", "read_case_file", "write_case_record"]
+
+#: Format of the case file (``format`` at its top).
+CASE_FILE_VERSION = 1
+
+
+def write_case_record(record: Mapping[str, Any], path: str | Path) -> None:
+    """Write a case file's record as YAML (atomically), under a comment that says what it is."""
+    header = (f"# The resolved case {record['case_id']!r} (from {record['case'].get('source_file', '?')}), with the\n"
+              "# scales derived from it and the cost of each method: what its runs compute. Written by the\n"
+              "# workflow (rule case_file); edit the case under config/cases, not this file.\n")
+    with atomic_output(path) as tmp:
+        tmp.write_text(header + yaml.safe_dump(dict(record), sort_keys=False, allow_unicode=True, width=100),
+                       encoding="utf-8")
+
+
+def read_case_file(path: str | Path) -> dict[str, Any]:
+    """Read a case file, checking that its case still has the hash it was written with.
+
+    Raises
+    ------
+    ValueError
+        The file is not a case file, or its case was edited after it was written.
+    """
+    record = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
+    if not isinstance(record, dict) or record.get("format") != CASE_FILE_VERSION or "case" not in record:
+        raise ValueError(f"{path}: not a case file (format {CASE_FILE_VERSION})")
+    if config_sha256(record["case"]) != record.get("config_sha256"):
+        raise ValueError(f"{path}: its case differs from the hash it was written with (edited by hand?)")
+    return record
+
+
+def case_file_reference(path: str | Path) -> dict[str, str]:
+    """What a run records of the case file it was made from: its path, its SHA-256 and the
+    hash of the case it holds (``config_sha256``, which only a change of the case changes)."""
+    record = read_case_file(path)
+    return {"path": str(path), "sha256": file_sha256(path), "config_sha256": record["config_sha256"]}
