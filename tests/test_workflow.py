@@ -696,17 +696,6 @@ def test_a_methods_code_change_reruns_only_its_runs(built: Path, tmp_path: Path)
     assert reruns and all("fem_axi" in path for path in reruns), sorted(reruns)
 
 
-def test_a_new_cost_calibration_rewrites_the_case_files_and_reruns_no_solver(built: Path, tmp_path: Path) -> None:
-    project = clone_built(built, tmp_path / "project")
-    with open(project / "src/rodimpact/solvers/sem/cost.py", "a", encoding="utf-8") as handle:
-        handle.write("# touched\n")
-    run = snakemake(project, "-n", "-j2")
-    assert run.returncode == 0, run.describe()
-    stats = job_stats(run.output)
-    assert stats.get("case_file") == len(list((project / "results/cases").glob("*.yaml"))), run.describe()
-    assert not {rule for rule in stats if rule.startswith("solve")}, run.describe()
-
-
 def test_figure_code_change_reruns_no_solver(built: Path, tmp_path: Path) -> None:
     """Each rule depends on the modules its script imports, not on the whole package."""
     project = clone_built(built, tmp_path / "project")
@@ -727,7 +716,7 @@ def test_figure_code_change_reruns_no_solver(built: Path, tmp_path: Path) -> Non
 def test_jobs_run_the_checkouts_own_code(tmp_path: Path) -> None:
     """A job imports the copy's src/, not the repository's installed package."""
     project = copy_project(tmp_path / "project")
-    runner = project / "src" / "rodimpact" / "runner.py"
+    runner = project / "src" / "rodimpact" / "workflow" / "runner.py"
     runner.write_text(runner.read_text() + '\nraise ImportError("runner.py of the copy")\n')
     run = snakemake(project, "-j1", run_path("model", "sem"), timeout=BUILD_TIMEOUT_S)
     assert run.returncode != 0, run.describe()
@@ -943,7 +932,7 @@ def test_report_captions_name_no_method_or_setting() -> None:
     assert len(templates) >= 10
     for path in templates:
         text = path.read_text(encoding="utf-8")
-        assert "own_settings" not in text and '"steps_per_contact"' not in text, path.name
+        assert "own_settings" not in text and '"tolerance", "energy_tolerance"' not in text, path.name
 
 
 def test_report_is_self_contained_and_captioned(built: Path, tmp_path: Path) -> None:

@@ -1,7 +1,13 @@
 # Cases: the first stage of the chain. One YAML file per case (or sweep case): the resolved
 # case with its derived scales and each method's step and cost. Every solver rule takes it
-# as an input (ancient: the case's own hash, a parameter, decides reruns, so that a new cost
-# calibration rewrites the file without rerunning a solver).
+# as an input, so a change of the case reruns that case's chain and nothing else. The file
+# holds the cost model's estimates: a new calibration of the cost model rewrites the case
+# files and so reruns the runs whose file changed. A case file takes a fraction of a second:
+# on a cluster it is written on the head node, not submitted.
+
+localrules:
+    case_file,
+
 
 
 rule case_file:

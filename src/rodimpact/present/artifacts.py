@@ -13,9 +13,13 @@ from rodimpact.analysis.stability_study import StudyViolation, map_frame, stabil
 from rodimpact.analysis.work_precision import observed_orders, work_precision_frame
 from rodimpact.io.sidecar import provenance_record, write_provenance
 from rodimpact.io.store import read_run
-from rodimpact.present.figures import (plot_contact_force, plot_station_displacement, plot_table2_contact_time, save_figure)
+from rodimpact.present.figures import (
+    plot_contact_force, plot_station_displacement, plot_table2_contact_time, save_figure
+)
 from rodimpact.present.study_figures import plot_stability_map, plot_work_precision
-from rodimpact.present.tables import (comparison_frame, load_records, sweep_results_frame, table2_frame, variants_summary, write_table)
+from rodimpact.present.tables import (
+    comparison_frame, load_records, sweep_results_frame, table2_frame, variants_summary, write_table
+)
 
 __all__ = ["make_comparison", "make_fig2", "make_fig4", "make_fig_table2", "make_stability",
            "make_stability_map", "make_sweep_table", "make_table2", "make_table2_variants", "make_work_precision",

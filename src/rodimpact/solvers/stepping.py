@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 from rodimpact.solvers.options import Options, setting
 
-__all__ = ["SteppingOptions", "limit_reached"]
+__all__ = ["Outcome", "SteppingOptions", "limit_reached"]
 
 
 @dataclass(frozen=True)
@@ -24,6 +24,15 @@ class SteppingOptions(Options):
     max_contacts: int = setting(
         50, "Largest number of successive contacts (the impactor re-striking the rod) that are followed.",
         kind=int, minimum=1)
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """How a run ended: its status (``completed``, ``truncated``, ``failed``), why, and its wall time, s."""
+
+    status: str
+    message: str
+    wall_time_s: float
 
 
 def limit_reached(starts: list[float], ends: list[float], t: float, t_max: float, options: SteppingOptions

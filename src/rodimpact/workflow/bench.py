@@ -21,7 +21,10 @@ from rodimpact.solvers.fem_axi.problem import AxiImpact
 from rodimpact.solvers.fem_axi.solver import solve_fem_axi
 from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
-from rodimpact.workflow.bench_plan import (FEM1D_REFERENCE_STEPS, FEM1D_REPEATS, FEM1D_SETTINGS, FEM_AXI_SEM_STEPS, SEM_IMPLICIT_STEPS, SEM_PAPER_STEPS, SEM_REFERENCE_STEPS, SEM_REPEATS)
+from rodimpact.workflow.bench_plan import (
+    FEM1D_REFERENCE_STEPS, FEM1D_REPEATS, FEM1D_SETTINGS, FEM_AXI_SEM_STEPS, SEM_IMPLICIT_STEPS,
+    SEM_PAPER_STEPS, SEM_REFERENCE_STEPS, SEM_REPEATS
+)
 from rodimpact.workflow.machine import machine_info
 from rodimpact.workflow.resources import estimate_resources
 

@@ -10,8 +10,8 @@ for each point of its grid.
 Every solver rule takes the file as an input and every run records it (``run.case_file`` in
 the run's config: its path, its SHA-256 and the hash of the case it holds), so a run traces
 back to it; a change of the case rewrites the file and reruns that case's runs only. The
-costs are the cost model's, so a new calibration rewrites the file without rerunning a
-solver (the rules take it as ``ancient``: the case's own hash, a rule parameter, decides).
+costs are the cost model's estimates: a new calibration rewrites the files, and reruns the
+runs whose file changed.
 """
 
 from __future__ import annotations

@@ -30,5 +30,6 @@ def fem1d_cost(case: Mapping[str, Any], options: FEM1DOptions) -> Cost:
     span = horizon(problem, options.max_time_factor, contact, end_test)
     steps = span / step + 1.0
     stations = len(case.get("stations", ()))
-    return Cost(time_step_s=step, steps=steps, solve_s=SOLVE_S + steps * (FEM1D_STEP_S + FEM1D_DOF_STEP_S * dofs),
+    return Cost(time_step_s=step, steps=steps,
+                solve_s=SOLVE_S + steps * (FEM1D_STEP_S + FEM1D_DOF_STEP_S * dofs),
                 mem_mib=(steps * (FEM1D_STEP_BYTES + 64.0 * stations) + dofs * FEM1D_DOF_BYTES) / MIB)

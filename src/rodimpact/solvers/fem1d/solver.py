@@ -31,7 +31,7 @@ from rodimpact.model.responses import Rod
 from rodimpact.solvers.fem1d.bar import BarModel, bar_model, end_vector
 from rodimpact.solvers.fem1d.options import FEM1DOptions
 from rodimpact.solvers.result import ImpactResult
-from rodimpact.solvers.stepping import limit_reached
+from rodimpact.solvers.stepping import Outcome, limit_reached
 
 __all__ = ["solve_fem1d"]
 
@@ -70,13 +70,6 @@ class _History:
     starts: list[float] = field(default_factory=lambda: [0.0])
     ends: list[float] = field(default_factory=list)
     n_newton: int = 0
-
-
-@dataclass(frozen=True)
-class _Outcome:
-    status: str
-    message: str
-    wall_time_s: float
 
 
 def _hermite_root(a0: float, a1: float, d0: float, d1: float, h: float) -> float:
@@ -189,7 +182,7 @@ def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
         if limit:
             status, message = limit
             break
-    return _result(problem, options, setup, hist, _Outcome(status, message, _time.perf_counter() - started))
+    return _result(problem, options, setup, hist, Outcome(status, message, _time.perf_counter() - started))
 
 
 def _no_further_contact(rod: Rod, x: float, w: float, rod_energy: float, static_end: float,
@@ -204,7 +197,7 @@ def _no_further_contact(rod: Rod, x: float, w: float, rod_energy: float, static_
 
 
 def _result(problem: ImpactProblem, options: FEM1DOptions, setup: _Setup, hist: _History,
-            outcome: _Outcome) -> ImpactResult:
+            outcome: Outcome) -> ImpactResult:
     time = np.asarray(hist.t)
     force = np.asarray(hist.force)
     alpha = np.asarray(hist.alpha)

@@ -82,5 +82,6 @@ def fem_axi_cost(case: Mapping[str, Any], options: FEMAxiOptions) -> Cost:
     span = horizon(problem, options.max_time_factor, contact, max(problem.rod.reflection_period, 0.25 * contact))
     dofs = fem_axi_dofs(case)
     steps = span / step + 1.0
-    return Cost(time_step_s=step, steps=steps, solve_s=SOLVE_S + dofs * (FEM_AXI_SETUP_DOF_S + FEM_AXI_DOF_STEP_S * steps),
+    return Cost(time_step_s=step, steps=steps,
+                solve_s=SOLVE_S + dofs * (FEM_AXI_SETUP_DOF_S + FEM_AXI_DOF_STEP_S * steps),
                 mem_mib=dofs * FEM_AXI_DOF_BYTES / MIB)

@@ -35,7 +35,7 @@ from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact, AxiScales
 from rodimpact.solvers.options import OptionError
 from rodimpact.solvers.result import ImpactResult
-from rodimpact.solvers.stepping import limit_reached
+from rodimpact.solvers.stepping import Outcome, limit_reached
 
 __all__ = ["AxiModel", "build_model", "solve_fem_axi"]
 
@@ -84,14 +84,6 @@ class _History:
     starts: list[float] = field(default_factory=lambda: [0.0])
     ends: list[float] = field(default_factory=list)
     n_lcp: int = 0
-
-
-@dataclass(frozen=True)
-class _Outcome:
-    status: str
-    message: str
-    h: float
-    wall_time_s: float
 
 
 def _basis(mesh, element: str) -> Basis:
@@ -274,11 +266,11 @@ def solve_fem_axi(problem: AxiImpact, options: FEMAxiOptions | None = None,
             status, message = limit
             break
     return _result(problem, model, hist, tuple(float(s) for s in stations),
-                   _Outcome(status, message, h, _time.perf_counter() - started))
+                   Outcome(status, message, _time.perf_counter() - started), h)
 
 
 def _result(problem: AxiImpact, model: AxiModel, hist: _History, stations: tuple[float, ...],
-            outcome: _Outcome) -> ImpactResult:
+            outcome: Outcome, h: float) -> ImpactResult:
     rod, imp, length = model.rod, model.impactor, problem.rod_length_m
     time = np.asarray(hist.t)
     force = np.asarray(hist.force)
@@ -312,7 +304,7 @@ def _result(problem: AxiImpact, model: AxiModel, hist: _History, stations: tuple
         series["station_strain"] = ((values[:, :, 2] - values[:, :, 1]) / (2e-4 * length), "1",
                                     "cross-section mean axial strain at station_x_m (negative in compression)")
         extra["station_x_m"] = np.asarray([s * length for s in stations])
-    status, message, h = outcome.status, outcome.message, outcome.h
+    status, message = outcome.status, outcome.message
     if status != "failed" and not math.isfinite(energy_error):
         status, message = "failed", "non-finite energy balance"
     return ImpactResult(

@@ -41,5 +41,6 @@ def sem_cost(case: Mapping[str, Any], options: SEMOptions | PaperSEMOptions) -> 
     stored = min(span / step, float(options.max_steps)) + 1.0
     rounds = 1.0 + (0.5 * span / period if math.isfinite(period) else 0.0)
     stations = len(case.get("stations", ()))
-    return Cost(time_step_s=step, steps=stored, solve_s=SOLVE_S + work * stored * (SEM_STEP_S + SEM_REFLECTION_S * rounds),
+    return Cost(time_step_s=step, steps=stored,
+                solve_s=SOLVE_S + work * stored * (SEM_STEP_S + SEM_REFLECTION_S * rounds),
                 mem_mib=stored * (SEM_STEP_BYTES + 64.0 * stations) / MIB)

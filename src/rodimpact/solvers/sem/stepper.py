@@ -16,7 +16,7 @@ from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.result import ImpactResult
 from rodimpact.solvers.sem.history import ForceHistory
 from rodimpact.solvers.sem.stability import paper_step_limit
-from rodimpact.solvers.stepping import limit_reached
+from rodimpact.solvers.stepping import Outcome, limit_reached
 
 __all__ = ["run_fixed_step"]
 
@@ -201,7 +201,7 @@ def run_fixed_step(problem: ImpactProblem, options: Any, h: float, stations: tup
             break
     if st.in_contact:
         st.starts = st.starts[: len(st.ends)]
-    return _result(st, status, message, _time.perf_counter() - started, stations, extra)
+    return _result(st, Outcome(status, message, _time.perf_counter() - started), stations, extra)
 
 
 def _histories(st: _Stepper, stations: tuple[float, ...], rod_energy: np.ndarray) -> tuple[dict, dict]:
@@ -238,8 +238,9 @@ def _scales(problem: ImpactProblem) -> dict[str, float]:
             "paper_step_limit_s": paper_step_limit(problem)}
 
 
-def _result(st: _Stepper, status: str, message: str, wall: float,
-            stations: tuple[float, ...] = (), extra_summary: dict | None = None) -> ImpactResult:
+def _result(st: _Stepper, outcome: Outcome, stations: tuple[float, ...] = (),
+            extra_summary: dict | None = None) -> ImpactResult:
+    status, message = outcome.status, outcome.message
     t = np.asarray(st.hist.t)
     p = np.asarray(st.hist.P)
     u = np.asarray(st.u)
@@ -290,7 +291,7 @@ def _result(st: _Stepper, status: str, message: str, wall: float,
         n_steps=len(t) - 1,
         n_newton_iterations=st.n_newton,
         n_events=st.n_events,
-        wall_time_s=wall,
+        wall_time_s=outcome.wall_time_s,
         extra={**extra, "sawtooth_amplitude": sawtooth, "zigzag_steps": zigzag, **_scales(problem),
                **(extra_summary or {})},
         extra_series=series,
