@@ -28,8 +28,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.integrate import quad
-from scipy.optimize import brentq
 
 __all__ = ["ContactLaw", "RigidImpact", "StepNotConverged"]
 
@@ -165,6 +163,11 @@ class ContactLaw(abc.ABC):
             - E(alpha)) / m, integrated in u = sqrt(alpha_max - alpha), which removes the
             inverse square root at the turning point.
         """
+        # imported here: a law with a closed form (Hertz) never needs them, and the
+        # configuration check of every workflow job should not pay for them
+        from scipy.integrate import quad
+        from scipy.optimize import brentq
+
         _check_positive(mass_kg=mass_kg, velocity_m_s=velocity_m_s)
         kinetic = 0.5 * mass_kg * velocity_m_s**2
         upper = velocity_m_s * 1e-9
