@@ -16,7 +16,7 @@ from rodimpact.io.provenance import library_versions
 from rodimpact.io.store import read_summary, write_run
 from rodimpact.io.sidecar import write_provenance
 
-ROOT = Path(__file__).resolve().parents[1]
+from conftest import ROOT
 HEAD = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
                       check=True).stdout.strip()
 VERSION = f"0.1.0+g{HEAD}"

@@ -11,7 +11,9 @@ import pytest
 from skfem import Basis, ElementTriP1, ElementTriP2, ElementVector, Functional, LinearForm
 from skfem import MeshTri, asm, condense, solve
 
-from rodimpact.solvers.fem_axi.axisym import (axis_dofs, axisym_load, axisym_mass, axisym_stiffness, component_dofs, cross_section_mean_uz, strain)
+from rodimpact.solvers.fem_axi.axisym import (
+    axis_dofs, axisym_load, axisym_mass, axisym_stiffness, component_dofs, cross_section_mean_uz, strain
+)
 
 E, NU, RHO = 2.1e11, 0.30, 7800.0
 LAM = E * NU / ((1 + NU) * (1 - 2 * NU))

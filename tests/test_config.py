@@ -20,7 +20,7 @@ from rodimpact.io.config import METHODS, OUTPUTS, Project, load_global_config, l
 from rodimpact.solvers.registry import METHODS as REGISTRY
 from rodimpact.io.project import ConfigError
 
-ROOT = Path(__file__).resolve().parents[1]
+from conftest import ROOT
 SCHEMAS = ROOT / "workflow" / "schemas"
 ROWS = ["ball_3.16mm", "ball_4.75mm", "ball_5.56mm", "ball_6.34mm", "ball_9.51mm", "ball_12.73mm"]
 VARIANTS = {  # name -> (rod radius, rod length), m
@@ -60,8 +60,9 @@ def error_of(root: Path) -> str:
 
 
 @pytest.fixture(scope="module")
-def shipped() -> Project:
-    return load(ROOT)
+def shipped(shipped_project: Project) -> Project:
+    """The shipped project (conftest.py), under the name these tests use."""
+    return shipped_project
 
 
 # --------------------------------------------------------------------------- shipped config

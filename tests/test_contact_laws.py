@@ -17,7 +17,6 @@ import pytest
 
 from rodimpact.contact.hertz import HertzLaw, hertz_constant
 from rodimpact.contact.law import ContactLaw, RigidImpact
-from rodimpact.model.materials import Material
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.model.responses import Rod
 from rodimpact.solvers.fem1d.options import FEM1DOptions
@@ -26,7 +25,7 @@ from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
 from rodimpact.solvers.sem.stability import paper_step_limit
 
-STEEL = Material(2.1e11, 0.30, 7800.0, "steel")
+from conftest import STEEL
 
 
 @dataclass(frozen=True)

@@ -6,11 +6,9 @@ import math
 import numpy as np
 import pytest
 
-from rodimpact.io.config import load_global_config, load_project
 from rodimpact.solvers.fem1d.options import FEM1DOptions
 from rodimpact.solvers.fem1d.solver import solve_fem1d
 from rodimpact.contact.hertz import HertzLaw, hertz_constant
-from rodimpact.model.materials import Material
 from rodimpact.model.responses import Rod
 from rodimpact.workflow.runner import run_case
 from rodimpact.model.problem import ImpactProblem
@@ -18,12 +16,7 @@ from rodimpact.solvers.sem.options import SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
 from rodimpact.solvers.sem.history import ForceHistory
 
-STEEL = Material(2.1e11, 0.30, 7800.0, "steel")
-ROOT = __import__("pathlib").Path(__file__).resolve().parents[1]
-
-
-def model_problem():
-    return ImpactProblem(0.5, 1.0, HertzLaw(hertz_constant(0.01, STEEL)), Rod(0.5, 5e-5, STEEL))
+from conftest import ALUMINIUM, STEEL, model_problem
 
 
 def fem(problem, **options):
@@ -43,9 +36,8 @@ def errors(result, ref):
 
 
 @pytest.fixture(scope="module")
-def shipped_model():
-    project = load_project(load_global_config(ROOT / "config/config.yaml"), root=ROOT)
-    case = project.cases["model"]
+def shipped_model(shipped_project):
+    case = shipped_project.cases["model"]
     return run_case(case, "fem1d"), run_case(case, "sem")
 
 
@@ -107,7 +99,7 @@ def test_energy_is_conserved_up_to_the_contact_quadrature():
 
 def test_second_contact_matches_the_sem():
     """Steel ball of 0.71 g on the thin 301 mm aluminium rod strikes twice."""
-    alu = Material(7.342e10, 0.34, 2696.6, "aluminium")
+    alu = ALUMINIUM
     problem = ImpactProblem(0.71e-3, 0.3225, HertzLaw(hertz_constant(2.78e-3, STEEL, alu)), Rod(0.301, math.pi * 1e-6, alu))
     sem = solve_sem(problem, SEMOptions(steps_per_contact=2000))
     result = fem(problem)

@@ -10,21 +10,22 @@ import pytest
 from skfem import Basis, ElementTriP2, ElementVector
 
 from rodimpact.solvers.fem_axi.axibody import AxiBody, dofs_of
-from rodimpact.solvers.fem_axi.axisym import (axis_dofs, axisym_load, axisym_mass, axisym_stiffness, cross_section_mean_uz)
+from rodimpact.solvers.fem_axi.axisym import (
+    axis_dofs, axisym_load, axisym_mass, axisym_stiffness, cross_section_mean_uz
+)
 from rodimpact.solvers.fem_axi.problem import AxiImpact
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.solver import solve_fem_axi
 from rodimpact.solvers.fem_axi.indentation import static_indentation
 from rodimpact.solvers.fem_axi.meshes import rod_mesh
 from rodimpact.contact.hertz import HertzLaw, effective_modulus, hertz_constant
-from rodimpact.model.materials import Material
 from rodimpact.model.responses import Rod
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.sem.options import SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
 from rodimpact.solvers.sem.history import ForceHistory
 
-STEEL = Material(2.1e11, 0.30, 7800.0, "steel")
+from conftest import STEEL
 
 
 def test_static_indentation_is_hertzian():

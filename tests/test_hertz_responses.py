@@ -8,10 +8,12 @@ from scipy.integrate import cumulative_trapezoid, quad, solve_ivp
 
 from rodimpact.contact.hertz import HERTZ_TIME_FACTOR, effective_modulus, hertz_constant, hertz_rigid_impact
 from rodimpact.model.materials import Material
-from rodimpact.model.responses import (Rod, impactor_impulse_response, impactor_ramp_response, paper_rod_ramp_response, rod_impulse_response, rod_ramp_response, rod_step_response)
+from rodimpact.model.responses import (
+    Rod, impactor_impulse_response, impactor_ramp_response, paper_rod_ramp_response, rod_impulse_response,
+    rod_ramp_response, rod_step_response
+)
 
-STEEL = Material(2.1e11, 0.30, 7800.0, "steel")
-ALU = Material(7.342e10, 0.34, 2696.6, "aluminium")
+from conftest import ALUMINIUM as ALU, STEEL
 
 
 def test_hertz_constant_one_material_is_the_papers_formula():

@@ -13,22 +13,22 @@ import pytest
 
 from rodimpact.workflow.bench_plan import fem_bench_runs, sem_bench_runs
 from rodimpact.workflow.bench import resource_margins
-from rodimpact.io.config import load_global_config, load_project
-from rodimpact.workflow.resources import (MIN_MEM_MB, MIN_RUNTIME_MIN, PRESENTATION, SAFETY, JobResources, estimate_resources, estimate_sequence)
+from rodimpact.workflow.resources import (
+    MIN_MEM_MB, MIN_RUNTIME_MIN, PRESENTATION, SAFETY, JobResources, estimate_resources, estimate_sequence
+)
 from rodimpact.solvers.fem_axi.cost import fem_axi_dofs
 from rodimpact.workflow.sources import module_sources
 from rodimpact.analysis.studies import level_case
 
-REPO = Path(__file__).resolve().parents[1]
+from conftest import ROOT as REPO
 SRC = REPO / "src"
 #: A coarse fem_axi run (the level the workflow tests use): a few seconds.
 COARSE_AXI = {"elements_across": 4, "steps_per_contact": 80}
 
 
 @pytest.fixture(scope="module")
-def project():
-    config = load_global_config(REPO / "config" / "config.yaml")
-    return config, load_project(config, root=REPO)
+def project(shipped_config, shipped_project):
+    return shipped_config, shipped_project
 
 
 @pytest.fixture(scope="module")

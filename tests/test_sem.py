@@ -8,19 +8,13 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from rodimpact.contact.hertz import HertzLaw, hertz_constant
-from rodimpact.model.materials import Material
 from rodimpact.model.responses import Rod
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
 from rodimpact.analysis.signals import local_maxima
 from rodimpact.solvers.sem.solver import solve_sem
 
-STEEL = Material(2.1e11, 0.30, 7800.0, "steel")
-
-
-def model_problem(far_end="fixed"):
-    """Table 1, column Model."""
-    return ImpactProblem(0.5, 1.0, HertzLaw(hertz_constant(0.01, STEEL)), Rod(0.5, 5e-5, STEEL, far_end))
+from conftest import ALUMINIUM, STEEL, model_problem
 
 
 def solve(problem, n, scheme="implicit", **kw):
@@ -158,7 +152,7 @@ def test_implicit_scheme_stable_where_the_papers_scheme_is_not():
 
 def test_second_contact_is_detected_and_resolution_independent():
     """Steel ball of 0.71 g on a thin aluminium rod 301 mm long: the ball strikes twice."""
-    alu = Material(7.342e10, 0.34, 2696.6, "aluminium")
+    alu = ALUMINIUM
     problem = ImpactProblem(0.71e-3, 0.3225, HertzLaw(hertz_constant(2.78e-3, STEEL, alu)),
                             Rod(0.301, math.pi * 1e-6, alu))
     results = [solve(problem, n) for n in (1000, 4000)]

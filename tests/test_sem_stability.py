@@ -9,7 +9,6 @@ import pytest
 from rodimpact.io.project import ConfigError
 from rodimpact.io.config import load_global_config, load_project
 from rodimpact.contact.hertz import HertzLaw, hertz_constant
-from rodimpact.model.materials import Material
 from rodimpact.model.responses import Rod
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
@@ -17,11 +16,7 @@ from rodimpact.solvers.sem.stability import UnstableStepError, paper_step_limit
 from rodimpact.solvers.sem.solver import solve_sem
 from rodimpact.analysis.signals import sawtooth_amplitude
 
-STEEL = Material(2.1e11, 0.30, 7800.0, "steel")
-
-
-def model_problem():
-    return ImpactProblem(0.5, 1.0, HertzLaw(hertz_constant(0.01, STEEL)), Rod(0.5, 5e-5, STEEL))
+from conftest import STEEL, model_problem
 
 
 def _jury_stable(h, kc, z, m):

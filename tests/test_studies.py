@@ -5,29 +5,26 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-from rodimpact.io.config import load_global_config, load_project
 from rodimpact.workflow.runner import SolverFailed, Timing, run_to_file
 from rodimpact.io.store import read_run
 from rodimpact.analysis.stability_study import map_frame, stability_frame, violations
 from rodimpact.analysis.studies import level_case, map_point_case, map_point_names, reference_case
 from rodimpact.analysis.work_precision import observed_orders, work_precision_frame
 
-ROOT = Path(__file__).resolve().parents[1]
 
 
 @pytest.fixture(scope="module")
-def config():
-    return load_global_config(ROOT / "config" / "config.yaml")
+def config(shipped_config):
+    return shipped_config
 
 
 @pytest.fixture(scope="module")
-def project(config):
-    return load_project(config, root=ROOT)
+def project(shipped_project):
+    return shipped_project
 
 
 def test_map_point_has_the_asked_mass_and_impedance(project, config):

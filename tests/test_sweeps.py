@@ -9,16 +9,14 @@ import numpy as np
 import pytest
 from snakemake.utils import Paramspace
 
-from rodimpact.io.config import load_global_config, load_project
 from rodimpact.analysis.sweeps import SWEEP_PARAMETERS, sweep_frame, sweep_point_case, sweep_values
 from rodimpact.present.tables import sweep_results_frame
 
-ROOT = Path(__file__).resolve().parents[1]
 
 
 @pytest.fixture(scope="module")
-def project():
-    return load_project(load_global_config(ROOT / "config" / "config.yaml"), root=ROOT)
+def project(shipped_project):
+    return shipped_project
 
 
 def test_log_range_has_its_endpoints_and_constant_ratio() -> None:

@@ -11,13 +11,10 @@ from __future__ import annotations
 
 import itertools
 import math
-from pathlib import Path
 
 import pytest
 
-from rodimpact.io.config import load_global_config, load_project
 
-ROOT = Path(__file__).resolve().parents[1]
 
 # Table 2 as printed: diameter ("m", in fact mm), mass (g), contact time (us): experiment,
 # FEM, SEM; error of the method (%): FEM, SEM.
@@ -34,10 +31,9 @@ STEEL_DENSITY = 7800.0  # kg/m^3 (docs/paper-notes.md, "Table 2" and "Materials"
 
 
 @pytest.fixture(scope="module")
-def rows() -> list[dict]:
+def rows(shipped_project) -> list[dict]:
     """One resolved case per Table 2 row (the variant only changes the rod)."""
-    project = load_project(load_global_config(ROOT / "config" / "config.yaml"), root=ROOT)
-    return project.cases_in("table2", "r10_l30")
+    return shipped_project.cases_in("table2", "r10_l30")
 
 
 def test_config_holds_the_printed_table(rows: list[dict]) -> None:

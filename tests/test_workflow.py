@@ -41,7 +41,7 @@ from rodimpact.io.store import REQUIRED_SUMMARY, read_run, read_summary
 
 pytestmark = pytest.mark.workflow
 
-REPO_ROOT = Path(__file__).resolve().parents[1]
+from conftest import ROOT as REPO_ROOT
 PROJECT_PARTS = ("Snakefile", "config", "workflow", "src")
 TABLE2_VARIANTS = ("r10_l30", "r1_l301", "r1_l30", "r10_l301")
 ROOT_ATTRS = (

@@ -3,7 +3,7 @@
     .venv/bin/python tests/golden/regenerate.py
 
 A change of method that moves these numbers must update the golden file in the same commit
-and say why in the commit message (see README.md, "Regression of the published numbers").
+and say why in the commit message (see docs/verification.md, "Regression of the published numbers").
 """
 
 from __future__ import annotations

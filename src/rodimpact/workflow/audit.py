@@ -31,10 +31,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from rodimpact.io.casefile import read_case_file
 from rodimpact.io.provenance import (
     canonical_json, commit_exists, data_sha256, file_sha256, find_repo_root, library_versions
 )
-from rodimpact.io.casefile import read_case_file
 from rodimpact.io.store import StoreError, read_run, read_summary
 
 logger = logging.getLogger(__name__)

@@ -1,0 +1,59 @@
+"""What the tests share: the repository root, the materials of the paper's cases, the Model
+problem of Table 1, and the shipped configuration and project, loaded once per session.
+
+The constants are importable (``from conftest import STEEL``, pytest puts this directory on
+the path) where a module needs them outside a test function; fixtures give the same objects.
+The shipped project is read-only: a test that changes a case changes a ``copy.deepcopy`` of it.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from rodimpact.contact.hertz import HertzLaw, hertz_constant
+from rodimpact.io.config import load_global_config, load_project
+from rodimpact.io.project import Project
+from rodimpact.model.materials import Material
+from rodimpact.model.problem import ImpactProblem
+from rodimpact.model.responses import Rod
+
+#: The repository: config/, workflow/, src/.
+ROOT = Path(__file__).resolve().parents[1]
+#: The balls and the Model column of Table 1 (docs/paper-notes.md, "Materials").
+STEEL = Material(2.1e11, 0.30, 7800.0, "steel")
+#: The experiment's rod: Table 1, column Experiment (docs/paper-notes.md, "Materials").
+ALUMINIUM = Material(7.342e10, 0.34, 2696.6, "aluminium")
+
+
+def model_problem(far_end: str = "fixed") -> ImpactProblem:
+    """Table 1, column Model: a 0.5 kg steel impactor (R = 10 mm) at 1 m/s on a 0.5 m steel rod."""
+    return ImpactProblem(0.5, 1.0, HertzLaw(hertz_constant(0.01, STEEL)), Rod(0.5, 5e-5, STEEL, far_end))
+
+
+@pytest.fixture(scope="session")
+def root() -> Path:
+    return ROOT
+
+
+@pytest.fixture(scope="session")
+def steel() -> Material:
+    return STEEL
+
+
+@pytest.fixture(scope="session")
+def aluminium() -> Material:
+    return ALUMINIUM
+
+
+@pytest.fixture(scope="session")
+def shipped_config() -> dict:
+    """config/config.yaml, checked, every default filled in."""
+    return load_global_config(ROOT / "config" / "config.yaml")
+
+
+@pytest.fixture(scope="session")
+def shipped_project(shipped_config: dict) -> Project:
+    """Every shipped case, resolved (read-only)."""
+    return load_project(shipped_config, root=ROOT)
