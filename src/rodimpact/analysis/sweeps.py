@@ -16,11 +16,11 @@ from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
 logger = logging.getLogger(__name__)
 
-__all__ = ["SWEEP_PARAMETERS", "SIGNIFICANT_DIGITS", "SweepError", "sweep_frame", "sweep_point_case", "sweep_values"]
+__all__ = ["SWEEP_PARAMETERS", "SIGNIFICANT_DIGITS", "SweepError", "sweep_frame", "sweep_point_case", "sweep_points",
+           "sweep_values"]
 
 
 class SweepError(ValueError):
@@ -108,8 +108,8 @@ def sweep_values(spec: Sequence[float] | Mapping[str, Any]) -> list[float]:
     return values
 
 
-def sweep_frame(sweep: Mapping[str, Any]) -> pd.DataFrame:
-    """The sweep's grid: one float column per parameter (declared order), one row per point.
+def sweep_points(sweep: Mapping[str, Any]) -> list[dict[str, float]]:
+    """The sweep's grid: one mapping parameter -> value per point, parameters in declared order.
 
     Parameters
     ----------
@@ -135,8 +135,16 @@ def sweep_frame(sweep: Mapping[str, Any]) -> pd.DataFrame:
             raise SweepError(field, error.reason) from None
         except (ValueError, KeyError, TypeError) as error:
             raise SweepError(f"parameters.{name}", str(error)) from None
-    rows = list(itertools.product(*columns.values()))
-    return pd.DataFrame(rows, columns=list(columns), dtype=float)
+    return [dict(zip(columns, row)) for row in itertools.product(*columns.values())]
+
+
+def sweep_frame(sweep: Mapping[str, Any]) -> "pd.DataFrame":
+    """:func:`sweep_points` as a :class:`pandas.DataFrame` (one float column per parameter), the
+    form snakemake's ``Paramspace`` takes; same errors."""
+    import pandas as pd  # only the workflow's Paramspace needs it; the configuration check does not
+
+    points = sweep_points(sweep)
+    return pd.DataFrame(points, columns=list(points[0]), dtype=float)
 
 
 def sweep_point_case(case: Mapping[str, Any], point: Mapping[str, Any], name: str) -> dict[str, Any]:
@@ -147,7 +155,7 @@ def sweep_point_case(case: Mapping[str, Any], point: Mapping[str, Any], name: st
     case : mapping
         A resolved sweep case (with ``sweep``: ``methods``, ``parameters``).
     point : mapping
-        Parameter name -> value (SI units), e.g. a row of :func:`sweep_frame`.
+        Parameter name -> value (SI units), e.g. a point of :func:`sweep_points`.
     name : str
         The point's name (its Paramspace instance pattern), part of the run's id.
 

@@ -24,7 +24,7 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
-from rodimpact.analysis.sweeps import SweepError, sweep_frame, sweep_point_case
+from rodimpact.analysis.sweeps import SweepError, sweep_point_case, sweep_points
 from rodimpact.io.checks import check_run, check_stability, check_work_precision
 from rodimpact.io.project import ConfigError, Project, _File
 from rodimpact.io.schema import Schemas, YamlError, deep_merge, format_path, with_floats
@@ -298,13 +298,13 @@ class _ProjectBuilder:
     def _sweep(self, case: dict, sweep: dict, source: _File) -> dict:
         """The sweep case with its grid's values; every point's runs checked like a case's."""
         try:
-            frame = sweep_frame(sweep)
+            points = sweep_points(sweep)
         except SweepError as error:
             raise source.error(error.reason, case=case["id"], field=f"sweep.{error.field}") from None
-        parameters = {name: sorted(set(frame[name].tolist())) for name in frame.columns}
+        parameters = {name: sorted({point[name] for point in points}) for name in points[0]}
         case = {**case, "sweep": {"description": sweep["description"], "methods": list(sweep["methods"]),
                                   "parameters": parameters}}
-        for row in frame.to_dict("records"):
+        for row in points:
             try:
                 self._check_runs(sweep_point_case(case, row, "check"), source)
             except ConfigError as error:

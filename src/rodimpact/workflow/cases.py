@@ -22,7 +22,7 @@ import math
 from pathlib import Path
 from typing import Any, Mapping
 
-from rodimpact.analysis.sweeps import sweep_frame, sweep_point_case
+from rodimpact.analysis.sweeps import sweep_point_case, sweep_points
 from rodimpact.io.casefile import CASE_FILE_VERSION, write_case_record
 from rodimpact.io.provenance import config_sha256
 from rodimpact.model.problem import ImpactProblem
@@ -88,9 +88,8 @@ def case_file_record(case: Mapping[str, Any]) -> dict[str, Any]:
     record: dict[str, Any] = {"format": CASE_FILE_VERSION, "case_id": case["id"],
                               "config_sha256": config_sha256(case), "case": case}
     if "sweep" in case:
-        frame = sweep_frame(case["sweep"])
         record["points"] = {}
-        for index, point in enumerate(frame.to_dict("records")):
+        for point in sweep_points(case["sweep"]):
             name = "_".join(f"{key}~{value}" for key, value in point.items())
             record["points"][name] = {"values": {k: float(v) for k, v in point.items()},
                                       "derived": case_scales(sweep_point_case(case, point, name))}
