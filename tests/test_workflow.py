@@ -687,9 +687,7 @@ def test_a_methods_code_change_reruns_only_its_runs(built: Path, tmp_path: Path)
     project = clone_built(built, tmp_path / "project")
     with open(project / "src/rodimpact/solvers/fem_axi/solver.py", "a", encoding="utf-8") as handle:
         handle.write("# touched\n")
-    run = snakemake(project, "-n", "-j2")
-    assert run.returncode == 0, run.describe()
-    rows = summary(project)
+    rows = summary(project)  # what a run would rebuild, file by file
     reruns = {row["output_file"] for row in rows if row["plan"] == "update pending" and row["output_file"].endswith(".h5")}
     assert pending(rows, "solve") == {run_path(c["id"], "fem_axi") for c in project_cases(project).cases.values()
                                       if "fem_axi" in c["methods"] and c["set"] in ("model", "table2")}
