@@ -1,13 +1,18 @@
 """What the tests share: the repository root, the materials of the paper's cases, the Model
 problem of Table 1, and the shipped configuration and project, loaded once per session.
 
-The constants are importable (``from conftest import STEEL``, pytest puts this directory on
-the path) where a module needs them outside a test function; fixtures give the same objects.
-The shipped project is read-only: a test that changes a case changes a ``copy.deepcopy`` of it.
+The constants are importable (``from conftest import STEEL``: tests/ has no ``__init__.py``, so
+pytest's default "prepend" import mode puts this directory on ``sys.path``) where a module needs
+them outside a test function; fixtures give the same objects.
+The shipped configuration and project are read-only: a test that changes a case changes a
+``copy.deepcopy`` of it. Their fixtures check this when the session ends.
 """
 
 from __future__ import annotations
 
+import copy
+import math
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -32,6 +37,13 @@ def model_problem(far_end: str = "fixed") -> ImpactProblem:
     return ImpactProblem(0.5, 1.0, HertzLaw(hertz_constant(0.01, STEEL)), Rod(0.5, 5e-5, STEEL, far_end))
 
 
+def two_contact_problem() -> ImpactProblem:
+    """Table 2's 5.56 mm steel ball (0.71 g, R = 2.78 mm) at 0.3225 m/s on the thin 301 mm
+    aluminium rod (radius 1 mm): the ball strikes twice."""
+    return ImpactProblem(0.71e-3, 0.3225, HertzLaw(hertz_constant(2.78e-3, STEEL, ALUMINIUM)),
+                         Rod(0.301, math.pi * 1e-6, ALUMINIUM))
+
+
 @pytest.fixture(scope="session")
 def root() -> Path:
     return ROOT
@@ -47,13 +59,23 @@ def aluminium() -> Material:
     return ALUMINIUM
 
 
-@pytest.fixture(scope="session")
-def shipped_config() -> dict:
-    """config/config.yaml, checked, every default filled in."""
-    return load_global_config(ROOT / "config" / "config.yaml")
+def _unchanged(shared, pristine, name: str) -> None:
+    assert shared == pristine, f"a test changed the session's {name}: change a copy.deepcopy of it instead"
 
 
 @pytest.fixture(scope="session")
-def shipped_project(shipped_config: dict) -> Project:
+def shipped_config() -> Iterator[dict]:
+    """config/config.yaml, checked, every default filled in (read-only)."""
+    config = load_global_config(ROOT / "config" / "config.yaml")
+    pristine = copy.deepcopy(config)
+    yield config
+    _unchanged(config, pristine, "shipped_config")
+
+
+@pytest.fixture(scope="session")
+def shipped_project(shipped_config: dict) -> Iterator[Project]:
     """Every shipped case, resolved (read-only)."""
-    return load_project(shipped_config, root=ROOT)
+    project = load_project(shipped_config, root=ROOT)
+    pristine = copy.deepcopy(project)
+    yield project
+    _unchanged(project, pristine, "shipped_project")

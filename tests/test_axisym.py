@@ -15,7 +15,9 @@ from rodimpact.solvers.fem_axi.axisym import (
     axis_dofs, axisym_load, axisym_mass, axisym_stiffness, component_dofs, cross_section_mean_uz, strain
 )
 
-E, NU, RHO = 2.1e11, 0.30, 7800.0
+from conftest import STEEL
+
+E, NU, RHO = STEEL.youngs_modulus_pa, STEEL.poisson_ratio, STEEL.density_kg_m3  # 2.1e11, 0.30, 7800.0
 LAM = E * NU / ((1 + NU) * (1 - 2 * NU))
 MU = E / (2 * (1 + NU))
 A, L = 0.01, 0.03  # cylinder radius and length, m

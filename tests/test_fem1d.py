@@ -1,22 +1,17 @@
 """fem1d against the SEM (same physics, independent discretisation) and against mathematics:
 observed orders in element size and time step, energy, d'Alembert's wave field."""
 
-import math
-
 import numpy as np
 import pytest
 
 from rodimpact.solvers.fem1d.options import FEM1DOptions
 from rodimpact.solvers.fem1d.solver import solve_fem1d
-from rodimpact.contact.hertz import HertzLaw, hertz_constant
-from rodimpact.model.responses import Rod
 from rodimpact.workflow.runner import run_case
-from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.sem.options import SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
 from rodimpact.solvers.sem.history import ForceHistory
 
-from conftest import ALUMINIUM, STEEL, model_problem
+from conftest import model_problem, two_contact_problem
 
 
 def fem(problem, **options):
@@ -99,8 +94,7 @@ def test_energy_is_conserved_up_to_the_contact_quadrature():
 
 def test_second_contact_matches_the_sem():
     """Steel ball of 0.71 g on the thin 301 mm aluminium rod strikes twice."""
-    alu = ALUMINIUM
-    problem = ImpactProblem(0.71e-3, 0.3225, HertzLaw(hertz_constant(2.78e-3, STEEL, alu)), Rod(0.301, math.pi * 1e-6, alu))
+    problem = two_contact_problem()
     sem = solve_sem(problem, SEMOptions(steps_per_contact=2000))
     result = fem(problem)
     assert result.n_contacts == sem.n_contacts == 2
@@ -109,7 +103,7 @@ def test_second_contact_matches_the_sem():
 
 
 def test_free_far_end():
-    problem = ImpactProblem(0.5, 1.0, HertzLaw(hertz_constant(0.01, STEEL)), Rod(0.5, 5e-5, STEEL, "free"))
+    problem = model_problem("free")
     sem = solve_sem(problem, SEMOptions(steps_per_contact=2000))
     result = fem(problem, element="P2", elements=60)
     assert result.contact_time_s == pytest.approx(sem.contact_time_s, rel=1e-4)

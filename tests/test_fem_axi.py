@@ -18,14 +18,13 @@ from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.solver import solve_fem_axi
 from rodimpact.solvers.fem_axi.indentation import static_indentation
 from rodimpact.solvers.fem_axi.meshes import rod_mesh
-from rodimpact.contact.hertz import HertzLaw, effective_modulus, hertz_constant
+from rodimpact.contact.hertz import effective_modulus, hertz_constant
 from rodimpact.model.responses import Rod
-from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.sem.options import SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
 from rodimpact.solvers.sem.history import ForceHistory
 
-from conftest import STEEL
+from conftest import STEEL, model_problem
 
 
 def test_static_indentation_is_hertzian():
@@ -94,8 +93,7 @@ def coarse_model():
 
 
 def test_coarse_model_is_close_to_the_sem(coarse_model):
-    sem = solve_sem(ImpactProblem(0.5, 1.0, HertzLaw(hertz_constant(0.01, STEEL)), Rod(0.5, 5e-5, STEEL)),
-                    SEMOptions(steps_per_contact=1000))
+    sem = solve_sem(model_problem(), SEMOptions(steps_per_contact=1000))
     assert coarse_model.success and coarse_model.n_contacts == 1
     assert coarse_model.contact_time_s == pytest.approx(sem.contact_time_s, rel=0.03)
     assert len(coarse_model.peak_force_N) == 3

@@ -13,7 +13,7 @@ from rodimpact.model.responses import (
     rod_ramp_response, rod_step_response
 )
 
-from conftest import ALUMINIUM as ALU, STEEL
+from conftest import ALUMINIUM as ALU, STEEL, model_problem
 
 
 def test_hertz_constant_one_material_is_the_papers_formula():
@@ -72,7 +72,8 @@ def test_hertz_rejects_bad_arguments():
 
 @pytest.fixture
 def rod():
-    return Rod(length_m=0.5, area_m2=5e-5, material=STEEL, far_end="fixed")
+    """The Model problem's rod: 0.5 m of steel, 5e-5 m^2, fixed far end."""
+    return model_problem().rod
 
 
 def test_ramp_response_matches_papers_printed_formulas(rod):

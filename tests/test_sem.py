@@ -14,7 +14,7 @@ from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
 from rodimpact.analysis.signals import local_maxima
 from rodimpact.solvers.sem.solver import solve_sem
 
-from conftest import ALUMINIUM, STEEL, model_problem
+from conftest import STEEL, model_problem, two_contact_problem
 
 
 def solve(problem, n, scheme="implicit", **kw):
@@ -152,9 +152,7 @@ def test_implicit_scheme_stable_where_the_papers_scheme_is_not():
 
 def test_second_contact_is_detected_and_resolution_independent():
     """Steel ball of 0.71 g on a thin aluminium rod 301 mm long: the ball strikes twice."""
-    alu = ALUMINIUM
-    problem = ImpactProblem(0.71e-3, 0.3225, HertzLaw(hertz_constant(2.78e-3, STEEL, alu)),
-                            Rod(0.301, math.pi * 1e-6, alu))
+    problem = two_contact_problem()
     results = [solve(problem, n) for n in (1000, 4000)]
     for r in results:
         assert r.n_contacts == 2
