@@ -74,6 +74,9 @@ class ContactLaw(abc.ABC):
     name: str = ""
     #: The law's name in words, for messages, legends and captions.
     label: str = ""
+    #: True when the law describes bodies a continuum method can mesh (a sphere, a flat, a
+    #: bonded film); False for a law that is only a force-approach curve.
+    continuum_form: bool = True
 
     @abc.abstractmethod
     def force(self, approach_m: float) -> float:
@@ -99,6 +102,11 @@ class ContactLaw(abc.ABC):
     def summary(self) -> dict[str, float | str]:
         """The law's name and parameters, stored with every run (``contact_law``, ...)."""
         return {"contact_law": self.name}
+
+    def run_summary(self, max_approach_m: float) -> dict[str, float]:
+        """Entries a run through this law adds to its summary, given the run's largest
+        approach, m (e.g. where the law stands in its range of validity); may log a warning."""
+        return {}
 
     def solve_step(self, a: float, b: float, guess: float) -> tuple[float, int]:
         """The root alpha >= 0 of alpha + b P(alpha) = a, and the iteration count.

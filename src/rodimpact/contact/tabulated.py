@@ -1,0 +1,254 @@
+"""A contact law given as a measured or computed curve P(alpha): the ``tabulated`` law.
+
+The curve comes from the continuum's static indentation of the case's own ball, film and
+rod (the workflow's ``indentation`` rule, written by :mod:`rodimpact.io.curves`); the 1-D
+methods then use it as their contact law, so the quasi-static contact is the continuum's
+and not the thin-layer or half-space idealisation.
+
+Interpolation: monotone piecewise-cubic Hermite (Fritsch-Carlson slopes, as
+``scipy.interpolate.PchipInterpolator``) of ln P against ln alpha. In these coordinates
+every power law P = C alpha^n is a straight line, which the interpolant reproduces exactly
+(Hertz's law, the thin film's P = c delta^2 at small loads), and the interpolant is monotone
+and C1, so P is monotone and dP/dalpha = n(alpha) P / alpha is continuous: the step solve
+has one root and the implicit scheme keeps its order. Outside the table the end slopes
+extend the curve as power laws (a run that reaches beyond the table's largest approach is
+reported in its summary). The interpolation error is measured by the indentation rule
+(every other point left out) and shown in ``results/tables/film_indentation.csv``.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass, field
+from typing import Any, Mapping
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from rodimpact.contact.film import HertzFilmLaw
+from rodimpact.contact.hertz import ElasticMaterial, HertzLaw
+from rodimpact.contact.law import ContactLaw
+
+__all__ = ["CurveMissing", "TabulatedLaw", "pchip_slopes"]
+
+log = logging.getLogger(__name__)
+
+# 8-point Gauss-Legendre nodes and weights on [0, 1]
+_GX, _GW = np.polynomial.legendre.leggauss(8)
+_GX, _GW = 0.5 * (_GX + 1.0), 0.5 * _GW
+
+
+class CurveMissing(ValueError):
+    """A ``tabulated`` law was built without its curve (``field``: where it belongs)."""
+
+    field = "contact.curve"
+
+
+def pchip_slopes(x: NDArray[np.float64], y: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Fritsch-Carlson slopes of the monotone cubic Hermite interpolant of (x, y).
+
+    Parameters
+    ----------
+    x, y : ndarray, shape (n,)
+        Strictly increasing abscissae (n >= 2) and the values.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        dy/dx at each node: the weighted harmonic mean of the neighbouring secants where they
+        have the same sign, 0 where they do not; the one-sided three-point formula at the
+        ends, limited to keep the interpolant monotone (as scipy's ``PchipInterpolator``).
+    """
+    h = np.diff(x)
+    delta = np.diff(y) / h
+    n = len(x)
+    d = np.zeros(n)
+    if n == 2:
+        return np.full(2, delta[0])
+    w1 = 2.0 * h[1:] + h[:-1]
+    w2 = h[1:] + 2.0 * h[:-1]
+    same = np.sign(delta[1:]) * np.sign(delta[:-1]) > 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        harmonic = (w1 + w2) / (w1 / delta[:-1] + w2 / delta[1:])
+    d[1:-1] = np.where(same, harmonic, 0.0)
+    for end, (h0, h1, m0, m1) in ((0, (h[0], h[1], delta[0], delta[1])), (-1, (h[-1], h[-2], delta[-1], delta[-2]))):
+        slope = ((2.0 * h0 + h1) * m0 - h0 * m1) / (h0 + h1)
+        if np.sign(slope) != np.sign(m0):
+            slope = 0.0
+        elif np.sign(m0) != np.sign(m1) and abs(slope) > abs(3.0 * m0):
+            slope = 3.0 * m0
+        d[end] = slope
+    return d
+
+
+@dataclass(frozen=True)
+class TabulatedLaw(ContactLaw):
+    """A contact law interpolated from a curve P(alpha) (see the module docstring).
+
+    Parameters
+    ----------
+    approach_m : tuple of float
+        The curve's approaches, m (strictly increasing, > 0; at least 2).
+    force_N : tuple of float
+        The forces there, N (strictly increasing, > 0).
+    contact_radius_m : tuple of float or None
+        The contact radii there, m (interpolated linearly in ln alpha); None: no geometry.
+    source : str
+        Where the curve comes from (e.g. ``fem_axi_indentation``), stored with every run.
+    """
+
+    approach_m: tuple[float, ...]
+    force_N: tuple[float, ...]
+    contact_radius_m: tuple[float, ...] | None = None
+    source: str = ""
+    name = "tabulated"
+    label = "tabulated (continuum-calibrated)"
+    #: A curve is what the 1-D methods take; a continuum method resolves the bodies itself.
+    continuum_form = False
+    _x: NDArray[np.float64] = field(init=False, repr=False, compare=False)
+    _y: NDArray[np.float64] = field(init=False, repr=False, compare=False)
+    _d: NDArray[np.float64] = field(init=False, repr=False, compare=False)
+    _e: NDArray[np.float64] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        alpha, force = np.asarray(self.approach_m, float), np.asarray(self.force_N, float)
+        if alpha.ndim != 1 or alpha.shape != force.shape or len(alpha) < 2:
+            raise ValueError("approach_m and force_N must be 1-D of the same length >= 2")
+        if not (np.all(np.isfinite(alpha)) and np.all(np.isfinite(force)) and alpha[0] > 0 and force[0] > 0):
+            raise ValueError("approach_m and force_N must be finite and > 0")
+        if np.any(np.diff(alpha) <= 0) or np.any(np.diff(force) <= 0):
+            raise ValueError("approach_m and force_N must be strictly increasing (a monotone law)")
+        if self.contact_radius_m is not None and len(self.contact_radius_m) != len(alpha):
+            raise ValueError("contact_radius_m must have the length of approach_m")
+        x, y = np.log(alpha), np.log(force)
+        d = pchip_slopes(x, y)
+        object.__setattr__(self, "_x", x)
+        object.__setattr__(self, "_y", y)
+        object.__setattr__(self, "_d", d)
+        # stored energy at the nodes: the power law below the first node, Gauss on each segment
+        energy = np.empty(len(x))
+        energy[0] = force[0] * alpha[0] / (d[0] + 1.0)
+        for i in range(len(x) - 1):
+            nodes = alpha[i] + (alpha[i + 1] - alpha[i]) * _GX
+            energy[i + 1] = energy[i] + (alpha[i + 1] - alpha[i]) * float(_GW @ self._force_array(nodes))
+        object.__setattr__(self, "_e", energy)
+
+    @classmethod
+    def from_bodies(cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial,
+                    rod: ElasticMaterial) -> "TabulatedLaw":
+        """The law of a case: ``spec["curve"]`` holds ``approach_m``, ``force_N`` and
+        optionally ``contact_radius_m`` (put there by the runner from the indentation file).
+
+        Raises
+        ------
+        CurveMissing
+            The spec has no curve.
+        """
+        curve = spec.get("curve")
+        if curve is None:
+            raise CurveMissing(f"contact: the tabulated law needs its curve (from {spec.get('from')!r}); "
+                               "the workflow's indentation rule computes it")
+        radius = curve.get("contact_radius_m")
+        return cls(tuple(map(float, curve["approach_m"])), tuple(map(float, curve["force_N"])),
+                   None if radius is None else tuple(map(float, radius)), str(spec.get("from", "")))
+
+    @staticmethod
+    def estimate_law(spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial,
+                     rod: ElasticMaterial) -> ContactLaw:
+        """The law the curve is calibrating, for estimates made before the curve exists (the
+        configuration check, the resource estimates): Hertz's law of the bodies, with the
+        thin-layer film when the spec has a film."""
+        if spec.get("film") is not None:
+            return HertzFilmLaw.from_bodies(spec, sphere_radius_m, impactor, rod)
+        return HertzLaw.from_bodies(spec, sphere_radius_m, impactor, rod)
+
+    # -- interpolation in (ln alpha, ln P) --------------------------------------------------
+    def _log_force(self, x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """ln P and its slope n = d ln P / d ln alpha at ln alpha = ``x`` (any shape)."""
+        xs, ys, ds = self._x, self._y, self._d
+        i = np.clip(np.searchsorted(xs, x, side="right") - 1, 0, len(xs) - 2)
+        h = xs[i + 1] - xs[i]
+        t = (x - xs[i]) / h
+        t2, t3 = t * t, t * t * t
+        y = ((2 * t3 - 3 * t2 + 1) * ys[i] + (t3 - 2 * t2 + t) * h * ds[i]
+             + (-2 * t3 + 3 * t2) * ys[i + 1] + (t3 - t2) * h * ds[i + 1])
+        dy = ((6 * t2 - 6 * t) * ys[i] / h + (3 * t2 - 4 * t + 1) * ds[i]
+              + (-6 * t2 + 6 * t) * ys[i + 1] / h + (3 * t2 - 2 * t) * ds[i + 1])
+        below, above = x < xs[0], x > xs[-1]
+        y = np.where(below, ys[0] + ds[0] * (x - xs[0]), np.where(above, ys[-1] + ds[-1] * (x - xs[-1]), y))
+        dy = np.where(below, ds[0], np.where(above, ds[-1], dy))
+        return y, dy
+
+    def _force_array(self, alpha: NDArray[np.float64]) -> NDArray[np.float64]:
+        positive = alpha > 0
+        y, _ = self._log_force(np.log(np.where(positive, alpha, 1.0)))
+        return np.where(positive, np.exp(y), 0.0)
+
+    def force(self, approach_m: float) -> float:
+        if approach_m <= 0.0:
+            return 0.0
+        y, _ = self._log_force(np.float64(math.log(approach_m)))
+        return math.exp(float(y))
+
+    def stiffness(self, approach_m: float) -> float:
+        if approach_m <= 0.0:
+            return 0.0
+        y, dy = self._log_force(np.float64(math.log(approach_m)))
+        return float(dy) * math.exp(float(y)) / approach_m
+
+    def energy(self, approach_m: ArrayLike) -> NDArray[np.float64] | float:
+        alpha = np.asarray(approach_m, dtype=float)
+        flat = np.maximum(alpha.ravel(), 0.0)
+        nodes = np.exp(self._x)
+        i = np.searchsorted(nodes, flat, side="right") - 1  # -1: below the first node
+        start = np.where(i >= 0, nodes[np.maximum(i, 0)], 0.0)
+        base = np.where(i >= 0, self._e[np.maximum(i, 0)], 0.0)
+        width = flat - start
+        points = start[:, None] + width[:, None] * _GX[None, :]
+        inside = width * (self._force_array(points) @ _GW)
+        first = self._force_array(flat) * flat / (self._d[0] + 1.0)  # the power law below the table
+        energy = np.where(i >= 0, base + inside, first)
+        energy = np.where(flat > 0, energy, 0.0).reshape(alpha.shape)
+        return energy if alpha.ndim else float(energy)
+
+    def approach(self, force_N: float) -> float:
+        if force_N <= 0.0:
+            return 0.0
+        target = math.log(force_N)
+        lo, hi = float(self._x[0]), float(self._x[-1])
+        while float(self._log_force(np.float64(lo))[0]) > target:
+            lo -= 1.0
+        while float(self._log_force(np.float64(hi))[0]) < target:
+            hi += 1.0
+        for _ in range(200):  # bisection in ln alpha: ln P is increasing
+            mid = 0.5 * (lo + hi)
+            if float(self._log_force(np.float64(mid))[0]) < target:
+                lo = mid
+            else:
+                hi = mid
+            if hi - lo <= 1e-15 * max(1.0, abs(mid)):
+                break
+        return math.exp(0.5 * (lo + hi))
+
+    def contact_radius(self, approach_m: ArrayLike) -> NDArray[np.float64] | float | None:
+        if self.contact_radius_m is None:
+            return None
+        alpha = np.asarray(approach_m, dtype=float)
+        with np.errstate(divide="ignore"):
+            x = np.log(np.maximum(alpha, 1e-300))
+        radius = np.where(alpha > 0, np.interp(x, self._x, self.contact_radius_m), 0.0)
+        return radius if alpha.ndim else float(radius)
+
+    def summary(self) -> dict[str, float | str]:
+        return {"contact_law": self.name, "table_source": self.source, "table_points": len(self.approach_m),
+                "table_max_force_N": float(self.force_N[-1]), "table_max_approach_m": float(self.approach_m[-1])}
+
+    def run_summary(self, max_approach_m: float) -> dict[str, float]:
+        """The run's largest approach over the table's (``table_reach``); above 1 the law was
+        extrapolated by its last power law, and a warning is logged."""
+        reach = max_approach_m / self.approach_m[-1]
+        if reach > 1.0:
+            log.warning("tabulated law: the run's largest approach is %.3g times the table's; the law was "
+                        "extrapolated as a power law beyond it", reach)
+        return {"table_reach": float(reach)}
