@@ -28,6 +28,12 @@ VARIANTS = {  # name -> (rod radius, rod length), m
     "r1_l301": (0.001, 0.301),
     "r1_l30": (0.001, 0.0301),
     "r10_l301": (0.010, 0.301),
+    "r10_l30_film": (0.010, 0.0301),
+    "r1_l301_film": (0.001, 0.301),
+    "r1_l30_film": (0.001, 0.0301),
+    "r10_l301_film": (0.010, 0.301),
+    "r10_l30_film_cal": (0.010, 0.0301),
+    "r10_l30_cal": (0.010, 0.0301),
 }
 
 
@@ -74,7 +80,7 @@ STRESS = ["microgram_fast", "heavy_slow", "thin_wire", "long_rod_heavy", "short_
 
 def test_shipped_config_loads_all_cases(shipped: Project) -> None:
     expected = ["model"] + [f"{row}-{variant}" for row in ROWS for variant in VARIANTS]
-    # 1 + 6 rows x 4 variants, in file order (files sorted by name: model, stress, table2)
+    # 1 + 6 rows x 10 variants, in file order (files sorted by name: model, stress, table2)
     assert [c for c in shipped.cases if shipped.cases[c]["set"] != "stress"] == expected
     assert shipped.sets == {"model": ["model"], "table2": expected[1:], "stress": STRESS}
     assert list(shipped.variants["table2"]) == list(VARIANTS)
@@ -144,7 +150,7 @@ def test_resolved_cases_are_plain_json(shipped: Project) -> None:
 
 
 def test_cases_in_rejects_unknown_set_and_variant(shipped: Project) -> None:
-    assert len(shipped.cases_in("table2")) == 24
+    assert len(shipped.cases_in("table2")) == 6 * len(VARIANTS)
     with pytest.raises(KeyError, match="unknown case set 'tabel2'"):
         shipped.cases_in("tabel2")
     with pytest.raises(KeyError, match="unknown variant 'r5' of case set 'table2'"):
@@ -201,7 +207,7 @@ def test_case_variants_list_selects_variants(project_dir: Path) -> None:
     edit(project_dir / "config/config.yaml", lambda d: d.pop("work_precision"))
     project = load(project_dir)
     assert [c["id"] for c in project.cases_in("table2")][:2] == ["ball_3.16mm-r1_l301", "ball_4.75mm-r10_l30"]
-    assert len(project.cases_in("table2")) == 21
+    assert len(project.cases_in("table2")) == 6 * len(VARIANTS) - (len(VARIANTS) - 1)
 
 
 # --------------------------------------------------------------------------- schemas
@@ -350,7 +356,7 @@ MALFORMED = {
     "unknown variant": (
         _set(TABLE2, "cases", 0, "variants", ["r10_l30", "r5_l30"]),
         f"{TABLE2}: case 'ball_3.16mm': field 'variants[1]': unknown variant 'r5_l30'; "
-        "declared: r10_l30, r1_l301, r1_l30, r10_l301",
+        "declared: " + ", ".join(VARIANTS),
     ),
     "variant without description": (
         _set(TABLE2, "variants", "r1_l30", "description", None),
@@ -358,7 +364,37 @@ MALFORMED = {
     ),
     "unknown material name": (
         _set(MODEL, "cases", 0, "rod", "material", "steal"),
-        f"{MODEL}: case 'model': field 'rod.material': unknown material 'steal'; known: steel, aluminium_table1, rubber",
+        f"{MODEL}: case 'model': field 'rod.material': unknown material 'steal'; known: steel, aluminium_table1, rubber, pvdf",
+    ),
+    "unknown contact law": (
+        _set(TABLE2, "variants", "r10_l30_film", "contact", "law", "hertz_flim"),
+        f"{TABLE2}: case 'ball_3.16mm-r10_l30_film': field 'contact.law': unknown contact law 'hertz_flim'; "
+        "known: hertz, hertz_film, tabulated",
+    ),
+    "negative film thickness": (
+        _set(TABLE2, "variants", "r10_l30_film", "contact", "film", "thickness_m", -2.8e-5),
+        f"{TABLE2}: field 'variants.r10_l30_film.contact.film.thickness_m': must be > 0, got -2.8e-05",
+    ),
+    "unknown film material": (
+        _set(TABLE2, "variants", "r10_l30_film", "contact", "film", "material", "pvfd"),
+        f"{TABLE2}: case 'ball_3.16mm-r10_l30_film': field 'contact.film.material': unknown material 'pvfd'; "
+        "known: steel, aluminium_table1, rubber, pvdf",
+    ),
+    "film on the hertz law": (
+        _set(TABLE2, "variants", "r10_l30_film", "contact", "law", "hertz"),
+        f"{TABLE2}: case 'ball_3.16mm-r10_l30_film': field 'contact.film': the hertz law takes no film; use law "
+        "hertz_film (or tabulated) for a film",
+    ),
+    "tabulated law on fem_axi": (
+        _set(TABLE2, "variants", "r10_l30_cal", "methods", ["sem", "fem_axi"]),
+        f"{TABLE2}: case 'ball_3.16mm-r10_l30_cal': field 'methods[1]': method 'fem_axi' resolves the contact in "
+        "the continuum and cannot take the tabulated law (a force-approach curve); run it on the case's bodies "
+        "(law hertz or hertz_film)",
+    ),
+    "film range without its nominal": (
+        _set(TABLE2, "variants", "r10_l30_film", "contact", "film", "thickness_range_m", [3e-5, 4e-5]),
+        f"{TABLE2}: case 'ball_3.16mm-r10_l30_film': field 'contact.film.thickness_range_m': the thickness 2.8e-05 m "
+        "must lie inside a non-empty range, got [3e-05, 4e-05]",
     ),
     "both area and radius": (
         _set(MODEL, "cases", 0, "rod", "radius_m", 0.004),
@@ -444,7 +480,8 @@ MALFORMED = {
     "unknown sweep parameter": (
         _set(TABLE2, "cases", 6, "sweep", "parameters", "diameter", [1e-3]),
         f"{TABLE2}: case 'ball_sweep': field 'sweep.parameters.diameter': unknown field (did you mean "
-        "'ball_diameter_m'?); allowed: ball_diameter_m, mass_kg, radius_m, velocity_m_s, rod_length_m",
+        "'ball_diameter_m'?); allowed: ball_diameter_m, mass_kg, radius_m, velocity_m_s, rod_length_m, "
+        "film_modulus_pa, film_poisson_ratio, film_thickness_m",
     ),
     "negative sweep start": (
         _set(TABLE2, "cases", 6, "sweep", "parameters", "ball_diameter_m", {"start": -1e-3, "stop": 2e-2, "num": 5}),

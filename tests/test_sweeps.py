@@ -78,7 +78,8 @@ def test_table2_balls_are_solid_balls_of_the_sweeps_steel(project) -> None:
 
 
 def test_shipped_sweep_is_expanded_over_the_variants_and_not_a_row(project) -> None:
-    assert sorted(project.sweeps) == sorted(f"ball_sweep-{v}" for v in project.variants["table2"])
+    no_film = [v for v in project.variants["table2"] if "film" not in v and not v.endswith("_cal")]
+    assert sorted(project.sweeps) == sorted([f"ball_sweep-{v}" for v in no_film] + ["ball_sweep_film-r10_l30_film"])
     assert not [c for c in project.cases_in("table2") if c["row"] == "ball_sweep"]
     assert [c["id"] for c in project.sweeps_in("table2", "r1_l30")] == ["ball_sweep-r1_l30"]
     assert project.sweeps_in("model") == []
@@ -100,7 +101,18 @@ def test_every_parameter_sets_its_field(project) -> None:
     where = {"ball_diameter_m": ("impactor", "radius_m", 0.0123 / 2), "mass_kg": ("impactor", "mass_kg", 0.0123),
              "radius_m": ("impactor", "radius_m", 0.0123), "velocity_m_s": ("impactor", "velocity_m_s", 0.0123),
              "rod_length_m": ("rod", "length_m", 0.0123)}
-    assert set(where) == set(SWEEP_PARAMETERS)
+    film = {"film_modulus_pa": ("material", "youngs_modulus_pa", 2.5e9), "film_poisson_ratio": ("material", "poisson_ratio", 0.31),
+            "film_thickness_m": (None, "thickness_m", 3.0e-5)}
+    assert set(where) | set(film) == set(SWEEP_PARAMETERS)
+    film_case = project.sweeps["ball_sweep_film-r10_l30_film"]
+    for name, (part, field, value) in film.items():
+        point = sweep_point_case(film_case, {name: value}, "p")
+        before, after = film_case["contact"]["film"], point["contact"]["film"]
+        before, after = (before, after) if part is None else (before[part], after[part])
+        assert before[field] != value and after[field] == value, name
+        assert {k: v for k, v in after.items() if k != field} == {k: v for k, v in before.items() if k != field}
+    with pytest.raises(ValueError, match="no film"):
+        sweep_point_case(case, {"film_thickness_m": 1e-5}, "p")
     for name, (part, field, value) in where.items():
         point = sweep_point_case(case, {name: 0.0123}, "p")
         assert case[part][field] != value and point[part][field] == pytest.approx(value, rel=1e-15), name

@@ -50,6 +50,7 @@ SRC_CASES = sources("rodimpact.workflow.cases", "rodimpact.workflow.logs",
                     *(spec.cost.partition(":")[0] for spec in METHOD_REGISTRY.values()))
 SRC_PRESENT = sources("rodimpact.present.artifacts", "rodimpact.workflow.logs")
 SRC_BENCH = sources("rodimpact.workflow.bench", "rodimpact.io.atomic", "rodimpact.workflow.logs")
+SRC_INDENTATION = sources("rodimpact.workflow.indentation", "rodimpact.workflow.logs")
 TABLE2_VARIANTS = list(PROJECT.variants.get("table2", {}))
 
 
@@ -78,6 +79,22 @@ def resolved_case_of(wildcards):
 def case_file(case_id):
     """The case file a solver rule takes as input (``case_id(wildcards)`` or a fixed id)."""
     return lambda w: f"results/cases/{case_id(w) if callable(case_id) else case_id}.yaml"
+
+
+def tabulated_case_of(wildcards):
+    """The resolved case of an indentation; refuses a case whose law is not tabulated."""
+    case = resolved_case_of(wildcards)
+    if (case.get("contact") or {}).get("law") != "tabulated":
+        raise ValueError(f"case {wildcards.case!r} has no tabulated contact law to calibrate")
+    return case
+
+
+def contact_curve(wildcards):
+    """Input function: the curve file of a run whose case has the tabulated law (else none)."""
+    case = PROJECT.cases.get(wildcards.case)
+    if case is not None and (case.get("contact") or {}).get("law") == "tabulated":
+        return [f"results/indentation/{wildcards.case}.h5"]
+    return []
 
 
 def runs_of(cases):

@@ -5,6 +5,7 @@ rule solve:
     """Run one method on one case; the HDF5 file appears whole or not at all."""
     input:
         case=case_file(lambda w: w.case),
+        curve=contact_curve,
         code=solver_sources(),
     output:
         h5="results/runs/{case}/{method}.h5",

@@ -52,6 +52,27 @@ def _rod_length(case: dict, length: float) -> None:
     case["rod"]["length_m"] = length
 
 
+def _film(setter: Callable[[dict, float], None]) -> Callable[[dict, float], None]:
+    def set_film(case: dict, value: float) -> None:
+        film = (case.get("contact") or {}).get("film")
+        if film is None:
+            raise ValueError("the case has no film (contact.film) to sweep")
+        setter(film, value)
+    return set_film
+
+
+def _film_material(field: str) -> Callable[[dict, float], None]:
+    def set_material(film: dict, value: float) -> None:
+        if field == "poisson_ratio" and not value < 0.5:
+            raise ValueError(f"the film's Poisson's ratio must be < 0.5, got {value!r}")
+        film["material"] = {**film["material"], field: value}
+    return _film(set_material)
+
+
+def _film_thickness(film: dict, value: float) -> None:
+    film["thickness_m"] = value
+
+
 #: swept parameter -> (what it sets, how it changes a resolved case in place)
 SWEEP_PARAMETERS: dict[str, tuple[str, Callable[[dict, float], None]]] = {
     "ball_diameter_m": ("a solid ball of the impactor's material: radius d/2, mass rho pi d^3/6, m",
@@ -60,6 +81,9 @@ SWEEP_PARAMETERS: dict[str, tuple[str, Callable[[dict, float], None]]] = {
     "radius_m": ("the radius of the impactor's spherical nose, m", _impactor("radius_m")),
     "velocity_m_s": ("the impact velocity, m/s", _impactor("velocity_m_s")),
     "rod_length_m": ("the rod's length, m", _rod_length),
+    "film_modulus_pa": ("the film's Young's modulus, Pa", _film_material("youngs_modulus_pa")),
+    "film_poisson_ratio": ("the film's Poisson's ratio", _film_material("poisson_ratio")),
+    "film_thickness_m": ("the film's thickness, m", _film(_film_thickness)),
 }
 
 

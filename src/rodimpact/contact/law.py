@@ -153,6 +153,13 @@ class ContactLaw(abc.ABC):
         raise StepNotConverged(f"the step of the {self.name or type(self).__name__} law did not converge "
                                f"(a={a!r}, b={b!r})")
 
+    def energy_between(self, lower_m: float, upper_m: float) -> float:
+        """int_lower^upper P d alpha, J, without the cancellation of E(upper) - E(lower)
+        (generic: adaptive quadrature of :meth:`force`)."""
+        from scipy.integrate import quad
+
+        return quad(self.force, lower_m, upper_m, epsabs=0.0, epsrel=1e-13)[0]
+
     def rigid_impact(self, mass_kg: float, velocity_m_s: float) -> RigidImpact:
         """The impact of a rigid mass on a rigid flat through this law.
 
@@ -186,7 +193,7 @@ class ContactLaw(abc.ABC):
         def integrand(u: float) -> float:
             # d alpha = 2 u du; v = sqrt(2 (E_max - E(alpha)) / m), E_max - E = int_alpha^alpha_max P
             alpha = alpha_max - u * u
-            stored = quad(self.force, alpha, alpha_max, epsabs=0.0, epsrel=1e-13)[0]
+            stored = self.energy_between(alpha, alpha_max)
             if stored > 0.0:
                 return 2.0 * u / math.sqrt(2.0 * stored / mass_kg)
             return 2.0 / math.sqrt(2.0 * self.force(alpha_max) / mass_kg)  # the limit u -> 0

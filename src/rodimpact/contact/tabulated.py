@@ -212,6 +212,16 @@ class TabulatedLaw(ContactLaw):
         energy = np.where(flat > 0, energy, 0.0).reshape(alpha.shape)
         return energy if alpha.ndim else float(energy)
 
+    def energy_between(self, lower_m: float, upper_m: float) -> float:
+        """int_lower^upper P d alpha, J: Gauss-Legendre on each piece between the table's nodes
+        (the interpolant is smooth on each piece, its second derivative jumps at the nodes)."""
+        nodes = np.exp(self._x)
+        cuts = [lower_m, *nodes[(nodes > lower_m) & (nodes < upper_m)], upper_m]
+        total = 0.0
+        for a, b in zip(cuts[:-1], cuts[1:]):
+            total += (b - a) * float(self._force_array(a + (b - a) * _GX) @ _GW)
+        return total
+
     def approach(self, force_N: float) -> float:
         if force_N <= 0.0:
             return 0.0

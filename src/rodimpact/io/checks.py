@@ -29,7 +29,7 @@ def check_run(case: Mapping[str, Any], method: str) -> None:
     """
     spec = METHODS[method]
     options = spec.options_of(case["numerics"][method])
-    options.check(spec.problem(case))
+    options.check(spec.estimate_problem(case))
 
 
 def check_work_precision(study: Mapping[str, Any] | None, cases: Mapping[str, dict],

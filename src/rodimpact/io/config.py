@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from rodimpact.analysis.sweeps import SweepError, sweep_point_case, sweep_points
+from rodimpact.io.bodies import MATERIAL_FIELDS, check_law, check_material_ranges, resolve_contact, resolve_material
 from rodimpact.io.checks import check_run, check_stability, check_work_precision
 from rodimpact.io.project import ConfigError, Project, _File
 from rodimpact.io.schema import Schemas, YamlError, deep_merge, format_path, with_floats
@@ -55,8 +56,7 @@ DEFAULT_CONFIG_FILE = "config/config.yaml"
 CONFIG_SCHEMA = "config.schema.yaml"
 CASES_SCHEMA = "cases.schema.yaml"
 MATERIALS_SCHEMA = "materials.schema.yaml"
-MATERIAL_FIELDS = ("youngs_modulus_pa", "poisson_ratio", "density_kg_m3")
-_VARIANT_FIELDS = ("impactor", "rod")  # what a variant may change in a case
+_VARIANT_FIELDS = ("impactor", "rod", "contact", "methods", "numerics")  # what a variant may change in a case
 
 
 def registry_schema() -> dict[str, Any]:
@@ -188,6 +188,7 @@ def _load_materials(config: dict, root: Path, schemas: Schemas) -> dict[str, dic
     if document is None:
         raise source.error("file is empty; expected a 'materials' mapping")
     source.check(document, schemas, MATERIALS_SCHEMA)
+    check_material_ranges(document["materials"], source.error)
     return document["materials"]
 
 
@@ -281,6 +282,7 @@ class _ProjectBuilder:
             "description": case["description"],
             "impactor": self._impactor(case["impactor"], error),
             "rod": self._rod(case["rod"], error),
+            **self._contact(case.get("contact"), error),
             "methods": list(case["methods"]),
             "outputs": list(case["outputs"]),
             "stations": [float(x) for x in case["stations"]],
@@ -288,6 +290,7 @@ class _ProjectBuilder:
             "measured": with_floats(case["measured"]),
             "published": with_floats(case["published"]),
         }
+        check_law(resolved, error)
         if sweep is not None:
             self.sweeps[case_id] = self._sweep(resolved, sweep, source)
             return
@@ -304,23 +307,26 @@ class _ProjectBuilder:
         parameters = {name: sorted({point[name] for point in points}) for name in points[0]}
         case = {**case, "sweep": {"description": sweep["description"], "methods": list(sweep["methods"]),
                                   "parameters": parameters}}
+        if case.get("contact", {}).get("law") == "tabulated":
+            raise source.error("a sweep cannot take the tabulated law (its curve is computed per case, not per "
+                               "sweep point)", case=case["id"], field="contact.law")
         for row in points:
+            where = ", ".join(f"{name} = {value:g}" for name, value in row.items())
             try:
-                self._check_runs(sweep_point_case(case, row, "check"), source)
+                point = sweep_point_case(case, row, "check")
+            except ValueError as error:
+                raise source.error(f"at {where}: {error}", case=case["id"], field="sweep.parameters") from None
+            try:
+                self._check_runs(point, source)
             except ConfigError as error:
-                where = ", ".join(f"{name} = {value:g}" for name, value in row.items())
                 raise source.error(f"at {where}: {error.reason}", case=case["id"], field=error.field) from None
         return case
 
     def _material(self, value: str | dict, error: Callable[..., ConfigError], field: str) -> dict:
-        if isinstance(value, str):
-            if value not in self.materials:
-                known = ", ".join(self.materials)
-                raise error(f"unknown material {value!r}; known: {known}", field=field)
-            name, data = value, self.materials[value]
-        else:
-            name, data = value.get("name"), value
-        return {"name": name, **{key: float(data[key]) for key in MATERIAL_FIELDS}}
+        return resolve_material(value, self.materials, error, field)
+
+    def _contact(self, contact: dict | None, error: Callable[..., ConfigError]) -> dict:
+        return resolve_contact(contact, self.materials, error)
 
     def _impactor(self, impactor: dict, error: Callable[..., ConfigError]) -> dict:
         resolved = {key: float(impactor[key]) for key in ("mass_kg", "radius_m", "velocity_m_s")}

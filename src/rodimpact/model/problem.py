@@ -51,15 +51,19 @@ class ImpactProblem:
             raise TypeError(f"contact must be a ContactLaw, got {type(self.contact).__name__}")
 
     @classmethod
-    def from_case(cls, case: Mapping[str, Any]) -> "ImpactProblem":
-        """Build from a resolved case mapping (see :mod:`rodimpact.io.config`)."""
+    def from_case(cls, case: Mapping[str, Any], *, estimate: bool = False) -> "ImpactProblem":
+        """Build from a resolved case mapping (see :mod:`rodimpact.io.config`).
+
+        ``estimate=True``: for checks and cost estimates before any job, a law whose data
+        a job computes is replaced by the law it calibrates (:func:`~rodimpact.contact.laws.build_law`).
+        """
         imp, rod = case["impactor"], case["rod"]
         imp_mat = Material.from_mapping(imp["material"])
         rod_mat = Material.from_mapping(rod["material"])
         return cls(
             mass_kg=float(imp["mass_kg"]),
             velocity_m_s=float(imp["velocity_m_s"]),
-            contact=build_law(case.get("contact"), float(imp["radius_m"]), imp_mat, rod_mat),
+            contact=build_law(case.get("contact"), float(imp["radius_m"]), imp_mat, rod_mat, estimate=estimate),
             rod=Rod(
                 length_m=float(rod["length_m"]),
                 area_m2=float(rod["area_m2"]),
@@ -67,6 +71,11 @@ class ImpactProblem:
                 far_end=rod.get("far_end", "fixed"),
             ),
         )
+
+    @property
+    def law(self) -> ContactLaw:
+        """The contact law (the name every problem gives it)."""
+        return self.contact
 
     @functools.cached_property
     def rigid_contact(self) -> RigidImpact:

@@ -21,6 +21,8 @@ import importlib
 from dataclasses import dataclass
 from typing import Any, Callable, Mapping
 
+import numpy as np
+
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.cost import Cost
 from rodimpact.solvers.fem1d.options import FEM1DOptions
@@ -71,6 +73,10 @@ class Method:
         Matplotlib line style of its curves.
     color : str
         Matplotlib colour of its curves.
+    contact : {"law", "continuum"}
+        ``law``: the method takes the case's contact law P(alpha) (any law); ``continuum``: it
+        resolves the contact between the meshed bodies itself and takes only a law that
+        describes bodies (:attr:`~rodimpact.contact.law.ContactLaw.continuum_form`).
     """
 
     name: str
@@ -83,6 +89,7 @@ class Method:
     family: str
     style: str
     color: str
+    contact: str = "law"
 
     def options_of(self, settings: Mapping[str, Any]) -> Options:
         """This method's options from a resolved ``numerics.<name>`` mapping.
@@ -99,10 +106,27 @@ class Method:
         """The dotted name of the module its solver lives in."""
         return self.solver.partition(":")[0]
 
+    def estimate_problem(self, case: Mapping[str, Any]) -> Any:
+        """The problem for checks and estimates made before any job: a law whose data a job
+        computes (the tabulated law's curve) is replaced by the law it calibrates."""
+        return self.problem(case, estimate=True)
+
     def solve(self, case: Mapping[str, Any], settings: Mapping[str, Any]) -> ImpactResult:
-        """Solve ``case`` with the resolved settings ``settings``."""
+        """Solve ``case`` with the resolved settings ``settings``.
+
+        A method that takes the contact law adds the law's parameters and its run summary
+        (:meth:`~rodimpact.contact.law.ContactLaw.run_summary`, at the run's largest
+        approach) to the result's summary.
+        """
         driver = _load(self.solver)
-        return driver(self.problem(case), self.options_of(settings), stations=case.get("stations", ()))
+        problem = self.problem(case)
+        result = driver(problem, self.options_of(settings), stations=case.get("stations", ()))
+        if self.contact == "law":
+            law = problem.law
+            result.extra.update({key: value for key, value in law.summary().items() if key not in result.extra})
+            if result.approach.size:
+                result.extra.update(law.run_summary(float(np.max(result.approach))))
+        return result
 
     def estimate(self, case: Mapping[str, Any], settings: Mapping[str, Any]) -> Cost:
         """The cost model of solving ``case`` with the resolved settings ``settings``."""
@@ -127,7 +151,8 @@ METHODS: dict[str, Method] = {m.name: m for m in (
            label="FEM, 1D bar", order=2.0, family="fem", style="-.", color="C2"),
     Method(name="fem_axi", options=FEMAxiOptions, problem=AxiImpact.from_case,
            solver="rodimpact.solvers.fem_axi.solver:solve_fem_axi", cost="rodimpact.solvers.fem_axi.cost:fem_axi_cost",
-           label="FEM, axisymmetric continuum", order=2.0, family="fem", style=":", color="C3"),
+           label="FEM, axisymmetric continuum", order=2.0, family="fem", style=":", color="C3",
+           contact="continuum"),
 )}
 
 

@@ -52,7 +52,7 @@ def case_scales(case: Mapping[str, Any]) -> dict[str, Any]:
         ``steps``, ``solve_time_s``, ``memory_MiB`` and the job's ``threads``, ``mem_mb``,
         ``runtime_min``.
     """
-    problem = ImpactProblem.from_case(case)
+    problem = ImpactProblem.from_case(case, estimate=True)
     rod, rigid = problem.rod, problem.rigid_contact
     radius = problem.contact.contact_radius(rigid.max_approach_m)
     methods = {}

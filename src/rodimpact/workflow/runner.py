@@ -11,6 +11,8 @@ from typing import Any, Mapping
 import numpy as np
 
 from rodimpact.io.casefile import case_file_reference
+from rodimpact.io.curves import read_contact_curve
+from rodimpact.io.provenance import file_sha256
 from rodimpact.io.store import write_run
 from rodimpact.solvers.registry import METHODS, UnknownMethod
 from rodimpact.solvers.result import ImpactResult
@@ -71,9 +73,26 @@ def _failure_record(error: BaseException) -> tuple[dict, dict]:
     return {"time": (np.zeros(1), "s", "time since first contact")}, summary
 
 
+def _with_curve(case: Mapping[str, Any], path: str | Path | None) -> Mapping[str, Any]:
+    """The case with its tabulated law's curve read from ``path`` (the case itself otherwise)."""
+    contact = case.get("contact") or {}
+    if contact.get("law") != "tabulated":
+        if path is not None:
+            raise ValueError(f"contact_curve: case {case['id']!r} has the {contact.get('law', 'hertz')} law, "
+                             "which takes no curve")
+        return case
+    if path is None:
+        raise ValueError(f"contact_curve: case {case['id']!r} has the tabulated law and needs its curve file")
+    curve = read_contact_curve(path)
+    if curve.case_id != case["id"]:
+        raise ValueError(f"contact_curve: {path} is the curve of case {curve.case_id!r}, not {case['id']!r}")
+    return {**case, "contact": {**contact, "curve": curve.law_curve()}}
+
+
 def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: int | None = None, *,
                 keep_failed: bool = False, timing: Timing | None = None,
-                study: Mapping[str, Any] | None = None, case_file: str | Path | None = None) -> Path:
+                study: Mapping[str, Any] | None = None, case_file: str | Path | None = None,
+                contact_curve: str | Path | None = None) -> Path:
     """Solve and write ``path`` (HDF5, atomically); returns the path.
 
     Only the outputs the case lists are stored.
@@ -93,11 +112,17 @@ def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: i
     case_file : path, optional
         The case file the run was made from (``results/cases/{case}.yaml``): its path, its
         SHA-256 and its case's hash are stored in the config (``run.case_file``).
+    contact_curve : path, optional
+        The curve file of a case whose contact law is ``tabulated`` (the indentation rule's
+        output, :mod:`rodimpact.io.curves`): read, checked against its hash and against
+        the case, and given to the law; its path and SHA-256 are stored in the config
+        (``run.contact_curve``).
 
     Raises
     ------
     ValueError
-        ``case_file`` holds another case than this run's (stale or edited).
+        ``case_file`` holds another case than this run's (stale or edited); the case's law
+        is ``tabulated`` and no ``contact_curve`` is given, or the curve is another case's.
     """
     timed, timing = timing is not None, Timing() if timing is None else timing
     config = run_config(case, method, level)
@@ -105,6 +130,9 @@ def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: i
         config["run"]["study"] = dict(study)
     if case_file is not None:
         config["run"]["case_file"] = case_file_reference(case_file)
+    case = _with_curve(case, contact_curve)
+    if contact_curve is not None:
+        config["run"]["contact_curve"] = {"path": str(contact_curve), "sha256": file_sha256(contact_curve)}
     walls: list[float] = []
     result = error = None
     while True:

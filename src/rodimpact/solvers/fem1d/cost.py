@@ -20,7 +20,7 @@ FEM1D_DOF_BYTES = 2000.0
 
 def fem1d_cost(case: Mapping[str, Any], options: FEM1DOptions) -> Cost:
     """The steps, time and memory of one ``fem1d`` solve of ``case`` (a resolved case)."""
-    problem = ImpactProblem.from_case(case)
+    problem = ImpactProblem.from_case(case, estimate=True)
     elements, step, _ = options.resolve(problem)
     dofs = (1 if options.element == "P1" else 2) * elements + 1
     # its end test: a fixed rod's energy bound (measured: within 2 contact times and half a

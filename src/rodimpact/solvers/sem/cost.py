@@ -29,7 +29,7 @@ SEM_AUTO_WORK = 1.5
 
 def sem_cost(case: Mapping[str, Any], options: SEMOptions | PaperSEMOptions) -> Cost:
     """The steps, time and memory of one SEM solve of ``case`` (a resolved case)."""
-    problem = ImpactProblem.from_case(case)
+    problem = ImpactProblem.from_case(case, estimate=True)
     period = problem.rod.reflection_period
     # the run ends with the contact (its end test looks ahead without stepping)
     span = horizon(problem, options.max_time_factor, contact_duration(problem), 0.0)
