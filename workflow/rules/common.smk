@@ -51,7 +51,11 @@ SRC_CASES = sources("rodimpact.workflow.cases", "rodimpact.workflow.logs",
 SRC_PRESENT = sources("rodimpact.present.artifacts", "rodimpact.workflow.logs")
 SRC_BENCH = sources("rodimpact.workflow.bench", "rodimpact.io.atomic", "rodimpact.workflow.logs")
 SRC_INDENTATION = sources("rodimpact.workflow.indentation", "rodimpact.workflow.logs")
+SRC_BAND = sources("rodimpact.workflow.band", "rodimpact.workflow.logs")
 TABLE2_VARIANTS = list(PROJECT.variants.get("table2", {}))
+# The readings whose cases carry the thin-layer film law: each gets its prediction band.
+FILM_VARIANTS = [v for v in TABLE2_VARIANTS
+                 if all((c.get("contact") or {}).get("law") == "hertz_film" for c in PROJECT.cases_in("table2", v))]
 
 
 def one_of(names):
@@ -181,6 +185,7 @@ def default_targets():
                           ext=["csv", "md", "tex", "provenance.json"])
         targets += expand("results/tables/table2_variants.{ext}", ext=["csv", "md", "provenance.json"])
         targets += expand("results/figures/table2_contact_time.{ext}", ext=["pdf", "png"])
+        targets += expand("results/studies/film_band_{variant}.h5", variant=FILM_VARIANTS)
     for name in sets:
         targets += runs_of(PROJECT.cases_in(name))
         if PROJECT.sweeps_in(name):

@@ -23,3 +23,25 @@ rule indentation:
         "../envs/rodimpact.yaml"
     script:
         "../scripts/indentation.py"
+
+
+rule film_band:
+    """The film's prediction band for one Table 2 reading with a film: the SEM's contact time
+    at the corners of the film constants' ranges, and along each range (monotonicity)."""
+    input:
+        cases=lambda w: [f"results/cases/{c['id']}.yaml" for c in PROJECT.cases_in("table2", w.variant)],
+        code=SRC_BAND,
+    output:
+        h5="results/studies/film_band_{variant}.h5",
+    params:
+        cases=lambda w: PROJECT.cases_in("table2", w.variant),
+        variant="{variant}",
+    log:
+        "logs/studies/film_band_{variant}.log",
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
+    conda:
+        "../envs/rodimpact.yaml"
+    script:
+        "../scripts/film_band.py"
