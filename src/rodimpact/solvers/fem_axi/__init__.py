@@ -1,12 +1,14 @@
 """``fem_axi``: the axisymmetric continuum of rod and impactor with real (unilateral) contact.
 
 What lives here: :mod:`.problem` (the geometry of both bodies and the scales), :mod:`.options`
-(the settings), :mod:`.meshes` (meshes in the (r, z) half-plane), :mod:`.axisym` (the
+(the settings), :mod:`.meshes` (meshes in the (r, z) half-plane), :mod:`.film_mesh` (the rod
+with a bonded film disc on its struck end), :mod:`.film_model` (the film's region and its
+contact nodes), :mod:`.axisym` (the
 r-weighted elasticity forms), :mod:`.axibody` (one body's Newmark operators),
 :mod:`.solver` (:func:`~rodimpact.solvers.fem_axi.solver.solve_fem_axi`) and
 :mod:`.indentation` (the static indentation check).
 
-What it may import: :mod:`rodimpact.contact` (for the scales only: the continuum resolves
-the contact itself), :mod:`rodimpact.model`, :mod:`rodimpact.analysis.signals`, the shared
+What it may import: :mod:`rodimpact.contact` (for the scales and the film's description
+only: the continuum resolves the contact, and the film, itself), :mod:`rodimpact.model`, :mod:`rodimpact.analysis.signals`, the shared
 pieces of :mod:`rodimpact.solvers`, scikit-fem. This ``__init__`` imports nothing.
 """

@@ -7,6 +7,7 @@ from typing import Any, Mapping
 
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.cost import MIB, SOLVE_S, Cost, contact_duration, horizon
+from rodimpact.solvers.fem_axi.film_mesh import FILM_ASPECT, FILM_LAYERS
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact
 
@@ -24,6 +25,13 @@ FEM_AXI_DOF_BYTES = 6000.0
 FEM_AXI_TRIANGLES = 16.0
 #: Triangles a body's mesh has beyond the model (corners, the sphere's chords).
 FEM_AXI_EXTRA_TRIANGLES = 600.0
+#: The film (:mod:`.film_mesh`): its columns per r_f / s_f away from the contact (s_f the
+#: columns' largest spacing; longest-edge refinement leaves between s_f / 2 and s_f) and per
+#: fine size within the contact extent (the rod's face there is about fine / 2), and the
+#: rod's triangles per r_f / s_f in the graded band under the film (5 to 20 measured).
+FILM_COLUMNS_PER_SPACING = 1.25
+FILM_COLUMNS_PER_FINE = 2.0
+FILM_BAND_TRIANGLES = 15.0
 
 
 def _refined_triangles(extent: float, coarse: float) -> float:
@@ -36,6 +44,16 @@ def _refined_triangles(extent: float, coarse: float) -> float:
     return count
 
 
+def _film_triangles(problem: AxiImpact, fine: float, extent: float) -> float:
+    """Triangles the film adds to the rod's mesh: its layers of columns and the rod's band under it."""
+    if problem.film is None:
+        return 0.0
+    r_f, h = problem.film_radius_m, problem.film.thickness_m
+    spacing = min(FILM_ASPECT * h / FILM_LAYERS, r_f / 2.0)
+    columns = FILM_COLUMNS_PER_SPACING * r_f / spacing + FILM_COLUMNS_PER_FINE * min(extent, r_f) / fine
+    return 2.0 * FILM_LAYERS * columns + FILM_BAND_TRIANGLES * r_f / spacing
+
+
 def fem_axi_dofs(case: Mapping[str, Any]) -> int:
     """Upper-side estimate of the DOFs of fem_axi's two meshes (rod and impactor), closed form.
 
@@ -44,6 +62,8 @@ def fem_axi_dofs(case: Mapping[str, Any]) -> int:
     at half the distance up to a coarse size (a/4 by a/2 cells in the rod of radius a, R/4
     in the impactor), and coarse elsewhere. Vector P2 elements carry about 4 DOFs per
     triangle, P1 about 1. The 40 stored fem_axi runs have 0.48 to 0.90 of it (free DOFs).
+    A film (``contact.film``) adds its layers of columns and the rod's graded band under it
+    (:func:`_film_triangles`); its thin-layer law's larger contact radius sizes the rest.
 
     Parameters
     ----------
@@ -55,14 +75,15 @@ def fem_axi_dofs(case: Mapping[str, Any]) -> int:
     int
         DOFs (rod + impactor), before the fixed ones are removed.
     """
-    problem = AxiImpact.from_case(case)
+    problem = AxiImpact.from_case(case, estimate=True)
     options = FEMAxiOptions.from_settings(case["numerics"]["fem_axi"])
     contact_radius = problem.scales().contact_radius_m
     fine = contact_radius / options.elements_across
     extent = options.contact_extent * options.elements_across
     a, length = problem.rod_radius_m, problem.rod_length_m
     rod = (_refined_triangles(extent, a / 4.0 / fine) * FEM_AXI_TRIANGLES
-           + 2.0 * 4.0 * math.ceil(2.0 * length / a))
+           + 2.0 * 4.0 * math.ceil(2.0 * length / a)
+           + _film_triangles(problem, fine, options.contact_extent * contact_radius))
     height = 2.0 if problem.body == "sphere" else min(options.cap_height, 1.0)
     radius = problem.sphere_radius_m
     area = math.pi / 4.0 * (2.0 if problem.body == "sphere" else 1.0)  # R^2
@@ -74,8 +95,8 @@ def fem_axi_dofs(case: Mapping[str, Any]) -> int:
 
 def fem_axi_cost(case: Mapping[str, Any], options: FEMAxiOptions) -> Cost:
     """The steps, time and memory of one ``fem_axi`` solve of ``case`` (a resolved case)."""
-    axi = AxiImpact.from_case(case)
-    problem = ImpactProblem.from_case(case)
+    axi = AxiImpact.from_case(case, estimate=True)
+    problem = ImpactProblem.from_case(case, estimate=True)
     step = options.step(axi.scales().contact_time_s)
     # its end test waits max(2T, a quarter of the contact) after the contact
     contact = contact_duration(problem)

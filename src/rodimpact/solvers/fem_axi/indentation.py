@@ -4,6 +4,13 @@ The cap's rigid back is pushed towards the rod by d; the multipliers solve the s
 contact LCP exactly as in :mod:`.fem_axi`. With the bulk of both bodies adding a linear
 compliance C, Hertz predicts d = (P / k)^(2/3) + C P with k = (4/3) E* sqrt(R), and the
 contact radius a = (3 P R / (4 E*))^(1/3): a check of the continuum against the Hertz law.
+
+With a film (``problem.film``) the cap presses the film's surface and the rod is the rod and
+its film (:mod:`.film_mesh`): the force against the rigid back's displacement is the static
+force-approach curve P(d) of the film-coated rod (d includes the cap's, the film's and the
+rod's compliance). The mean axial displacements of the rod's end face (z = 0, under the film)
+and of the struck surface are returned too: d minus the first is the approach relative to
+the rod's end face, as in :func:`~rodimpact.solvers.fem_axi.solver.solve_fem_axi`.
 """
 
 from __future__ import annotations
@@ -18,6 +25,7 @@ from scipy.linalg import cholesky, solve_triangular
 from scipy.optimize import nnls
 from scipy.sparse.linalg import splu
 
+from rodimpact.solvers.fem_axi.axisym import cross_section_mean_uz
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact
 from rodimpact.solvers.fem_axi.solver import build_model
@@ -27,12 +35,33 @@ __all__ = ["Indentation", "static_indentation"]
 
 @dataclass(frozen=True)
 class Indentation:
-    """Loads (N), contact radii (m) and rigid-back displacements (m), shape (n,) each."""
+    """A static indentation, one entry per displacement of the rigid back (shape (n,) each).
+
+    Attributes
+    ----------
+    displacement_m : ndarray
+        Displacement d of the cap's rigid back towards the rod, m.
+    force_N : ndarray
+        Contact force, N.
+    contact_radius_m : ndarray
+        Radius of the outermost candidate node in contact (the cap's; the film's surface node
+        with a film), m.
+    node_spacing_m : float
+        Smallest radial spacing of the candidate contact nodes, m.
+    face_displacement_m : ndarray
+        Mean axial displacement of the rod's end face z = 0 over the rod's cross-section (under
+        the film, if any), m (positive into the rod).
+    surface_displacement_m : ndarray
+        Mean axial displacement of the struck surface: the film's disc z = -h, r <= r_f with a
+        film, the end face without, m.
+    """
 
     displacement_m: NDArray[np.float64]
     force_N: NDArray[np.float64]
     contact_radius_m: NDArray[np.float64]
     node_spacing_m: float
+    face_displacement_m: NDArray[np.float64] | None = None
+    surface_displacement_m: NDArray[np.float64] | None = None
 
 
 def static_indentation(problem: AxiImpact, displacements_m: Sequence[float],
@@ -45,6 +74,12 @@ def static_indentation(problem: AxiImpact, displacements_m: Sequence[float],
         Must have ``body="cap"`` and a fixed far end.
     displacements_m : sequence of float
         Displacements d of the rigid back towards the rod, m (> 0).
+    options : FEMAxiOptions, optional
+        The mesh's settings (``elements_across``, ``contact_extent``, ``cap_height``, ``element``).
+
+    Returns
+    -------
+    Indentation
     """
     if problem.body != "cap" or problem.far_end != "fixed":
         raise ValueError("problem: static indentation needs body='cap' and a fixed far end")
@@ -59,12 +94,23 @@ def static_indentation(problem: AxiImpact, displacements_m: Sequence[float],
     G_rod = np.column_stack([solve_rod(c) for c in B_rod.T.toarray().T])
     G_imp = np.column_stack([solve_imp(c) for c in B_i.T.toarray().T])
     chol = cholesky(B_rod @ G_rod + B_i @ G_imp, lower=True)
+    # the rod's displacement is G_rod lam: the mean displacements are rows times G_rod
+    face = rod.reduce_rows(cross_section_mean_uz(rod.basis, 0.0, problem.rod_radius_m))
+    if model.film is None:
+        surface = face
+    else:
+        surface = rod.reduce_rows(cross_section_mean_uz(rod.basis, -model.film.film_thickness_m,
+                                                        model.film.film_radius_m))
+    means = np.vstack([(face @ G_rod).ravel(), (surface @ G_rod).ravel()])
     # a rigid translation of the whole cap by d closes every gap by d
-    forces, radii = [], []
+    forces, radii, moved = [], [], []
     for d in displacements_m:
         gap = gap0 - d
         lam, _ = nnls(chol.T, -solve_triangular(chol, gap, lower=True), maxiter=50 * len(gap0))
         forces.append(2 * math.pi * lam.sum())
         radii.append(float(r_c[lam > 0].max()) if (lam > 0).any() else 0.0)
+        moved.append(means @ lam)
     spacing = float(np.min(np.diff(np.unique(r_c)))) if len(r_c) > 1 else fine
-    return Indentation(np.asarray(displacements_m, float), np.asarray(forces), np.asarray(radii), spacing)
+    moved_a = np.asarray(moved).reshape(-1, 2)
+    return Indentation(np.asarray(displacements_m, float), np.asarray(forces), np.asarray(radii), spacing,
+                       face_displacement_m=moved_a[:, 0], surface_displacement_m=moved_a[:, 1])

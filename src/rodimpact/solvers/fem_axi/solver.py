@@ -30,6 +30,8 @@ from skfem import Basis, ElementTriP1, ElementTriP2, ElementVector
 from rodimpact.analysis.signals import local_maxima
 from rodimpact.solvers.fem_axi.axibody import AxiBody, dofs_of
 from rodimpact.solvers.fem_axi.axisym import axis_dofs, axisym_mass, axisym_stiffness, cross_section_mean_uz
+from rodimpact.solvers.fem_axi.film_mesh import FilmRodMesh, film_rod_mesh, layers_within
+from rodimpact.solvers.fem_axi.film_model import film_contact, film_rod_matrices
 from rodimpact.solvers.fem_axi.meshes import ball_mesh, cap_mesh, rod_mesh
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact, AxiScales
@@ -53,7 +55,9 @@ class AxiModel:
 
     ``B_rod`` and ``B_imp`` (shape (c, d_rod) and (c, d_imp)) map each body's DOFs to the
     closing of the c candidate gaps; ``gap0`` (c,) is the initial gap, ``r_c`` (c,) the
-    candidates' radii, m.
+    candidates' radii, m. With a film, ``rod`` is the rod and its film in one body (two
+    materials) and ``film`` its mesh; the rod's end face stays at z = 0 and the film's
+    surface is z = -h.
     """
 
     rod: AxiBody
@@ -64,6 +68,7 @@ class AxiModel:
     r_c: NDArray[np.float64]
     scales: AxiScales
     fine_size_m: float
+    film: FilmRodMesh | None = None
 
 
 @dataclass
@@ -100,6 +105,15 @@ def _volume(basis: Basis) -> float:
 
 
 def build_model(problem: AxiImpact, options: FEMAxiOptions) -> AxiModel:
+    """Mesh and assemble both bodies and the contact's candidate gaps.
+
+    Without a film the rod's end face z = 0 is struck, the impactor's sphere touches it at the
+    origin, and the candidates are the impactor's surface nodes. With a film (:mod:`.film_mesh`,
+    :mod:`.film_model`) the film's surface z = -h is struck over r <= r_f and the bare face
+    z = 0 beyond; the impactor, meshed in its own frame (touching the origin), stands h lower
+    (its forms do not depend on z, so only its gaps see this); the candidates are the rod's
+    struck-surface nodes.
+    """
     scales = problem.scales()
     a_contact = scales.contact_radius_m
     if options.elements_across < RECOMMENDED_ELEMENTS_ACROSS:
@@ -109,15 +123,24 @@ def build_model(problem: AxiImpact, options: FEMAxiOptions) -> AxiModel:
     fine = a_contact / options.elements_across
     extent = options.contact_extent * a_contact
     R = problem.sphere_radius_m
-    rod = rod_mesh(problem.rod_radius_m, problem.rod_length_m, fine, extent)
+    film_mesh = None
+    if problem.film is None:
+        rod = rod_mesh(problem.rod_radius_m, problem.rod_length_m, fine, extent)
+    else:
+        film_mesh = film_rod_mesh(problem.rod_radius_m, problem.rod_length_m, fine, extent,
+                                  problem.film_radius_m, problem.film.thickness_m)
+        rod = film_mesh.body
     rod_basis = _basis(rod.mesh, options.element)
     removed = axis_dofs(rod_basis)
     if problem.far_end == "fixed":
         far = rod.boundaries["far"]
         removed = np.union1d(removed, np.union1d(dofs_of(rod_basis, far, 0), dofs_of(rod_basis, far, 1)))
-    rod_body = AxiBody(rod_basis, axisym_stiffness(rod_basis, problem.rod_material.youngs_modulus_pa,
-                                                   problem.rod_material.poisson_ratio),
-                       axisym_mass(rod_basis, problem.rod_material.density_kg_m3), removed)
+    if film_mesh is None:
+        rod_body = AxiBody(rod_basis, axisym_stiffness(rod_basis, problem.rod_material.youngs_modulus_pa,
+                                                       problem.rod_material.poisson_ratio),
+                           axisym_mass(rod_basis, problem.rod_material.density_kg_m3), removed)
+    else:
+        rod_body = AxiBody(rod_basis, *film_rod_matrices(rod_basis, film_mesh, problem), removed)
     mat = problem.impactor_material
     if problem.body == "sphere":
         imp = ball_mesh(R, fine, extent)
@@ -138,10 +161,15 @@ def build_model(problem: AxiImpact, options: FEMAxiOptions) -> AxiModel:
                            axisym_mass(imp_basis, mat.density_kg_m3),
                            np.union1d(axis_dofs(imp_basis), dofs_of(imp_basis, back, 0)),
                            rigid=dofs_of(imp_basis, back, 1), rigid_mass_kg=problem.mass_kg - cap_mass)
+    if film_mesh is not None:
+        B_rod, B_imp, gap0, r_c = film_contact(rod_body, film_mesh, imp_body, imp, R, extent)
+        return AxiModel(rod=rod_body, impactor=imp_body, B_rod=B_rod, B_imp=B_imp, gap0=gap0, r_c=r_c,
+                        scales=scales, fine_size_m=fine, film=film_mesh)
     # candidate contact nodes: the impactor's surface u_z DOFs within the extent
     surface_uz = dofs_of(imp_basis, imp.boundaries["surface"], 1)
     locs = imp_basis.doflocs[:, surface_uz]
-    keep = (locs[0] <= extent) & (locs[1] >= -2.0 * extent)  # near the contact point, not the far pole
+    # near the contact point, not the far pole, and facing the rod
+    keep = (locs[0] <= extent) & (locs[1] >= -2.0 * extent) & (locs[0] <= problem.rod_radius_m)
     surface_uz, locs = surface_uz[keep], locs[:, keep]
     order = np.argsort(locs[0])
     surface_uz, locs = surface_uz[order], locs[:, order]
@@ -152,7 +180,7 @@ def build_model(problem: AxiImpact, options: FEMAxiOptions) -> AxiModel:
     # the rod face is z = 0; the sphere's surface at radius r lies at z = -(R - sqrt(R^2 - r^2))
     gap0 = R - np.sqrt(R**2 - locs[0] ** 2)
     return AxiModel(rod=rod_body, impactor=imp_body, B_rod=B_rod, B_imp=B_imp, gap0=gap0, r_c=locs[0],
-                  scales=scales, fine_size_m=fine)
+                    scales=scales, fine_size_m=fine)
 
 
 def _crossing(previous: float, last: float, h: float) -> float:
@@ -181,9 +209,14 @@ def solve_fem_axi(problem: AxiImpact, options: FEMAxiOptions | None = None,
     ImpactResult
         Contact force (2 pi times the sum of the multipliers), contact intervals and
         maxima; ``approach`` is the impactor's displacement (its rigid part, or the ball's
-        centre of mass) minus the mean displacement of the rod's end face; extra series:
-        ``contact_radius`` and the energies (``contact_energy`` holds the impactor's
-        strain energy); extra summary: mesh and DOF counts, the largest contact radius.
+        centre of mass) minus the mean displacement of the rod's end face (z = 0, over the
+        rod's whole cross-section): with a film this is the face under the film, so the
+        approach includes the film's compression; extra series: ``contact_radius`` and the
+        energies (``contact_energy`` holds the impactor's strain energy; the film's strain
+        and kinetic energies are in the rod's); extra summary: mesh and DOF counts, the
+        largest contact radius, and with a film ``film_thickness_m``, ``film_radius_m``,
+        ``film_elements`` and ``film_elements_through_thickness`` (under the contact zone,
+        r <= contact_extent estimated contact radii).
     """
     options = FEMAxiOptions() if options is None else options
     started = _time.perf_counter()
@@ -283,8 +316,12 @@ def _result(problem: AxiImpact, model: AxiModel, hist: _History, stations: tuple
     # nodes enter the contact one at a time: ripples far smaller than the physical maxima
     peak_t, peak_p = local_maxima(time, force, min_prominence=PEAK_PROMINENCE * force.max())
     radius = np.asarray(hist.radius)
+    if len(model.r_c) and radius.max() >= model.r_c.max():
+        log.warning("the contact reached the edge of the candidate zone (r = %.3g m): raise contact_extent",
+                    float(model.r_c.max()))
     series = {
-        "contact_radius": (radius, "m", "radius of the outermost impactor node in contact"),
+        "contact_radius": (radius, "m", "radius of the outermost candidate node in contact (the impactor's; "
+                                        "the film's with a film)"),
         "impactor_kinetic_energy": (kin_i, "J", "kinetic energy of the impactor (elastic part and rigid part)"),
         "contact_energy": (str_i, "J", "strain energy of the impactor (holds what a contact law lumps into the contact)"),
         "rod_energy": (kin_r + str_r, "J", "energy in the rod (kinetic + strain)"),
@@ -298,6 +335,11 @@ def _result(problem: AxiImpact, model: AxiModel, hist: _History, stations: tuple
                              "estimated_contact_radius_m": float(model.scales.contact_radius_m),
                              "max_contact_radius_m": float(radius.max()), "n_lcp_solves": int(hist.n_lcp),
                              "impactor_mass_kg": float(imp.total_mass_kg)}
+    if model.film is not None:
+        film = model.film
+        extra.update(film_thickness_m=float(film.film_thickness_m), film_radius_m=float(film.film_radius_m),
+                     film_elements=int(film.film_elements.size),
+                     film_elements_through_thickness=layers_within(film, film.body.contact_extent_m))
     if stations:
         values = np.asarray(hist.stations).reshape(len(time), len(stations), 3)
         series["station_displacement"] = (values[:, :, 0], "m", "cross-section mean axial displacement at station_x_m")

@@ -1,0 +1,193 @@
+"""The rod with a film bonded on its struck end: one conforming mesh of both regions.
+
+Geometry in the (r, z) half-plane, m: the rod occupies 0 <= r <= a, 0 <= z <= L (its end
+face z = 0, as in :func:`~rodimpact.solvers.fem_axi.meshes.rod_mesh`); the film, a disc of
+radius r_f <= a and thickness h, occupies 0 <= r <= r_f, -h <= z <= 0 and is bonded to the
+end face (the two regions share the vertices of the interface z = 0, r <= r_f). The film is
+added on top of the end face: the rod keeps its length, and outside the disc (r > r_f) the
+end face is the bare rod, a step of height h at r = r_f.
+
+The rod's part is meshed as :func:`~rodimpact.solvers.fem_axi.meshes.rod_mesh` (the same
+uniform coarse grid, refined by longest-edge bisection down to ``fine`` within the fine extent
+of the origin), and also wherever it is near the film's disc, to face edges of at most
+``aspect * h / layers`` there (the target grows by SIZE_GRADIENT times the distance from the
+disc); then the end-face vertex nearest to r = r_f is moved there along the face (by at most
+half a face edge; no triangle folds, checked). The film is the extrusion of the rod's
+end-face vertices r_0 = 0 < ... < r_m = r_f through ``layers`` equal layers of thickness
+h / layers, every cell split into two triangles: the mesh conforms to the interface and to
+the disc's edge; ``layers`` elements through the thickness everywhere (so also under the
+contact), columns as fine as the rod's face (about fine / 2 within the fine extent, then
+graded up to the column spacing); flat cells of aspect up to ``aspect`` (1.5 ``aspect`` in the
+column at the edge) away from the contact.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+from skfem import MeshTri
+
+from rodimpact.solvers.fem_axi.meshes import (
+    SIZE_GRADIENT, BodyMesh, _area2, _ceil, _distance_to_origin, _fine_sizes, _longest_edges, _oriented, _positive, _tagged
+)
+
+__all__ = ["FILM_ASPECT", "FILM_LAYERS", "FilmRodMesh", "film_rod_mesh", "layers_within"]
+
+log = logging.getLogger(__name__)
+
+FILM_LAYERS = 4
+"""Elements through the film's thickness (everywhere, so also under the contact)."""
+FILM_ASPECT = 6.0
+"""Largest ratio of a film cell's width to its height (the columns' spacing away from the contact)."""
+
+
+@dataclass(frozen=True)
+class FilmRodMesh:
+    """The rod and its film in one mesh.
+
+    Attributes
+    ----------
+    body : BodyMesh
+        The mesh; boundaries 'axis' (r = 0), 'lateral' (r = a), 'far' (z = L), 'end' (the
+        bare end face z = 0, r >= r_f; empty when r_f = a), 'film' (the film's surface
+        z = -h), 'film_edge' (r = r_f, -h <= z <= 0; empty when r_f = a, where it is 'lateral').
+    film_elements, rod_elements : numpy.ndarray
+        Triangle indices (int) of the two regions.
+    film_radius_m, film_thickness_m : float
+        r_f and h, m.
+    layers : int
+        Elements through the film's thickness.
+    """
+
+    body: BodyMesh
+    film_elements: NDArray[np.int64]
+    rod_elements: NDArray[np.int64]
+    film_radius_m: float
+    film_thickness_m: float
+    layers: int
+
+
+def _distance_to_disc(mesh: MeshTri, radius: float) -> NDArray[np.float64]:
+    """Distance from each triangle (in z >= 0) to the segment {z = 0, 0 <= r <= radius}, m."""
+    p, t = mesh.p, mesh.t
+    r, z = p[0, t], p[1, t]
+    vertex = np.where(r <= radius, z, np.hypot(r - radius, z)).min(axis=0)
+    shifted = MeshTri(p - np.array([[radius], [0.0]]), t, sort_t=False, validate=False)
+    return np.minimum.reduce([vertex, _distance_to_origin(mesh), _distance_to_origin(shifted)])
+
+
+def _rod_under_film(a: float, length: float, fine: float, extent: float, film_radius: float,
+                    face_spacing: float) -> MeshTri:
+    """The rod's mesh refined as ``rod_mesh(layout='refined')`` (the same coarse grid, the same
+    target about the origin) and, near the film's disc, to face edges of ``face_spacing``;
+    then the end-face vertex nearest to r = film_radius is moved there (along the face)."""
+    coarse_r, coarse_z = max(a / 4, fine), max(a / 2, fine)
+    r = np.linspace(0.0, a, max(1, _ceil(a / coarse_r)) + 1)
+    z = np.linspace(0.0, length, max(1, _ceil(length / coarse_z)) + 1)
+    mesh = MeshTri.init_tensor(r, z)
+    # red refinement keeps the coarse triangles' shape: a face edge is 1/kappa of the longest
+    kappa = math.hypot(r[1], z[1]) / r[1]
+    coarse = float(_longest_edges(mesh).max())
+    for _ in range(80):
+        beyond = np.maximum(_distance_to_origin(mesh) - extent, 0.0)
+        target = np.where(beyond > 0.0, np.minimum(coarse, fine + SIZE_GRADIENT * beyond), fine)
+        band = kappa * face_spacing + SIZE_GRADIENT * _distance_to_disc(mesh, film_radius)
+        target = np.minimum(target, np.minimum(coarse, band))
+        marked = np.nonzero(_longest_edges(mesh) > target * (1 + 1e-9))[0]
+        if marked.size == 0:
+            break
+        mesh = mesh.refined(marked)
+    else:
+        raise RuntimeError("the refinement did not converge")
+    p = mesh.p.copy()
+    if film_radius == a:
+        return mesh
+    face = np.nonzero((p[1] == 0.0) & (p[0] > 0.0) & (p[0] < a))[0]  # not the corners
+    nearest = face[np.argmin(np.abs(p[0, face] - film_radius))]
+    p[0, nearest] = film_radius
+    if np.any(_area2(p, mesh.t) * _area2(mesh.p, mesh.t) <= 0.0):
+        raise RuntimeError("moving a vertex to the film's edge folded a triangle")
+    return MeshTri(p, mesh.t, sort_t=False)
+
+
+def film_rod_mesh(radius_m: float, length_m: float, fine_size_m: float, fine_extent_m: float,
+                  film_radius_m: float, film_thickness_m: float, layers: int = FILM_LAYERS,
+                  aspect: float = FILM_ASPECT) -> FilmRodMesh:
+    """Mesh of the rod 0 <= r <= a, 0 <= z <= L with a film 0 <= r <= r_f, -h <= z <= 0 on its end.
+
+    Parameters
+    ----------
+    radius_m, length_m : float
+        Rod radius a and length L, m.
+    fine_size_m, fine_extent_m : float
+        Longest edges at most ``fine_size_m`` within ``fine_extent_m`` of the origin (the
+        centre of the rod's end face, h below the contact point), m, as in ``rod_mesh``.
+    film_radius_m : float
+        Radius r_f of the film's disc, m, 0 < r_f <= a.
+    film_thickness_m : float
+        Thickness h of the film, m (at most the rod's length).
+    layers : int
+        Elements through the film's thickness (>= 1).
+    aspect : float
+        The columns of the film (and the rod's face under it) are at most ``aspect * h / layers``
+        wide (> 0).
+
+    Returns
+    -------
+    FilmRodMesh
+    """
+    a, length = _positive("radius_m", radius_m), _positive("length_m", length_m)
+    fine, extent = _fine_sizes(fine_size_m, fine_extent_m, min(a, length))
+    film_radius, h = _positive("film_radius_m", film_radius_m), _positive("film_thickness_m", film_thickness_m)
+    if film_radius > a:
+        raise ValueError(f"film_radius_m must not exceed the rod's radius {a!r} m, got {film_radius_m!r}")
+    if h > length:
+        raise ValueError(f"film_thickness_m must not exceed the rod's length {length!r} m, got {film_thickness_m!r}")
+    if isinstance(layers, bool) or not isinstance(layers, int) or layers < 1:
+        raise ValueError(f"layers must be a positive integer, got {layers!r}")
+    face_spacing = min(_positive("aspect", aspect) * h / layers, film_radius / 2)
+    rod = _rod_under_film(a, length, fine, extent, film_radius, face_spacing)
+    p, n_rod = rod.p, rod.nvertices
+    face = np.nonzero((p[1] == 0.0) & (p[0] <= film_radius))[0]
+    face = face[np.argsort(p[0, face])]
+    if p[0, face[-1]] != film_radius:
+        raise RuntimeError("the rod's mesh has no vertex at the film's edge")
+    m = face.size - 1
+    z = -h * np.arange(1, layers + 1) / layers
+    z[-1] = -h
+    new = np.vstack([np.tile(p[0, face], layers), np.repeat(z, m + 1)])
+    index = np.vstack([face, n_rod + np.arange(layers * (m + 1)).reshape(layers, m + 1)])
+    lo_l, lo_r = index[:-1, :-1].ravel(), index[:-1, 1:].ravel()
+    hi_l, hi_r = index[1:, :-1].ravel(), index[1:, 1:].ravel()
+    film_t = np.hstack([np.vstack([lo_l, lo_r, hi_r]), np.vstack([lo_l, hi_r, hi_l])])
+    points = np.hstack([p, new])
+    mesh = _oriented(points, np.hstack([rod.t, film_t]))
+    q = mesh.p
+    mesh, boundaries = _tagged(mesh, {
+        "axis": q[0] == 0.0, "lateral": q[0] == a, "far": q[1] == length,
+        "end": (q[1] == 0.0) & (q[0] >= film_radius), "film": q[1] == -h,
+        "film_edge": (q[0] == film_radius) & (q[1] <= 0.0)})
+    n_rod_t = rod.t.shape[1]
+    fine_reached = float(_longest_edges(mesh)[_distance_to_origin(mesh) <= extent].max())
+    log.info("rod + film mesh: %d vertices, %d triangles (%d in the film: %d layers of %.3g m, %d columns out to "
+             "r = %.3g m); size %.3g m within %.3g m", mesh.nvertices, mesh.t.shape[1], film_t.shape[1], layers,
+             h / layers, m, film_radius, fine_reached, extent)
+    return FilmRodMesh(BodyMesh(mesh, boundaries, fine_reached, extent),
+                       film_elements=np.arange(n_rod_t, mesh.t.shape[1], dtype=np.int64),
+                       rod_elements=np.arange(n_rod_t, dtype=np.int64),
+                       film_radius_m=film_radius, film_thickness_m=h, layers=layers)
+
+
+def layers_within(mesh: FilmRodMesh, radius_m: float) -> int:
+    """The fewest film elements through the thickness along the vertical lines of the film's
+    vertices within ``radius_m`` of the axis (counted from the vertices' heights)."""
+    p = mesh.body.mesh.p
+    t = mesh.body.mesh.t[:, mesh.film_elements]
+    nodes = np.unique(t)
+    nodes = nodes[p[0, nodes] <= radius_m]
+    r, counts = np.unique(p[0, nodes], return_counts=True)
+    return int(counts.min()) - 1 if r.size else 0
