@@ -186,6 +186,10 @@ def default_targets():
         targets += expand("results/tables/table2_variants.{ext}", ext=["csv", "md", "provenance.json"])
         targets += expand("results/figures/table2_contact_time.{ext}", ext=["pdf", "png"])
         targets += expand("results/studies/film_band_{variant}.h5", variant=FILM_VARIANTS)
+        # the sensor film's tables and figure (rules in tables.smk and figures.smk)
+        targets += expand("results/tables/{name}.{ext}", name=["table2_film", "film_band", "film_indentation"],
+                          ext=["csv", "md", "provenance.json"])
+        targets += expand("results/figures/film_force.{ext}", ext=["pdf", "png"])
     for name in sets:
         targets += runs_of(PROJECT.cases_in(name))
         if PROJECT.sweeps_in(name):

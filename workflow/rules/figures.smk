@@ -68,11 +68,12 @@ rule fig4:
 
 
 rule fig_table2:
-    """Contact time against ball mass: measured, published and ours, per geometry variant,
-    with the curves of the table2 set's sweeps."""
+    """Contact time against ball mass: measured, published and ours, one panel per rod, with the
+    curves of the table2 set's sweeps, and the readings with the film and their bands."""
     input:
         runs=[run for v in TABLE2_VARIANTS for run in table2_runs(v)],
         sweep_runs=sweep_point_runs(PROJECT.sweeps_in("table2")),
+        bands=expand("results/studies/film_band_{variant}.h5", variant=FILM_VARIANTS),
         code=SRC_PRESENT,
     output:
         pdf=report(
@@ -92,6 +93,7 @@ rule fig_table2:
         provenance="results/figures/table2_contact_time.provenance.json",
     params:
         variants=TABLE2_VARIANTS,
+        film_variants=FILM_VARIANTS,
     log:
         "logs/figures/table2_contact_time.log",
     threads: 1
@@ -101,3 +103,50 @@ rule fig_table2:
         "../envs/rodimpact.yaml"
     script:
         "../scripts/fig_table2.py"
+
+
+# The contact force with and without the film: the lightest and the heaviest ball on the text's
+# rod, by the SEM and the continuum.
+FILM_FORCE = {"rows": ["ball_3.16mm", "ball_12.73mm"], "variants": ["r10_l30", "r10_l30_film"],
+              "methods": ["sem", "fem_axi"]}
+# its runs: each row on each reading, by each of the methods the case runs
+FILM_FORCE_RUNS = [f"results/runs/{case['id']}/{method}.h5"
+                   for case in (PROJECT.cases[f"{row}-{variant}"] for row in FILM_FORCE["rows"]
+                                for variant in FILM_FORCE["variants"])
+                   for method in FILM_FORCE["methods"] if method in case["methods"]]
+
+
+rule fig_film_force:
+    """The contact force P(t) with and without the sensor film, lightest and heaviest ball."""
+    input:
+        runs=FILM_FORCE_RUNS,
+        code=SRC_PRESENT,
+    output:
+        pdf=report(
+            "results/figures/film_force.pdf",
+            caption="../report/film_force.rst",
+            category="Paper, Table 2",
+            subcategory="The sensor film",
+            labels={"artifact": "Contact force with and without the film", "format": "PDF"},
+        ),
+        png=report(
+            "results/figures/film_force.png",
+            caption="../report/film_force.rst",
+            category="Paper, Table 2",
+            subcategory="The sensor film",
+            labels={"artifact": "Contact force with and without the film", "format": "PNG"},
+        ),
+        provenance="results/figures/film_force.provenance.json",
+    params:
+        rows=FILM_FORCE["rows"],
+        variants=FILM_FORCE["variants"],
+        methods=FILM_FORCE["methods"],
+    log:
+        "logs/figures/film_force.log",
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
+    conda:
+        "../envs/rodimpact.yaml"
+    script:
+        "../scripts/fig_film_force.py"

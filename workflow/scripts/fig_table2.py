@@ -1,4 +1,4 @@
-"""Snakemake adapter: contact time against ball mass, per rod geometry variant."""
+"""Snakemake adapter: contact time against ball mass, per rod, with and without the film."""
 
 from rodimpact.present.artifacts import make_fig_table2
 from rodimpact.workflow.logs import script_logging
@@ -7,4 +7,6 @@ with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
     make_fig_table2(snakemake.input.runs, snakemake.params.variants,  # noqa: F821
                     pdf=snakemake.output.pdf, png=snakemake.output.png,  # noqa: F821
                     provenance=snakemake.output.provenance,  # noqa: F821
-                    sweep_runs=snakemake.input.sweep_runs)  # noqa: F821
+                    sweep_runs=snakemake.input.sweep_runs,  # noqa: F821
+                    film_variants=snakemake.params.film_variants,  # noqa: F821
+                    band_files=snakemake.input.bands)  # noqa: F821

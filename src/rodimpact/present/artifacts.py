@@ -11,8 +11,16 @@ from typing import Any, Mapping, Sequence
 
 from rodimpact.analysis.stability_study import StudyViolation, map_frame, stability_frame, violations
 from rodimpact.analysis.work_precision import observed_orders, work_precision_frame
+from rodimpact.io.bands import read_band
+from rodimpact.io.casefile import read_case_file
+from rodimpact.io.curves import read_contact_curve
 from rodimpact.io.sidecar import provenance_record, write_provenance
 from rodimpact.io.store import read_run
+from rodimpact.present.film_figures import plot_film_force
+from rodimpact.present.film_tables import (
+    film_band_frame, film_indentation_frame, film_table_frame, headers_with_units, readings_frame, table2_panels,
+    write_provenance_with_files
+)
 from rodimpact.present.figures import (
     plot_contact_force, plot_station_displacement, plot_table2_contact_time, save_figure
 )
@@ -21,8 +29,9 @@ from rodimpact.present.tables import (
     comparison_frame, load_records, sweep_results_frame, table2_frame, variants_summary, write_table
 )
 
-__all__ = ["make_comparison", "make_fig2", "make_fig4", "make_fig_table2", "make_stability",
-           "make_stability_map", "make_sweep_table", "make_table2", "make_table2_variants", "make_work_precision",
+__all__ = ["make_comparison", "make_fig2", "make_fig4", "make_fig_film_force", "make_fig_table2",
+           "make_film_band_table", "make_film_indentation_table", "make_stability", "make_stability_map",
+           "make_sweep_table", "make_table2", "make_table2_film", "make_table2_variants", "make_work_precision",
            "make_work_precision_figure"]
 
 log = logging.getLogger(__name__)
@@ -54,9 +63,11 @@ def make_table2_variants(runs: Sequence[str | Path], variants: Sequence[str], *,
                          md: str | Path, provenance: str | Path) -> None:
     """Per variant and method, the mean and max error against the measurements."""
     records, frames = _by_variant(runs, variants)
-    summary = variants_summary(frames)
+    readings = readings_frame(records).set_index("variant").to_dict("index")
+    summary = variants_summary(frames, readings)
     write_table(summary, csv=csv, md=md, caption="Error against the measured contact times, per rod "
-                "geometry variant and method, next to the paper's own errors (%).")
+                "geometry variant (with or without the sensor film, and its contact law) and method, next to "
+                "the paper's own errors (%).")
     write_provenance(provenance, records, [csv, md])
 
 
@@ -106,13 +117,80 @@ def make_fig4(runs: Sequence[str | Path], fraction: float, *, pdf: str | Path, p
 
 
 def make_fig_table2(runs: Sequence[str | Path], variants: Sequence[str], *, pdf: str | Path,
-                    png: str | Path, provenance: str | Path, sweep_runs: Sequence[str | Path] = ()) -> None:
-    """Contact time against ball mass per geometry variant, with the sweeps' curves."""
+                    png: str | Path, provenance: str | Path, sweep_runs: Sequence[str | Path] = (),
+                    film_variants: Sequence[str] = (), band_files: Sequence[str | Path] = ()) -> None:
+    """Contact time against ball mass, one panel per rod, with the sweeps' curves; the readings
+    with the film (``film_variants``) on the panel of their rod, with their bands (``band_files``)."""
     records, frames = _by_variant(runs, variants)
     sweeps = load_records(sweep_runs)
-    fig = plot_table2_contact_time(frames, sweep_results_frame(sweeps))
-    _save_figure(fig, [*records, *sweeps], pdf=pdf, png=png, provenance=provenance,
-                 title="Table 2: contact time against ball mass")
+    readings = readings_frame(records)
+    bands = film_band_frame(dict(read_band(p) for p in band_files), {r.case_id: r.config for r in records})
+    fig = plot_table2_contact_time(frames, sweep_results_frame(sweeps), panels=table2_panels(readings, film_variants),
+                                   readings=readings, bands=bands)
+    artifacts = [pdf, png]
+    save_figure(fig, pdf=pdf, png=png, provenance=provenance_record([*records, *sweeps], artifacts),
+                title="Table 2: contact time against ball mass")
+    write_provenance_with_files(provenance, [*records, *sweeps], artifacts, {"band": band_files})
+
+
+FILM_TABLE_CAPTION = (
+    "Table 2 on the rod of the text, without and with the sensor film: measured and published contact "
+    "times, ours by every method (no film: Hertz; film: the thin-layer law for the 1-D methods, the bonded "
+    "film for the continuum; calibrated: the law of the continuum's static indentation), the film's "
+    "prediction band (SEM over the film constants' ranges), each model's |model - measured| / measured, "
+    "the contact radius over the film thickness (thin-layer law, SEM), and the model-form error of the "
+    "quasi-static contact: (calibrated SEM with film - continuum with film) / continuum with film.")
+
+
+def make_table2_film(runs: Sequence[str | Path], variants: Mapping[str, str], band: str | Path, *,
+                     csv: str | Path, md: str | Path, provenance: str | Path) -> None:
+    """Table 2 on one rod without and with the film (:func:`film_table_frame`), and its sidecar."""
+    records = load_records(runs)
+    band_variant, bands = read_band(band)
+    if band_variant != variants.get("film"):
+        raise ValueError(f"{band}: the band of {band_variant!r}, not of the film reading {variants.get('film')!r}")
+    frame = film_table_frame(records, variants, bands)
+    write_table(frame, csv=csv, md=md, digits=2, caption=FILM_TABLE_CAPTION, headers=headers_with_units(frame.columns))
+    write_provenance_with_files(provenance, records, [csv, md], {"band": [band]})
+    log.info("table 2 with the film: %d rows from %d runs", len(frame), len(records))
+
+
+def make_film_band_table(bands: Sequence[str | Path], case_files: Sequence[str | Path], *, csv: str | Path,
+                         md: str | Path, provenance: str | Path) -> None:
+    """Every case of every band file (:func:`film_band_frame`); rows and masses from the case files."""
+    cases = {record["case_id"]: record["case"] for record in map(read_case_file, case_files)}
+    frame = film_band_frame(dict(read_band(p) for p in bands), cases)
+    write_table(frame, csv=csv, md=md, digits=2, headers=headers_with_units(frame.columns), caption=(
+        "The sensor film's prediction band per Table 2 row and film reading: the SEM's contact time at the "
+        "film's nominal constants and its min and max over the box of their ranges (us), whether the "
+        "measurement lies inside, and whether the time is monotone along each range (the corners bound it)."))
+    write_provenance_with_files(provenance, [], [csv, md], {"band": bands, "case file": case_files})
+    log.info("film bands: %d cases of %d readings, %d measurements inside", len(frame), len(bands),
+             int(frame["measured_in_band"].sum()))
+
+
+def make_film_indentation_table(curves: Sequence[str | Path], *, csv: str | Path, md: str | Path,
+                                provenance: str | Path) -> None:
+    """Every point of every indentation curve against its analytic law (:func:`film_indentation_frame`)."""
+    frame = film_indentation_frame([read_contact_curve(p) for p in curves])
+    write_table(frame, csv=csv, md=md, digits=4, headers=headers_with_units(frame.columns), caption=(
+        "The continuum's static indentation (the calibrated contact laws) against the analytic law at the "
+        "same force (hertz_film with the film, hertz without): approaches (um), the law's error "
+        "(law - continuum) / continuum (%), the contact radius (um) and its ratio to the film thickness, and "
+        "the tabulated law's interpolation error (every other point)."))
+    write_provenance_with_files(provenance, [], [csv, md], {"contact curve": curves})
+
+
+def make_fig_film_force(runs: Sequence[str | Path], rows: Sequence[str], *, pdf: str | Path, png: str | Path,
+                        provenance: str | Path) -> None:
+    """The contact force with and without the film, one panel per row of ``rows``."""
+    records = [read_run(p) for p in runs]
+    rod = records[0].config["rod"]
+    fig = plot_film_force(records, rows, title=(
+        f"Contact force with and without the sensor film, rod radius {1000 * rod['radius_m']:g} mm, "
+        f"length {1000 * rod['length_m']:g} mm"))
+    _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance,
+                 title="Contact force with and without the sensor film")
 
 
 def make_sweep_table(runs: Sequence[str | Path], *, csv: str | Path, md: str | Path,

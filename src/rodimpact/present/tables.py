@@ -8,7 +8,7 @@ from __future__ import annotations
 import logging
 import math
 from pathlib import Path
-from typing import Any, Iterable, Sequence
+from typing import Any, Iterable, Mapping, Sequence
 
 import numpy as np
 import pandas as pd
@@ -148,7 +148,8 @@ def sweep_results_frame(records: Sequence[RunRecord]) -> pd.DataFrame:
     return frame.sort_values(["sweep", "method", "mass_g"], kind="stable").reset_index(drop=True)
 
 
-def variants_summary(frames: dict[str, pd.DataFrame]) -> pd.DataFrame:
+def variants_summary(frames: dict[str, pd.DataFrame],
+                     readings: Mapping[str, Mapping[str, Any]] | None = None) -> pd.DataFrame:
     """Per variant and method: mean, max and mean signed error against the measurements,
     next to the paper's own errors for the same family of method (SEM or FEM).
 
@@ -156,9 +157,14 @@ def variants_summary(frames: dict[str, pd.DataFrame]) -> pd.DataFrame:
     ----------
     frames : dict
         Variant name -> :func:`table2_frame` of that variant.
+    readings : mapping, optional
+        Variant -> ``{"film": bool, "contact_law": str}``: given, the columns ``film`` and
+        ``contact_law`` follow ``variant``.
     """
     rows = []
     for variant, frame in frames.items():
+        reading = {} if readings is None else {"film": bool(readings[variant]["film"]),
+                                                 "contact_law": str(readings[variant]["contact_law"])}
         measured = frame["measured_us"].to_numpy(float)
         for column in frame.columns:
             if not column.endswith("_us") or column.startswith(("measured", "published")):
@@ -170,6 +176,7 @@ def variants_summary(frames: dict[str, pd.DataFrame]) -> pd.DataFrame:
             paper = frame[f"published_{family}_error_pct"].to_numpy(float) if family else np.array([np.nan])
             rows.append({
                 "variant": variant,
+                **reading,
                 "method": method,
                 "n_cases": int(np.sum(np.isfinite(signed))),
                 "mean_error_pct": float(np.nanmean(np.abs(signed))),
@@ -225,11 +232,13 @@ def comparison_frame(records: Sequence[RunRecord], reference: str = "sem") -> pd
 
 
 def write_table(frame: pd.DataFrame, *, csv: str | Path, md: str | Path | None = None,
-                tex: str | Path | None = None, caption: str = "", digits: int = 2) -> None:
-    """Write a table as CSV (full precision) and optionally Markdown and LaTeX (rounded)."""
+                tex: str | Path | None = None, caption: str = "", digits: int = 2,
+                headers: Mapping[str, str] | None = None) -> None:
+    """Write a table as CSV (full precision) and optionally Markdown and LaTeX (rounded);
+    ``headers`` (column -> header) renames the columns of the Markdown and LaTeX only."""
     with atomic_output(csv) as tmp:
         frame.to_csv(tmp, index=False, float_format="%.10g")
-    rounded = frame.round(digits)
+    rounded = frame.round(digits).rename(columns=dict(headers or {}))
     if md is not None:
         text = rounded.to_markdown(index=False, floatfmt=f".{digits}f")
         _write_text(md, (f"{caption}\n\n" if caption else "") + text + "\n")
