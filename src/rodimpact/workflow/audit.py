@@ -6,6 +6,8 @@
   over config, series and summary) matches its content, it was made by the libraries
   installed now, and the case file it records still holds its case;
 * a case file (``results/cases/*.yaml``): its case has the hash it was written with;
+* a contact-law curve (``results/indentation/*.h5``) or a film band
+  (``results/studies/film_band_*.h5``): its data match their hash;
 * a table or figure: a provenance sidecar (``*.provenance.json``) lists it with the SHA-256
   of its bytes as written, and every input run the sidecar names still has the config and
   content hashes the artifact was made from;
@@ -31,7 +33,11 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+import h5py
+
+from rodimpact.io.bands import BandFileError, read_band
 from rodimpact.io.casefile import read_case_file
+from rodimpact.io.curves import CurveFileError, read_contact_curve
 from rodimpact.io.provenance import (
     canonical_json, commit_exists, data_sha256, file_sha256, find_repo_root, library_versions
 )
@@ -117,6 +123,19 @@ def audit_run(path: str | Path, libraries: Mapping[str, str], repo_root: Path | 
         problems.append("made with other library versions: " + ", ".join(
             f"{name} {record.library_versions[name]} (now {libraries[name]})" for name in changed))
     return Finding(str(path), "run", tuple(problems), (record.code_version,), (record.config_sha256,))
+
+
+def audit_derived(path: str | Path, kind: str, repo_root: Path | None) -> Finding:
+    """Check a contact-law curve (``results/indentation/``) or a band (``results/studies/``):
+    readable, its data match their hash, its code version exists."""
+    reader = read_contact_curve if kind == "curve" else read_band
+    try:
+        reader(path)
+        with h5py.File(path, "r") as h5:
+            version = str(h5.attrs["code_version"])
+    except (CurveFileError, BandFileError, OSError, KeyError) as error:
+        return Finding(str(path), kind, (str(error),))
+    return Finding(str(path), kind, tuple(code_problems(version, repo_root)), (version,))
 
 
 def case_file_problems(reference: Mapping[str, Any] | None) -> list[str]:
@@ -232,7 +251,11 @@ def audit(root: str | Path = ".", *, results: str = "results", workflow: bool = 
     found: dict[str, Finding] = {}
     with contextlib.chdir(root):
         for path in files:
-            if path.endswith(".h5"):
+            if path.startswith(f"{results}/indentation/") and path.endswith(".h5"):
+                found[path] = audit_derived(path, "curve", repo_root)
+            elif path.startswith(f"{results}/studies/film_band_") and path.endswith(".h5"):
+                found[path] = audit_derived(path, "band", repo_root)
+            elif path.endswith(".h5"):
                 found[path] = audit_run(path, libraries, repo_root)
             elif path.startswith(f"{results}/cases/") and path.endswith(".yaml"):
                 found[path] = audit_case_file(path)
