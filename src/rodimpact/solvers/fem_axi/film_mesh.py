@@ -32,7 +32,8 @@ from numpy.typing import NDArray
 from skfem import MeshTri
 
 from rodimpact.solvers.fem_axi.meshes import (
-    SIZE_GRADIENT, BodyMesh, _area2, _ceil, _distance_to_origin, _fine_sizes, _longest_edges, _oriented, _positive, _tagged
+    SIZE_GRADIENT, BodyMesh, _area2, _ceil, _distance_to_origin, _fine_sizes, _longest_edges, _oriented, _positive, _tagged,
+    graded_size, refine_until
 )
 
 __all__ = ["FILM_ASPECT", "FILM_LAYERS", "FilmRodMesh", "film_rod_mesh", "layers_within"]
@@ -92,17 +93,12 @@ def _rod_under_film(a: float, length: float, fine: float, extent: float, film_ra
     # red refinement keeps the coarse triangles' shape: a face edge is 1/kappa of the longest
     kappa = math.hypot(r[1], z[1]) / r[1]
     coarse = float(_longest_edges(mesh).max())
-    for _ in range(80):
-        beyond = np.maximum(_distance_to_origin(mesh) - extent, 0.0)
-        target = np.where(beyond > 0.0, np.minimum(coarse, fine + SIZE_GRADIENT * beyond), fine)
-        band = kappa * face_spacing + SIZE_GRADIENT * _distance_to_disc(mesh, film_radius)
-        target = np.minimum(target, np.minimum(coarse, band))
-        marked = np.nonzero(_longest_edges(mesh) > target * (1 + 1e-9))[0]
-        if marked.size == 0:
-            break
-        mesh = mesh.refined(marked)
-    else:
-        raise RuntimeError("the refinement did not converge")
+
+    def target(m: MeshTri) -> NDArray[np.float64]:
+        band = kappa * face_spacing + SIZE_GRADIENT * _distance_to_disc(m, film_radius)
+        return np.minimum(graded_size(m, fine, extent, coarse), np.minimum(coarse, band))
+
+    mesh, _ = refine_until(mesh, target, 80)
     p = mesh.p.copy()
     if film_radius == a:
         return mesh

@@ -15,6 +15,7 @@ import logging
 import math
 import numbers
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 from numpy.typing import NDArray
@@ -185,6 +186,31 @@ def rod_mesh(radius_m: float, length_m: float, fine_size_m: float, fine_extent_m
     return BodyMesh(mesh, boundaries, fine_reached, extent)
 
 
+def graded_size(mesh: MeshTri, fine: float, extent: float, coarse: float) -> NDArray[np.float64]:
+    """Target longest edge of each triangle, m: ``fine`` within ``extent`` of the origin, growing
+    by :data:`SIZE_GRADIENT` per metre beyond it, at most ``coarse``."""
+    beyond = np.maximum(_distance_to_origin(mesh) - extent, 0.0)
+    return np.where(beyond > 0.0, np.minimum(coarse, fine + SIZE_GRADIENT * beyond), fine)
+
+
+def refine_until(mesh: MeshTri, target: Callable[[MeshTri], NDArray[np.float64]],
+                 max_levels: int) -> tuple[MeshTri, int]:
+    """Refine the triangles whose longest edge exceeds ``target(mesh)`` until none does;
+    the mesh and the number of refinement passes.
+
+    Raises
+    ------
+    RuntimeError
+        Still too coarse after ``max_levels`` passes.
+    """
+    for levels in range(max_levels):
+        marked = np.nonzero(_longest_edges(mesh) > target(mesh) * (1 + 1e-9))[0]
+        if marked.size == 0:
+            return mesh, levels
+        mesh = mesh.refined(marked)
+    raise RuntimeError("the refinement did not converge")
+
+
 def _refined_rod(a: float, length: float, fine: float, extent: float, coarse_r: float,
                  coarse_z: float) -> BodyMesh:
     """Uniform mesh of cells coarse_r x coarse_z, refined around the origin down to ``fine``
@@ -192,15 +218,7 @@ def _refined_rod(a: float, length: float, fine: float, extent: float, coarse_r: 
     mesh = MeshTri.init_tensor(np.linspace(0.0, a, max(1, _ceil(a / coarse_r)) + 1),
                                np.linspace(0.0, length, max(1, _ceil(length / coarse_z)) + 1))
     coarse = float(_longest_edges(mesh).max())
-    for levels in range(65):
-        beyond = np.maximum(_distance_to_origin(mesh) - extent, 0.0)
-        target = np.where(beyond > 0.0, np.minimum(coarse, fine + SIZE_GRADIENT * beyond), fine)
-        marked = np.nonzero(_longest_edges(mesh) > target * (1 + 1e-9))[0]
-        if marked.size == 0:
-            break
-        mesh = mesh.refined(marked)
-    else:
-        raise RuntimeError("the refinement did not converge")
+    mesh, levels = refine_until(mesh, lambda m: graded_size(m, fine, extent, coarse), 65)
     p = mesh.p
     mesh, boundaries = _tagged(_oriented(p, mesh.t), {
         "axis": p[0] == 0.0, "lateral": p[0] == a, "end": p[1] == 0.0, "far": p[1] == length})
