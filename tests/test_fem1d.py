@@ -4,6 +4,7 @@ observed orders in element size and time step, energy, d'Alembert's wave field."
 import numpy as np
 import pytest
 
+from rodimpact.solvers.fem1d.bar import bar_model
 from rodimpact.solvers.fem1d.options import FEM1DOptions
 from rodimpact.solvers.fem1d.solver import solve_fem1d
 from rodimpact.workflow.runner import run_case
@@ -122,3 +123,18 @@ def test_too_coarse_settings_are_refused_with_the_value_needed(caplog):
     with caplog.at_level("WARNING"):
         result = solve_fem1d(problem, FEM1DOptions(element="P1", elements=3, steps_per_contact=100))
     assert "elements=3 gives only" in caplog.text and "recommended" in result.extra["warnings"]
+
+
+@pytest.mark.parametrize("element", ["P1", "P2"])
+@pytest.mark.parametrize("far_end", ["fixed", "free"])
+def test_banded_solver_is_the_sparse_solve(element, far_end):
+    """The banded Cholesky solve (reverse Cuthill-McKee order) equals a direct sparse solve."""
+    from scipy.sparse.linalg import spsolve
+
+    from rodimpact.solvers.fem1d.bar import banded_solver
+
+    rod = model_problem(far_end).rod
+    bar = bar_model(rod, element, 40)
+    matrix = (bar.stiffness + 1e12 * bar.mass).tocsc()
+    rhs = np.random.default_rng(0).normal(size=matrix.shape[0])
+    np.testing.assert_allclose(banded_solver(matrix)(rhs), spsolve(matrix, rhs), rtol=1e-10, atol=0)

@@ -11,6 +11,8 @@ from pathlib import Path
 
 import pytest
 
+from rodimpact.model.problem import ImpactProblem
+
 from rodimpact.workflow.bench_plan import fem_bench_runs, sem_bench_runs
 from rodimpact.workflow.bench import resource_margins
 from rodimpact.workflow.resources import (
@@ -69,13 +71,23 @@ def test_more_steps_and_elements_cost_more(model):
     assert many.mem_mb > few.mem_mb and many.runtime_min > few.runtime_min
 
 
-def test_a_contact_over_many_round_trips_costs_more_per_step(project):
-    """The SEM's history sum has a term per wave round trip: same steps, longer contact."""
+def test_a_contact_over_many_round_trips_costs_more_per_step_only_off_the_grid(project):
+    """A fixed dt_s that is not commensurate with the wave round trip sums a history term per
+    round trip: the longer contact costs more at the same step count. The step that
+    steps_per_contact gives is made commensurate, and costs the same at every round trip."""
     stress = project[1].cases
     short, long = stress["short_rod"], stress["seconds_contact"]
-    steps = {"dt_s": None, "steps_per_contact": 20000}
-    assert (estimate_resources(with_numerics(long, "sem_paper", **steps), "sem_paper").runtime_min
-            > estimate_resources(with_numerics(short, "sem_paper", **steps), "sem_paper").runtime_min)
+
+    def runtime(case, **numerics):
+        return estimate_resources(with_numerics(case, "sem_paper", **numerics), "sem_paper").runtime_min
+
+    def off_grid(case):  # the case's 20000th of its Hertz time, nudged off the round trip
+        return {"dt_s": ImpactProblem.from_case(case).rigid_contact.contact_time_s / 20000 * (1 + 1e-6),
+                "steps_per_contact": None}
+
+    assert runtime(long, **off_grid(long)) > runtime(short, **off_grid(short))
+    on_grid = {"dt_s": None, "steps_per_contact": 20000}
+    assert runtime(long, **on_grid) == runtime(short, **on_grid)
 
 
 def test_floors_and_attempts(model):

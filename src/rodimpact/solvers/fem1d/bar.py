@@ -3,16 +3,18 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal, Sequence
+from typing import Callable, Literal, Sequence
 
 import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
+from scipy.linalg import cho_solve_banded, cholesky_banded
+from scipy.sparse.csgraph import reverse_cuthill_mckee
 from skfem import Basis, BilinearForm, ElementLineP1, ElementLineP2, MeshLine, asm
 
 from rodimpact.model.responses import Rod
 
-__all__ = ["BarModel", "bar_model", "ELEMENTS"]
+__all__ = ["BarModel", "ELEMENTS", "banded_solver", "bar_model"]
 
 ELEMENTS = {"P1": ElementLineP1, "P2": ElementLineP2}
 
@@ -116,3 +118,38 @@ def end_vector(model: BarModel) -> NDArray[np.float64]:
     e0 = np.zeros(model.mass.shape[0])
     e0[model.end] = 1.0
     return e0
+
+
+def banded_solver(matrix: sp.spmatrix) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
+    """x = A^-1 b for a symmetric positive definite bar matrix, by a banded Cholesky factor.
+
+    The bar's DOFs (P2: the vertices first, then the element midpoints) are renumbered by
+    reverse Cuthill-McKee, which makes a 1-D mesh's matrix banded (half-bandwidth 1 for P1,
+    2 for P2); the factor then costs O(n) to apply, with no fill-in.
+
+    Parameters
+    ----------
+    matrix : scipy.sparse matrix, shape (d, d)
+        Symmetric positive definite.
+
+    Returns
+    -------
+    callable
+        b (shape (d,)) -> A^-1 b (shape (d,)).
+    """
+    csr = sp.csr_matrix(matrix)
+    order = reverse_cuthill_mckee(csr, symmetric_mode=True)
+    permuted = sp.csr_matrix(csr[order][:, order])
+    rows, cols = permuted.nonzero()
+    width = int(np.max(np.abs(rows - cols), initial=0))
+    bands = np.zeros((width + 1, csr.shape[0]))
+    lower = rows >= cols
+    bands[rows[lower] - cols[lower], cols[lower]] = np.asarray(permuted[rows[lower], cols[lower]]).ravel()
+    factor = cholesky_banded(bands, lower=True)
+    inverse = np.empty_like(order)
+    inverse[order] = np.arange(len(order))
+
+    def solve(b: NDArray[np.float64]) -> NDArray[np.float64]:
+        return cho_solve_banded((factor, True), b[order], check_finite=False)[inverse]
+
+    return solve

@@ -23,12 +23,11 @@ from typing import Any, Sequence
 import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq
-from scipy.sparse.linalg import splu
 
 from rodimpact.analysis.signals import local_maxima
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.model.responses import Rod
-from rodimpact.solvers.fem1d.bar import BarModel, bar_model, end_vector
+from rodimpact.solvers.fem1d.bar import BarModel, banded_solver, bar_model, end_vector
 from rodimpact.solvers.fem1d.options import FEM1DOptions
 from rodimpact.solvers.result import ImpactResult
 from rodimpact.solvers.stepping import Outcome, limit_reached
@@ -47,7 +46,7 @@ class _Setup:
     h: float
     warnings: tuple[str, ...]
     stations_m: tuple[float, ...]
-    solve: Any  # K_eff^-1 (splu's solve)
+    solve: Any  # K_eff^-1 (a banded Cholesky factor's solve)
     g: NDArray[np.float64]  # K_eff^-1 e0
     static_end: float  # end compliance of the fixed bar, m/N (inf for a free far end)
     rod_momentum: NDArray[np.float64]  # momentum of the rod = rod_momentum @ v
@@ -90,9 +89,9 @@ def _setup(problem: ImpactProblem, options: FEM1DOptions, stations: Sequence[flo
     xs = tuple(float(s) * rod.length_m for s in stations)
     bar = bar_model(rod, options.element, n_el, xs)
     M, K = bar.mass, bar.stiffness
-    solve = splu((K + (4.0 / h**2) * M).tocsc()).solve
+    solve = banded_solver(K + (4.0 / h**2) * M)
     e0 = end_vector(bar)
-    static_end = splu(K).solve(e0)[bar.end] if rod.far_end == "fixed" else math.inf
+    static_end = banded_solver(K)(e0)[bar.end] if rod.far_end == "fixed" else math.inf
     return _Setup(bar=bar, n_elements=n_el, h=h, warnings=tuple(warnings), stations_m=xs, solve=solve,
                   g=solve(e0), static_end=static_end, rod_momentum=M.T @ np.ones(M.shape[0]))
 

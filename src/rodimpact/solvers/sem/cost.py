@@ -1,5 +1,6 @@
-"""The cost model of an SEM run (``sem``, ``sem_paper``): steps, and per step one history
-term per wave round trip 2T since the impact (the SEM's history sum)."""
+"""The cost model of an SEM run (``sem``, ``sem_paper``): steps, at a constant cost a step
+on a step commensurate with the wave round trip 2T (every step the solver chooses), and one
+history term per round trip since the impact on a fixed ``dt_s`` that is not."""
 
 from __future__ import annotations
 
@@ -8,6 +9,7 @@ from typing import Any, Mapping
 
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.cost import MIB, SOLVE_S, Cost, contact_duration, horizon
+from rodimpact.solvers.sem.grid import CommensurateGrid
 from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
 from rodimpact.solvers.sem.stability import tolerance_step
 
@@ -39,7 +41,10 @@ def sem_cost(case: Mapping[str, Any], options: SEMOptions | PaperSEMOptions) -> 
         # step the tolerance asks for
         step, work = min(step, tolerance_step(problem, options.tolerance)), SEM_AUTO_WORK
     stored = min(span / step, float(options.max_steps)) + 1.0
-    rounds = 1.0 + (0.5 * span / period if math.isfinite(period) else 0.0)
+    # a step commensurate with the round trip costs the same at every round trip; only a
+    # fixed dt_s that is not sums one history term per round trip since the impact
+    commensurate = options.dt_s is None or CommensurateGrid.of(step, period, -1, True) is not None
+    rounds = 1.0 + (0.5 * span / period if math.isfinite(period) and not commensurate else 0.0)
     stations = len(case.get("stations", ()))
     return Cost(time_step_s=step, steps=stored,
                 solve_s=SOLVE_S + work * stored * (SEM_STEP_S + SEM_REFLECTION_S * rounds),

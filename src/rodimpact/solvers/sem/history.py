@@ -7,8 +7,11 @@ paper's rectangle rule). The impulse Q(t) = integral_0^t P is then piecewise qua
 
     Z u(t) = sum_j c_j Q(t - 2 j T)
 
-use the true delays 2jT, never rounded to the grid. A term costs one binary search:
-the cost of a step is O(number of reflections so far), independent of the step count.
+use the true delays 2jT, never rounded to the grid. On a grid commensurate with the round
+trip (:mod:`.grid`) a step costs O(1): the sum is carried by W(t) = Q(t) + s W(t - 2T) at
+the grid's nodes. Any other step (a fixed step that is not commensurate, the short steps
+that put a contact's start or end on a node and return to the grid) sums the terms, one
+binary search each, vectorised once they are many.
 """
 
 from __future__ import annotations
@@ -20,8 +23,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rodimpact.model.responses import Rod
+from rodimpact.solvers.sem.grid import CommensurateGrid
 
 __all__ = ["ForceHistory"]
+
+#: Delayed terms beyond which a step's sum is evaluated with numpy rather than term by term.
+_VECTOR_TERMS = 48
 
 
 class ForceHistory:
@@ -33,10 +40,17 @@ class ForceHistory:
         The rod (its impedance Z, round trip 2T and reflection sign s).
     linear : bool
         Piecewise-linear force (True) or left-held rectangles (False).
+    grid : CommensurateGrid, optional
+        A step commensurate with the round trip: nodes at its multiples k h carry W, and a
+        step between two of them costs O(1). Other nodes (events) may lie between.
     """
 
-    def __init__(self, rod: Rod, linear: bool) -> None:
+    def __init__(self, rod: Rod, linear: bool, grid: CommensurateGrid | None = None) -> None:
         self.linear = linear
+        self.grid = grid
+        self.W: list[float] = [0.0]  # W(k h) at the grid's nodes k = 0, 1, ...
+        self.on_grid = grid is not None
+        self._cache: tuple[int, NDArray, NDArray, NDArray] | None = None
         self.impedance = rod.impedance
         self.wave_speed = rod.wave_speed
         self.length = rod.length_m
@@ -47,13 +61,53 @@ class ForceHistory:
         self.Q: list[float] = [0.0]
 
     # -- nodes -------------------------------------------------------------------------
-    def append(self, t: float, force: float) -> None:
-        """Add the node (t, P); t must exceed the last node's time."""
+    def next_step(self, h: float) -> tuple[float, float]:
+        """The next node for the nominal step ``h``: (step, time), s.
+
+        On a grid, the step to the next grid node (``h`` itself from a grid node, the rest
+        of the grid's step after an event node), and that node's exact time k h.
+        """
+        if self.grid is None:
+            return h, self.t[-1] + h
+        t_grid = len(self.W) * self.grid.step
+        return (self.grid.step if self.on_grid else t_grid - self.t[-1]), t_grid
+
+    def append(self, t: float, force: float, displacement: float | None = None) -> None:
+        """Add the node (t, P); t must exceed the last node's time.
+
+        On a grid, a node at the next grid time also records W from the rod end's
+        ``displacement`` there, m (required for such a node).
+        """
         h = t - self.t[-1]
         mean = 0.5 * (self.P[-1] + force) if self.linear else self.P[-1]
+        q = self.Q[-1] + mean * h
         self.t.append(t)
         self.P.append(force)
-        self.Q.append(self.Q[-1] + mean * h)
+        self.Q.append(q)
+        if self.grid is not None:
+            self.on_grid = t == len(self.W) * self.grid.step
+            if self.on_grid:
+                self.W.append(0.5 * (self.impedance * displacement + q))
+
+    def _arrays(self) -> tuple[NDArray, NDArray, NDArray]:
+        """Views of the nodes as arrays, kept in step with the lists (amortised O(1) a node)."""
+        n = len(self.t)
+        if self._cache is None or len(self._cache[1]) < n:
+            capacity = max(1024, 2 * n)
+            grown = tuple(np.empty(capacity) for _ in range(3))
+            done = 0
+            if self._cache is not None:
+                done = self._cache[0]
+                for new, old in zip(grown, self._cache[1:]):
+                    new[:done] = old[:done]
+            self._cache = (done, *grown)
+        done, t, P, Q = self._cache
+        if done < n:
+            t[done:n] = self.t[done:n]
+            P[done:n] = self.P[done:n]
+            Q[done:n] = self.Q[done:n]
+            self._cache = (n, t, P, Q)
+        return t[:n], P[:n], Q[:n]
 
     def impulse(self, tau: float) -> float:
         """Q(tau) for 0 <= tau <= t_last (0 for tau <= 0), N s."""
@@ -70,9 +124,8 @@ class ForceHistory:
 
     def impulse_array(self, tau: NDArray[np.float64]) -> NDArray[np.float64]:
         """Vectorised :meth:`impulse` (times beyond the last node hold its force)."""
-        t = np.asarray(self.t)
-        P = np.asarray(self.P)
-        Q = np.asarray(self.Q)
+        tau = np.asarray(tau, dtype=float)
+        t, P, Q = self._arrays()
         i = np.clip(np.searchsorted(t, tau, side="right") - 1, 0, len(t) - 1)
         dt = tau - t[i]
         out = Q[i] + dt * P[i]
@@ -85,8 +138,7 @@ class ForceHistory:
     def force_array(self, tau: NDArray[np.float64]) -> NDArray[np.float64]:
         """The force at any times, with the history's own interpolation (0 before t = 0)."""
         tau = np.asarray(tau, dtype=float)
-        t = np.asarray(self.t)
-        P = np.asarray(self.P)
+        t, P, _ = self._arrays()
         if self.linear:
             return np.where(tau > 0.0, np.interp(tau, t, P), 0.0)
         i = np.clip(np.searchsorted(t, tau, side="right") - 1, 0, len(t) - 1)
@@ -110,28 +162,53 @@ class ForceHistory:
         known, coef : float
             u(t_last + h) = known + coef * P_new, in m and m/N.
         """
+        grid = self.grid
+        if grid is not None and self.on_grid and h == grid.step:
+            lag = len(self.W) - grid.lag
+            known = grid.a0 * self.Q[-1] + grid.a1 * self.P[-1]
+            if lag >= 0:
+                known += grid.w_coef * self.W[lag]
+            return known / self.impedance, grid.c / self.impedance
         t_n, p_n, q_n = self.t[-1], self.P[-1], self.Q[-1]
         t_new = t_n + h
         known, coef = 0.0, 0.0
         j = 0
         while True:
             tau = t_new - j * self.period if j else t_new
-            if tau <= 0.0:
+            if tau <= t_n:
                 break
             c = self._coefficient(j)
-            if tau > t_n:  # the delayed time falls inside the current step
-                d = tau - t_n
-                if self.linear:
-                    known += c * (q_n + d * p_n - 0.5 * d * d * p_n / h)
-                    coef += c * 0.5 * d * d / h
-                else:
-                    known += c * (q_n + d * p_n)
+            d = tau - t_n  # the delayed time falls inside the current step
+            if self.linear:
+                known += c * (q_n + d * p_n - 0.5 * d * d * p_n / h)
+                coef += c * 0.5 * d * d / h
             else:
-                known += c * self.impulse(tau)
+                known += c * (q_n + d * p_n)
             j += 1
             if not math.isfinite(self.period):
                 break
+        if math.isfinite(self.period):
+            known += self._past_sum(t_new, j)
         return known / self.impedance, coef / self.impedance
+
+    def _past_sum(self, t_new: float, j0: int) -> float:
+        """sum_{j >= j0} c_j Q(t_new - 2 j T) over the delayed times in the past (> 0)."""
+        count = int(t_new // self.period) - j0 + 1
+        if count <= 0:
+            return 0.0
+        if count <= _VECTOR_TERMS:
+            total = 0.0
+            j = j0
+            while True:
+                tau = t_new - j * self.period
+                if tau <= 0.0:
+                    return total
+                total += self._coefficient(j) * self.impulse(tau)
+                j += 1
+        j = np.arange(j0, j0 + count + 1)
+        tau = t_new - j * self.period
+        coefficient = np.where(j == 0, 1.0, 2.0 * np.where(j % 2 == 1, float(self.sign), 1.0))
+        return float(np.sum(coefficient * self.impulse_array(tau)))
 
     def _waves(self, x: float, times: NDArray[np.float64]) -> list[tuple[float, float, float]]:
         """(sign, delay, direction) of every wave that has reached x by max(times).
@@ -183,9 +260,10 @@ class ForceHistory:
     def rod_displacement(self, times: NDArray[np.float64]) -> NDArray[np.float64]:
         """End displacement u at any times (force beyond the last node held), m."""
         times = np.asarray(times, dtype=float)
-        total = self.impulse_array(times)
-        if math.isfinite(self.period):
-            n_max = int(np.max(times, initial=0.0) // self.period) + 1
-            for j in range(1, n_max + 1):
-                total += self._coefficient(j) * self.impulse_array(times - j * self.period)
-        return total / self.impedance
+        if not math.isfinite(self.period):
+            return self.impulse_array(times) / self.impedance
+        n_max = int(np.max(times, initial=0.0) // self.period) + 1
+        j = np.arange(n_max + 1)
+        coefficient = np.where(j == 0, 1.0, 2.0 * np.where(j % 2 == 1, float(self.sign), 1.0))
+        tau = times[:, None] - j[None, :] * self.period
+        return (self.impulse_array(tau.ravel()).reshape(tau.shape) @ coefficient) / self.impedance

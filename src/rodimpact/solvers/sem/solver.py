@@ -24,19 +24,24 @@ import math
 import time as _time
 from typing import Sequence
 
-import numpy as np
-
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.result import ImpactResult
 from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
-from rodimpact.solvers.sem.stepper import run_fixed_step
+from rodimpact.solvers.sem.grid import commensurate_step
+from rodimpact.solvers.sem.stepper import SEMRun, run_fixed_step
 
 __all__ = ["solve_sem"]
 
 log = logging.getLogger(__name__)
 
-#: Step doublings the automatic step may take after its first choice.
+#: Refinements the automatic step may take after its first choice.
 _MAX_REFINEMENTS = 8
+#: The predicted step for the tolerance is taken this much finer.
+_SAFETY = 0.8
+#: The first candidate step in units of the error model's guess
+#: (:func:`~rodimpact.solvers.sem.stability.implicit_step`, whose error constant has a
+#: margin of 4 over the measured one).
+_FIRST_STEP_FACTOR = 2.0
 
 
 def solve_sem(problem: ImpactProblem, options: SEMOptions | PaperSEMOptions | None = None,
@@ -77,46 +82,62 @@ def solve_sem(problem: ImpactProblem, options: SEMOptions | PaperSEMOptions | No
     h = options.step(problem)
     options.check(problem)
     if not (options.automatic_step and options.scheme == "implicit"):
-        choice = "dt_s" if options.dt_s is not None else "steps_per_contact"
-        return run_fixed_step(problem, options, h, stations, started, {"step_choice": choice})
-    coarse = run_fixed_step(problem, options, 2.0 * h, stations, started, {})
-    checks = coarse.n_steps
+        if options.dt_s is not None:
+            return run_fixed_step(problem, options, h, stations, started, {"step_choice": "dt_s"})
+        h = commensurate_step(h, problem.rod.reflection_period)
+        return run_fixed_step(problem, options, h, stations, started, {"step_choice": "steps_per_contact"})
+    return _automatic(problem, options, h, stations, started)
+
+
+def _automatic(problem: ImpactProblem, options: SEMOptions, h: float, stations: tuple[float, ...],
+               started: float) -> ImpactResult:
+    """The implicit scheme with its step chosen for ``options.tolerance``, from the first guess ``h``.
+
+    The first candidate is :data:`_FIRST_STEP_FACTOR` times the guess (whose error model
+    has a margin of that factor squared). Each candidate is checked against a run at about
+    twice its step, compared on their first contact only (its duration and largest force;
+    Richardson's estimate for order 2 at the runs' ratio of steps), and the candidate that
+    meets the tolerance is then finished: the check costs the coarser run's first contact.
+    A candidate that misses the tolerance is replaced by the step the estimate predicts,
+    with a margin. Every step is commensurate with the wave round trip (constant cost per
+    step).
+    """
+    period = problem.rod.reflection_period
+    h = commensurate_step(_FIRST_STEP_FACTOR * h, period)
+    coarse = SEMRun(problem, options, commensurate_step(2.0 * h, period))
+    fine = SEMRun(problem, options, h)
+    checks = 0
     for refinement in range(_MAX_REFINEMENTS + 1):
-        fine = run_fixed_step(problem, options, h, stations, started, {})
-        if not (fine.success and coarse.success):
-            return fine if not fine.success else _with_extra(fine, {"step_choice": "auto"})
-        estimate = _doubling_estimate(fine, coarse)
-        if refinement == 0 and 4.0 * estimate <= 0.5 * options.tolerance:
-            # the first guess was finer than needed: the run at twice the step meets the
-            # tolerance with its own (Richardson) estimate, 4 times the fine run's
-            checks, fine, estimate, h = fine.n_steps, coarse, 4.0 * estimate, 2.0 * h
-            break
+        c, f = coarse.first_contact(), fine.first_contact()
+        if c is None or f is None:  # a run failed: the finer one is the answer
+            return fine.finish(stations, started, {"step_choice": "auto"})
+        checks += coarse.n_steps
+        estimate = _richardson(f, c, coarse.st.h / fine.st.h)
         if estimate <= options.tolerance or refinement == _MAX_REFINEMENTS:
             break
-        log.info("SEM auto step %.4g s: error estimate %.2g > tolerance %.2g, halving", h, estimate,
-                 options.tolerance)
-        checks += fine.n_steps
-        coarse, h = fine, 0.5 * h
+        h_new = commensurate_step(fine.st.h * min(0.5, _SAFETY * math.sqrt(options.tolerance / estimate)), period)
+        log.info("SEM auto step %.4g s: error estimate %.2g > tolerance %.2g, next step %.4g s", fine.st.h,
+                 estimate, options.tolerance, h_new)
+        coarse, fine = fine, SEMRun(problem, options, h_new)
+    h = fine.st.h
     extra = {"step_choice": "auto", "tolerance": options.tolerance, "error_estimate": estimate,
-             "error_estimate_basis": "step doubling (Richardson, order 2): first contact time and its largest force",
+             "error_estimate_basis": "Richardson (order 2) between two steps: first contact time and its largest force",
              "n_steps_error_check": checks}
     if estimate > options.tolerance:
-        return _with_extra(fine, extra, status="failed", message=(
+        return _with_extra(fine.finish(stations, started, extra), {}, status="failed", message=(
             f"automatic step: error estimate {estimate:.3g} still above tolerance {options.tolerance:.3g} "
-            f"after {_MAX_REFINEMENTS} halvings (dt_s={h:.4g} s)"))
-    return _with_extra(fine, extra, message=f"{fine.message}; step {h:.4g} s chosen for tolerance "
+            f"after {_MAX_REFINEMENTS} refinements (dt_s={h:.4g} s)"))
+    result = fine.finish(stations, started, extra)
+    return _with_extra(result, {}, message=f"{result.message}; step {h:.4g} s chosen for tolerance "
                        f"{options.tolerance:.3g} (estimated error {estimate:.2g})")
 
 
-def _doubling_estimate(fine: ImpactResult, coarse: ImpactResult) -> float:
-    """Richardson error estimate of ``fine`` from a run at twice its step (order 2)."""
-    def first_peak(result: ImpactResult) -> float:
-        inside = result.peak_time_s <= result.contact_end_s[0]
-        return float(np.max(result.peak_force_N[inside], initial=np.max(result.contact_force)))
-
-    tc = abs(fine.contact_time_s - coarse.contact_time_s) / fine.contact_time_s
-    peak = abs(first_peak(fine) - first_peak(coarse)) / first_peak(fine)
-    return max(tc, peak) / 3.0
+def _richardson(fine: tuple[float, float], coarse: tuple[float, float], ratio: float) -> float:
+    """Richardson error estimate (order 2) of the fine run's first contact time and largest
+    force, from a run at ``ratio`` times its step; the larger of the two relative errors."""
+    tc = abs(fine[0] - coarse[0]) / fine[0]
+    peak = abs(fine[1] - coarse[1]) / fine[1]
+    return max(tc, peak) / (ratio**2 - 1.0)
 
 
 def _with_extra(result: ImpactResult, extra: dict, status: str | None = None,

@@ -133,8 +133,9 @@ def implicit_step(problem: ImpactProblem, tolerance: float) -> float:
     :data:`AUTO_ERROR_CONSTANT`, and at most a 20th of the wave round trip 2T, so that the
     reflections' kinks in the force fall on a resolved history; but no finer than
     :data:`AUTO_STEPS` steps over the estimated contact time (a long contact on a thin
-    rod varies slowly after its rise). The solver checks the guess by step doubling and
-    halves it until the estimate meets the tolerance.
+    rod varies slowly after its rise). The solver starts from twice this guess, made
+    commensurate with the round trip, checks it against a run at about twice its step and
+    refines it until the estimate meets the tolerance.
     """
     step = tolerance_step(problem, tolerance)
     period = problem.rod.reflection_period

@@ -14,15 +14,20 @@ from scipy.optimize import brentq
 from rodimpact.analysis.signals import ZIGZAG_UNSTABLE, local_maxima, sawtooth_amplitude, zigzag_steps
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.result import ImpactResult
+from rodimpact.solvers.sem.fastpath import contact_steps, extrapolated
+from rodimpact.solvers.sem.grid import CommensurateGrid
 from rodimpact.solvers.sem.history import ForceHistory
 from rodimpact.solvers.sem.stability import paper_step_limit
 from rodimpact.solvers.stepping import Outcome, limit_reached
 
-__all__ = ["run_fixed_step"]
+__all__ = ["SEMRun", "run_fixed_step"]
 
 log = logging.getLogger(__name__)
 
 _MAX_WINDOW_SAMPLES = 400_000
+#: Steps inside a contact on a commensurate grid go through :func:`.fastpath.contact_steps`
+#: (the same operations as the general step; tests compare the two bit for bit).
+_FAST = True
 
 
 class _Stepper:
@@ -35,7 +40,9 @@ class _Stepper:
         self.law = problem.contact
         self.h = h
         self.implicit = options.scheme == "implicit"
-        self.hist = ForceHistory(problem.rod, linear=self.implicit)
+        rod = problem.rod
+        grid = CommensurateGrid.of(h, rod.reflection_period, rod.reflection_sign, self.implicit)
+        self.hist = ForceHistory(rod, linear=self.implicit, grid=grid)
         self.x, self.v, self.u, self.alpha = [0.0], [problem.velocity_m_s], [0.0], [0.0]
         self.starts: list[float] = [0.0]
         self.ends: list[float] = []
@@ -57,8 +64,8 @@ class _Stepper:
         known, _ = self.hist.rod_step_terms(h)
         return x_new - known
 
-    def _accept(self, h: float, p_new: float, u_new: float, x_new: float, v_new: float) -> None:
-        self.hist.append(self.hist.t[-1] + h, p_new)
+    def _accept(self, t_new: float, p_new: float, u_new: float, x_new: float, v_new: float) -> None:
+        self.hist.append(t_new, p_new, u_new)
         self.x.append(x_new)
         self.v.append(v_new)
         self.u.append(u_new)
@@ -72,7 +79,8 @@ class _Stepper:
             self._step_paper()
 
     def _step_implicit(self) -> None:
-        h, m, law = self.h, self.m, self.law
+        m, law = self.m, self.law
+        h, t_new = self.hist.next_step(self.h)
         p_n, alpha_n = self.hist.P[-1], self.alpha[-1]
         known, coef = self.hist.rod_step_terms(h)
         x_pred, _ = self._impactor(h, 0.0)
@@ -87,12 +95,12 @@ class _Stepper:
                 self.starts.append(self.hist.t[-1])
                 return
         if a > 0.0:
-            guess = 2.0 * alpha_n - self.alpha[-2] if len(self.alpha) > 1 else a
+            guess = extrapolated(self.alpha, a)
             alpha_new, iterations = law.solve_step(a, b, guess)
             self.n_newton += iterations
             p_new = law.force(alpha_new)
             x_new, v_new = self._impactor(h, p_new)
-            self._accept(h, p_new, known + coef * p_new, x_new, v_new)
+            self._accept(t_new, p_new, known + coef * p_new, x_new, v_new)
             if not self.in_contact:
                 self.in_contact = True
                 self.starts.append(self.hist.t[-2])
@@ -103,7 +111,7 @@ class _Stepper:
             self._event_node(event)
         else:
             x_new, v_new = self._impactor(h, 0.0)
-            self._accept(h, 0.0, known, x_new, v_new)
+            self._accept(t_new, 0.0, known, x_new, v_new)
         if self.in_contact:
             self.in_contact = False
             self.ends.append(self.hist.t[-1])
@@ -119,16 +127,16 @@ class _Stepper:
     def _event_node(self, h: float) -> None:
         x_new, v_new = self._impactor(h, 0.0)
         known, _ = self.hist.rod_step_terms(h)
-        self._accept(h, 0.0, known, x_new, v_new)
+        self._accept(self.hist.t[-1] + h, 0.0, known, x_new, v_new)
 
     def _step_paper(self) -> None:
-        h = self.h
+        h, t_new = self.hist.next_step(self.h)
         x_new, v_new = self._impactor(h, self.hist.P[-1])
         known, _ = self.hist.rod_step_terms(h)
         alpha_new = x_new - known
         p_new = self.law.force(alpha_new)
         alpha_n, t_n = self.alpha[-1], self.hist.t[-1]
-        self._accept(h, p_new, known, x_new, v_new)
+        self._accept(t_new, p_new, known, x_new, v_new)
         if self.in_contact and alpha_new <= 0.0:
             self.in_contact = False
             frac = alpha_n / (alpha_n - alpha_new) if alpha_n > alpha_new else 1.0
@@ -160,48 +168,112 @@ class _Stepper:
         if not math.isfinite(period):
             return True
         window = 4.0 * period
-        n = min(_MAX_WINDOW_SAMPLES, max(2, int(math.ceil(window / self.h)) + 1))
         t0 = self.hist.t[-1]
-        times = t0 + np.linspace(0.0, window, n)[1:]
+        times = self._window_samples(t0, window, period)
         x = self.x[-1] + self.v[-1] * (times - t0)
         return bool(np.all(x - self.hist.rod_displacement(times) < 0.0))
+
+    def _window_samples(self, t0: float, window: float, period: float) -> np.ndarray:
+        """Times in (t0, t0 + window] at which to compare the impactor with the rod end.
+
+        The end's displacement is a sum of the impulse Q at t - 2jT; Q is constant outside
+        the force's nodes, so between the nodes shifted by whole round trips the gap is a
+        polynomial of degree <= 2. Those shifted nodes, the midpoints between them and the
+        window's end are the samples (uniform at the step when they would be more than
+        ``_MAX_WINDOW_SAMPLES``).
+        """
+        nodes = np.asarray(self.hist.t)
+        j = np.arange(max(0, math.floor((t0 - nodes[-1]) / period)), math.ceil((t0 + window) / period) + 1)
+        lo = np.searchsorted(nodes, t0 - j * period, side="right")
+        hi = np.searchsorted(nodes, t0 + window - j * period, side="right")
+        if int(np.sum(hi - lo)) <= _MAX_WINDOW_SAMPLES // 2:
+            shifted = [nodes[a:b] + k * period for k, a, b in zip(j, lo, hi) if b > a]
+            times = np.unique(np.concatenate([*shifted, [t0, t0 + window]]))
+            return np.concatenate([times[1:], 0.5 * (times[1:] + times[:-1])])
+        n = min(_MAX_WINDOW_SAMPLES, max(2, int(math.ceil(window / self.h)) + 1))
+        return t0 + np.linspace(0.0, window, n)[1:]
+
+
+class SEMRun:
+    """One run at a fixed step that can pause when its first contact has ended.
+
+    The automatic step compares runs at two steps on their first contact only, then
+    finishes the run it keeps: :meth:`first_contact` steps to the end of the first contact,
+    :meth:`finish` goes on to the end and returns the result.
+    """
+
+    def __init__(self, problem: ImpactProblem, options: Any, h: float) -> None:
+        self.st = _Stepper(problem, options, h)
+        self.t_max = options.max_time_factor * problem.contact_time_estimate()
+        # the contact energy never exceeds the impact energy, so P <= the rigid-rod contact force
+        self.force_bound = 10.0 * problem.rigid_contact.peak_force_N
+        self.checked_end = 0
+        self.outcome: tuple[str, str] | None = None
+
+    @property
+    def n_steps(self) -> int:
+        return len(self.st.hist.t) - 1
+
+    def first_contact(self) -> tuple[float, float] | None:
+        """Step to the end of the first contact: its duration, s, and its largest force, N.
+
+        None when the run ended (failed or hit a limit) before that.
+        """
+        st = self.st
+        if not st.ends:
+            self._advance(first_end=True)
+        if not st.ends:
+            return None
+        first_end = st.hist.t.index(st.ends[0]) if st.implicit else len(st.hist.t)
+        return st.ends[0] - st.starts[0], max(st.hist.P[: first_end + 1])
+
+    def finish(self, stations: tuple[float, ...], started: float, extra: dict) -> ImpactResult:
+        """Step to the end of the run; the result, timed from ``started`` (perf_counter)."""
+        status, message = self.outcome or self._advance(first_end=False)
+        st = self.st
+        if st.in_contact:
+            st.starts = st.starts[: len(st.ends)]
+        return _result(st, Outcome(status, message, _time.perf_counter() - started), stations, extra)
+
+    def _advance(self, first_end: bool) -> tuple[str, str] | None:
+        st, options, h = self.st, self.st.options, self.st.h
+        problem = st.problem
+        fast = st.implicit and st.hist.grid is not None and _FAST
+        stepped = False
+        while True:
+            if stepped:
+                if not (fast and st.in_contact and st.hist.on_grid
+                        and contact_steps(st, self.t_max, self.force_bound, options.max_steps)):
+                    st.step()
+            stepped = True
+            if len(st.ends) > self.checked_end and not st.in_contact:
+                if first_end:
+                    return None
+                self.checked_end = len(st.ends)
+                if st.no_further_contact():
+                    self.outcome = "completed", f"{len(st.ends)} contact(s); no further contact possible"
+                    return self.outcome
+            limit = limit_reached(st.starts, st.ends, st.hist.t[-1], self.t_max, options)
+            if limit:
+                self.outcome = limit
+                return limit
+            if st.hist.P[-1] > self.force_bound:
+                self.outcome = "failed", (
+                    f"diverged: the force {st.hist.P[-1]:.4g} N exceeds 10 times the rigid-rod "
+                    f"{st.law.label or st.law.name} force {problem.rigid_contact.peak_force_N:.4g} N, which "
+                    f"bounds it (energy); the step dt_s={h:.4g} s is unstable")
+                return self.outcome
+            if len(st.hist.t) > options.max_steps:
+                self.outcome = ("truncated" if st.ends else "failed"), (
+                    f"step budget max_steps={options.max_steps} spent at t={st.hist.t[-1]:.6g} s with "
+                    f"dt_s={h:.4g} s" + ("" if st.ends else " before the first contact ended"))
+                return self.outcome
 
 
 def run_fixed_step(problem: ImpactProblem, options: Any, h: float, stations: tuple[float, ...],
                    started: float, extra: dict) -> ImpactResult:
     """One run at the fixed step ``h``."""
-    st = _Stepper(problem, options, h)
-    t_max = options.max_time_factor * problem.contact_time_estimate()
-    # the contact energy never exceeds the impact energy, so P <= the rigid-rod contact force
-    force_bound = 10.0 * problem.rigid_contact.peak_force_N
-    status, message = "failed", ""
-    checked_end = 0
-    while True:
-        st.step()
-        if len(st.ends) > checked_end and not st.in_contact:
-            checked_end = len(st.ends)
-            if st.no_further_contact():
-                status, message = "completed", f"{len(st.ends)} contact(s); no further contact possible"
-                break
-        limit = limit_reached(st.starts, st.ends, st.hist.t[-1], t_max, options)
-        if limit:
-            status, message = limit
-            break
-        if st.hist.P[-1] > force_bound:
-            status = "failed"
-            message = (f"diverged: the force {st.hist.P[-1]:.4g} N exceeds 10 times the rigid-rod "
-                       f"{st.law.label or st.law.name} force {problem.rigid_contact.peak_force_N:.4g} N, which "
-                       "bounds it (energy); the step "
-                       f"dt_s={h:.4g} s is unstable")
-            break
-        if len(st.hist.t) > options.max_steps:
-            status = "truncated" if st.ends else "failed"
-            message = (f"step budget max_steps={options.max_steps} spent at t={st.hist.t[-1]:.6g} s with "
-                       f"dt_s={h:.4g} s" + ("" if st.ends else " before the first contact ended"))
-            break
-    if st.in_contact:
-        st.starts = st.starts[: len(st.ends)]
-    return _result(st, Outcome(status, message, _time.perf_counter() - started), stations, extra)
+    return SEMRun(problem, options, h).finish(stations, started, extra)
 
 
 def _histories(st: _Stepper, stations: tuple[float, ...], rod_energy: np.ndarray) -> tuple[dict, dict]:
