@@ -166,8 +166,13 @@ from rodimpact.workflow.runner import run_case
 case, method = json.loads(sys.argv[1]), sys.argv[2]
 started = time.perf_counter()
 result = run_case(case, method)
+# VmHWM is this process's own peak; ru_maxrss keeps the forking parent's across exec on Linux
+try:
+    peak_kib = next(int(line.split()[1]) for line in open("/proc/self/status") if line.startswith("VmHWM:"))
+except OSError:
+    peak_kib = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
 print(json.dumps({"wall_s": time.perf_counter() - started, "success": result.success,
-                  "peak_MiB": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}))
+                  "peak_MiB": peak_kib / 1024}))
 """
 
 

@@ -28,7 +28,7 @@ from rodimpact.solvers.sem.options import SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
 from rodimpact.workflow.machine import machine_info
 
-__all__ = ["ROUND_TRIPS", "benchmark_sem_scaling"]
+__all__ = ["ROUND_TRIPS", "benchmark_sem_scaling", "sem_scaling_runs"]
 
 log = logging.getLogger(__name__)
 
@@ -37,6 +37,22 @@ ROUND_TRIPS = (10, 100, 1_000, 10_000)
 #: Each run is repeated until this much time has passed (at least MIN_REPEATS times), s.
 MIN_TOTAL_S = 1.0
 MIN_REPEATS = 3
+
+
+def _shortened(model: Mapping[str, Any], round_trips: int) -> dict[str, Any]:
+    """``model`` with its rod shortened to l = a t_H / (2 n): about n round trips in the contact."""
+    base = ImpactProblem.from_case(model)
+    case = copy.deepcopy(dict(model))
+    case["rod"] = {**case["rod"],
+                   "length_m": base.rigid_contact.contact_time_s * base.rod.wave_speed / (2 * round_trips)}
+    return case
+
+
+def sem_scaling_runs(model: Mapping[str, Any], stress: Mapping[str, Any],
+                     round_trips: Sequence[int] = ROUND_TRIPS) -> list[tuple[dict[str, Any], str, int]]:
+    """The solves :func:`benchmark_sem_scaling` makes, as (case, method, repeats), for the
+    rule's resources (:func:`rodimpact.workflow.resources.estimate_sequence`)."""
+    return [(case, "sem", 2 * MIN_REPEATS) for case in (*(_shortened(model, n) for n in round_trips), dict(stress))]
 
 
 def _best_time(problem: ImpactProblem, options: SEMOptions) -> tuple[Any, float]:
@@ -95,12 +111,10 @@ def benchmark_sem_scaling(model: Mapping[str, Any], stress: Mapping[str, Any], *
         log(us_per_step) against log(round_trips) over the shortened rods, on every row)
         and the machine's description.
     """
-    base = ImpactProblem.from_case(model)
     rows = []
     for n in round_trips:
-        case = copy.deepcopy(dict(model))
-        case["rod"] = {**case["rod"], "length_m": base.rigid_contact.contact_time_s * base.rod.wave_speed / (2 * n)}
-        rows.append(_row(f"{model['id']}, rod for {n} round trips", ImpactProblem.from_case(case), tolerance))
+        rows.append(_row(f"{model['id']}, rod for {n} round trips",
+                         ImpactProblem.from_case(_shortened(model, n)), tolerance))
         log.info("%s: %.2f us a step, automatic step x%.2f", rows[-1]["case"], rows[-1]["us_per_step"],
                  rows[-1]["auto_over_fixed"])
     frame = pd.DataFrame(rows)
