@@ -186,9 +186,14 @@ class _Stepper:
         j = np.arange(max(0, math.floor((t0 - nodes[-1]) / period)), math.ceil((t0 + window) / period) + 1)
         lo = np.searchsorted(nodes, t0 - j * period, side="right")
         hi = np.searchsorted(nodes, t0 + window - j * period, side="right")
-        if int(np.sum(hi - lo)) <= _MAX_WINDOW_SAMPLES // 2:
-            shifted = [nodes[a:b] + k * period for k, a, b in zip(j, lo, hi) if b > a]
-            times = np.unique(np.concatenate([*shifted, [t0, t0 + window]]))
+        counts = hi - lo
+        total = int(np.sum(counts))
+        if total <= _MAX_WINDOW_SAMPLES // 2:
+            # every node in [lo_k, hi_k) shifted by j_k round trips, gathered without a loop
+            first = np.cumsum(counts) - counts
+            index = np.arange(total) + np.repeat(lo - first, counts)
+            shifted = nodes[index] + np.repeat(j * period, counts)
+            times = np.unique(np.concatenate([shifted, [t0, t0 + window]]))
             return np.concatenate([times[1:], 0.5 * (times[1:] + times[:-1])])
         n = min(_MAX_WINDOW_SAMPLES, max(2, int(math.ceil(window / self.h)) + 1))
         return t0 + np.linspace(0.0, window, n)[1:]
