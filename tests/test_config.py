@@ -613,3 +613,62 @@ def test_station_output_needs_stations(project_dir: Path) -> None:
 def test_station_outside_the_rod_is_refused(project_dir: Path) -> None:
     edit(project_dir / MODEL, lambda d: d["cases"][0].update(stations=[0.5, 1.5]))
     assert f"{MODEL}: case 'model': field 'stations[1]'" in error_of(project_dir)
+
+
+# --------------------------------------------------------------------------- plausibility
+
+_CASE0 = ("cases", 0)
+IMPLAUSIBLE = {
+    # (file, edit), expected start of the message
+    "rod length 1e-300": (_set(MODEL, *_CASE0, "rod", "length_m", 1e-300),
+                          f"{MODEL}: case 'model': field 'rod.length_m': 1e-300 m: its wave round trip 2T = "),
+    "nose radius 1e-300": (_set(MODEL, *_CASE0, "impactor", "radius_m", 1e-300),
+                           f"{MODEL}: case 'model': field 'impactor.radius_m': 1e-300 m: its nose radius R = 1e-300 m "
+                           "lies outside [1e-150, 1e+150] m"),
+    "mass 1e30": (_set(MODEL, *_CASE0, "impactor", "mass_kg", 1e30),
+                  f"{MODEL}: case 'model': field 'impactor.mass_kg': 1e+30 kg: its largest approach on a rigid rod, "
+                  "alpha_H = 9.2e+07 m, reaches the nose radius R = 0.01 m"),
+    "mass 1e-300": (_set(MODEL, *_CASE0, "impactor", "mass_kg", 1e-300),
+                    f"{MODEL}: case 'model': field 'impactor.mass_kg': 1e-300 kg: its impactor mass m = 1e-300 kg"),
+    "velocity 1e30": (_set(MODEL, *_CASE0, "impactor", "velocity_m_s", 1e30),
+                      f"{MODEL}: case 'model': field 'impactor.velocity_m_s': 1e+30 m/s: its largest approach"),
+    "velocity 1e-300": (_set(MODEL, *_CASE0, "impactor", "velocity_m_s", 1e-300),
+                        f"{MODEL}: case 'model': field 'impactor.velocity_m_s': 1e-300 m/s: its rigid-rod contact "
+                        "time t_H"),
+    "inline modulus 1e-300": (_set(MODEL, *_CASE0, "rod", "material", {**INLINE_STEEL, "youngs_modulus_pa": 1e-300}),
+                              f"{MODEL}: case 'model': field 'rod.material.youngs_modulus_pa': youngs_modulus_pa = "
+                              "1e-300 Pa: its rod's Young's modulus = 1e-300 Pa lies outside"),
+    "named material's modulus 1e-300": (_set("config/materials.yaml", "materials", "steel", "youngs_modulus_pa",
+                                             1e-300),
+                                        f"{MODEL}: case 'model': field 'impactor.material': material 'steel': "
+                                        "youngs_modulus_pa = 1e-300 Pa: its impactor's Young's modulus = 1e-300 Pa"),
+    "paper scheme's steps 1e12": (_set(MODEL, *_CASE0, "numerics", {"sem_paper": {"steps_per_contact": 10**12}}),
+                                  f"{MODEL}: case 'model': field 'numerics.sem_paper.steps_per_contact': 1e+12: "
+                                  "sem_paper would need about 4.3e+12 steps of 2.05e-16 s for the estimated contact, "
+                                  "beyond its step budget max_steps = 5000000"),
+    "tolerance 1e-300 in config.yaml": (_set("config/config.yaml", "numerics", "sem", "tolerance", 1e-300),
+                                        "config/config.yaml: case 'model': field 'numerics.sem.tolerance': 1e-300: "
+                                        "sem would need about 2.32e+151 steps"),
+    "fem1d elements 1e9": (_set(MODEL, *_CASE0, "numerics", {"fem1d": {"elements": 10**9}}),
+                           f"{MODEL}: case 'model': field 'numerics.fem1d.elements': 1e+09: fem1d would take about "
+                           "1.05e+07 s (1.05e+04 steps of 1.03e-07 s), beyond the budget limits.run_time_s = 3600 s"),
+    "a budget no case meets": (_set("config/config.yaml", "limits", {"run_time_s": 1e-3}),
+                               "config/config.yaml: case 'model': field 'limits.run_time_s': sem would take about "),
+}
+
+
+@pytest.mark.parametrize("change, expected", IMPLAUSIBLE.values(), ids=IMPLAUSIBLE.keys())
+def test_implausible_case_is_refused_naming_its_cause(project_dir: Path, change, expected: str) -> None:
+    path, apply = change
+    edit(project_dir / path, apply)
+    message = error_of(project_dir)
+    assert message.startswith(expected), message
+    assert "\n" not in message
+
+
+def test_plausibility_fallbacks_and_budget_of_machine() -> None:
+    from rodimpact.io.plausible import Budget, machine_memory_mib
+
+    budget = Budget.of({"run_time_s": 10, "memory_mib": None})
+    assert budget.memory_mib == machine_memory_mib() > 100.0
+    assert Budget.of({"run_time_s": 10, "memory_mib": 64}).memory_mib == 64.0

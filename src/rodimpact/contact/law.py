@@ -23,6 +23,7 @@ may replace with closed forms.
 from __future__ import annotations
 
 import abc
+import functools
 import math
 from dataclasses import dataclass
 
@@ -178,6 +179,13 @@ class ContactLaw(abc.ABC):
             - E(alpha)) / m, integrated in u = sqrt(alpha_max - alpha), which removes the
             inverse square root at the turning point.
         """
+        try:
+            return _rigid_impact_memo(self, float(mass_kg), float(velocity_m_s))
+        except TypeError:  # a law holding arrays (not hashable): computed each time
+            return self._rigid_impact(mass_kg, velocity_m_s)
+
+    def _rigid_impact(self, mass_kg: float, velocity_m_s: float) -> RigidImpact:
+        """:meth:`rigid_impact` by quadrature (its docstring), without the memo."""
         # imported here: a law with a closed form (Hertz) never needs them, and the
         # configuration check of every workflow job should not pay for them
         from scipy.integrate import quad
@@ -201,3 +209,10 @@ class ContactLaw(abc.ABC):
         half = quad(integrand, 0.0, math.sqrt(alpha_max), epsabs=0.0, epsrel=1e-12, limit=200)[0]
         return RigidImpact(max_approach_m=alpha_max, contact_time_s=2.0 * half,
                            peak_force_N=self.force(alpha_max))
+
+
+@functools.lru_cache(maxsize=1024)
+def _rigid_impact_memo(law: ContactLaw, mass_kg: float, velocity_m_s: float) -> RigidImpact:
+    """A hashable (frozen) law's rigid impact, computed once per law, mass and velocity: the
+    configuration check, the cost models and the solvers of one process ask for the same."""
+    return law._rigid_impact(mass_kg, velocity_m_s)

@@ -27,6 +27,7 @@ from typing import Any
 from rodimpact.analysis.sweeps import SweepError, sweep_point_case, sweep_points
 from rodimpact.io.bodies import MATERIAL_FIELDS, check_law, check_material_ranges, resolve_contact, resolve_material
 from rodimpact.io.checks import check_run, check_stability, check_work_precision
+from rodimpact.io.plausible import Budget, check_plausible
 from rodimpact.io.project import ConfigError, Project, _File
 from rodimpact.io.schema import Schemas, YamlError, deep_merge, format_path, with_floats
 from rodimpact.solvers.options import OptionError
@@ -373,7 +374,16 @@ class _ProjectBuilder:
         return resolved
 
     def _check_runs(self, case: dict, source: _File) -> None:
-        """Each method's options fit the case (e.g. sem_paper's step is stable)."""
+        """The case's runs are plausible (:mod:`.plausible`) and each method's options fit
+        the case (e.g. sem_paper's step is stable)."""
+        finding = check_plausible(case, Budget.of(self.config["limits"]))
+        if finding is not None:
+            own = not finding.budget
+            if finding.setting:  # a setting the case does not change is config.yaml's
+                _, method, name = finding.field.split(".")
+                own = case["numerics"][method][name] != self.config["numerics"][method].get(name)
+            where = source if own else self.config_source
+            raise where.error(finding.reason, case=case["id"], field=finding.field)
         for method in case["methods"]:
             try:
                 check_run(case, method)

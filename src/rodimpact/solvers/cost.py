@@ -27,12 +27,20 @@ SHORT_CONTACT = 1.5
 @dataclass(frozen=True)
 class Cost:
     """The cost model of one solve: its time step (s), its steps, its time (s) and its own
-    memory (MiB)."""
+    memory (MiB); with a step budget (``step_limit``, the solver fails on reaching it),
+    ``steps`` and the time stop there and ``steps_needed`` is what the run's span asks for."""
 
     time_step_s: float
     steps: float
     solve_s: float
     mem_mib: float
+    steps_needed: float | None = None
+    step_limit: float = math.inf
+
+    @property
+    def exceeds_step_limit(self) -> bool:
+        """The run's span needs more steps than the solver's budget allows: it would fail."""
+        return self.steps_needed is not None and self.steps_needed > self.step_limit
 
 
 def contact_duration(problem: ImpactProblem) -> float:

@@ -40,7 +40,8 @@ def sem_cost(case: Mapping[str, Any], options: SEMOptions | PaperSEMOptions) -> 
         # the first guess may be floored at a step count; the check halves it down to the
         # step the tolerance asks for
         step, work = min(step, tolerance_step(problem, options.tolerance)), SEM_AUTO_WORK
-    stored = min(span / step, float(options.max_steps)) + 1.0
+    raw = span / step
+    stored, needed = min(raw, float(options.max_steps)) + 1.0, raw + 1.0
     # a step commensurate with the round trip costs the same at every round trip; only a
     # fixed dt_s that is not sums one history term per round trip since the impact
     commensurate = options.dt_s is None or CommensurateGrid.of(step, period, -1, True) is not None
@@ -48,4 +49,5 @@ def sem_cost(case: Mapping[str, Any], options: SEMOptions | PaperSEMOptions) -> 
     stations = len(case.get("stations", ()))
     return Cost(time_step_s=step, steps=stored,
                 solve_s=SOLVE_S + work * stored * (SEM_STEP_S + SEM_REFLECTION_S * rounds),
-                mem_mib=stored * (SEM_STEP_BYTES + 64.0 * stations) / MIB)
+                mem_mib=stored * (SEM_STEP_BYTES + 64.0 * stations) / MIB,
+                steps_needed=needed, step_limit=float(options.max_steps))
