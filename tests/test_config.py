@@ -416,7 +416,8 @@ MALFORMED = {
     ),
     "id with a dash": (
         _set(MODEL, "cases", 0, "id", "model-1"),
-        f"{MODEL}: case 'model-1': field 'id': must match the pattern '^[A-Za-z0-9][A-Za-z0-9_.]*$', got 'model-1'",
+        f"{MODEL}: field 'cases[0].id': must be a name of letters, digits, '_' and '.' that starts with a letter "
+        "or digit, got 'model-1'",
     ),
     "case without id": (
         _set(MODEL, "cases", 0, "id", None),
@@ -672,3 +673,53 @@ def test_plausibility_fallbacks_and_budget_of_machine() -> None:
     budget = Budget.of({"run_time_s": 10, "memory_mib": None})
     assert budget.memory_mib == machine_memory_mib() > 100.0
     assert Budget.of({"run_time_s": 10, "memory_mib": 64}).memory_mib == 64.0
+
+
+# --------------------------------------------------------------------------- hostile YAML and names
+
+
+_NAME_RULE = "must be a name of letters, digits, '_' and '.' that starts with a letter or digit"
+
+
+@pytest.mark.parametrize("bad_id, expected", [
+    ("model\n", f"{MODEL}: field 'cases[0].id': {_NAME_RULE}, got 'model\\n'"),
+    ("m" * 65, f"{MODEL}: field 'cases[0].id': must be at most 64 characters long, got 65"),
+    ("a/b", f"{MODEL}: field 'cases[0].id': {_NAME_RULE}, got 'a/b'"),
+])
+def test_case_id_is_a_whole_safe_name(project_dir: Path, bad_id: str, expected: str) -> None:
+    edit(project_dir / MODEL, lambda document: document["cases"][0].__setitem__("id", bad_id))
+    assert error_of(project_dir) == expected
+
+
+def test_yml_case_file_is_refused_by_name(project_dir: Path) -> None:
+    shutil.copy(project_dir / MODEL, project_dir / "config/cases/extra.yml")
+    assert error_of(project_dir) == ("config/cases/extra.yml: a case file ends in .yaml; rename it extra.yaml "
+                                     "(only *.yaml files are read)")
+
+
+def test_sweep_that_runs_backwards_is_refused(project_dir: Path) -> None:
+    path, change = _set(TABLE2, "cases", 6, "sweep", "parameters", "ball_diameter_m",
+                        {"start": 2e-2, "stop": 1e-3, "num": 5})
+    edit(project_dir / path, change)
+    assert error_of(project_dir) == (f"{TABLE2}: case 'ball_sweep-r10_l30': field "
+                                     "'sweep.parameters.ball_diameter_m.stop': must be > start (0.02), got 0.001")
+
+
+def test_merge_key_is_read(project_dir: Path) -> None:
+    text = (project_dir / MODEL).read_text()
+    text = text.replace("cases:\n  - id: model\n", "bodies: &steel_rod\n  length_m: 0.5\n  area_m2: 5.0e-5\n"
+                        "  material: steel\n  far_end: fixed\ncases:\n  - id: model\n")
+    text = text.replace("    rod:\n      length_m: 0.5\n      area_m2: 5.0e-5\n      material: steel\n"
+                        "      far_end: fixed\n", "    rod:\n      <<: *steel_rod\n      length_m: 0.25\n")
+    assert "<<: *steel_rod" in text
+    (project_dir / MODEL).write_text(text)
+    # the top-level anchor holder is not a case-file field: the schema names it, after the merge worked
+    assert error_of(project_dir).startswith(f"{MODEL}: field 'bodies': unknown field")
+
+
+def test_alias_bomb_is_refused_before_it_is_built(project_dir: Path) -> None:
+    lines = ['a: &a ["x", "x", "x", "x", "x", "x", "x", "x", "x"]']
+    lines += [f'{b}: &{b} [{", ".join([f"*{a}"] * 9)}]' for a, b in zip("abcdefgh", "bcdefghi")]
+    (project_dir / "config/cases/bomb.yaml").write_text("\n".join(lines) + "\n")
+    assert error_of(project_dir) == ("config/cases/bomb.yaml: invalid YAML: its aliases expand it to 4.9e+08 "
+                                     "nodes, more than the 200000 allowed (an alias bomb?)")

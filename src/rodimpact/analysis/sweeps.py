@@ -108,7 +108,8 @@ def sweep_values(spec: Sequence[float] | Mapping[str, Any]) -> list[float]:
     Raises
     ------
     SweepError
-        A value is not positive and finite, ``num`` < 2, or two values round to the same;
+        A value is not positive and finite, ``stop`` <= ``start``, ``num`` < 2, or two values
+        round to the same;
         ``field`` is the key of ``spec`` at fault (``start``, ``stop``, ``num``, ``spacing``)
         or empty for the values themselves.
     """
@@ -121,6 +122,8 @@ def sweep_values(spec: Sequence[float] | Mapping[str, Any]) -> list[float]:
             raise SweepError("spacing", f"must be 'linear' or 'log', got {spacing!r}")
         if not (start > 0 and stop > 0 and math.isfinite(start) and math.isfinite(stop)):
             raise SweepError("", f"start, stop: must be finite and > 0, got {start!r}, {stop!r}")
+        if not stop > start:
+            raise SweepError("stop", f"must be > start ({start!r}), got {stop!r}")
         raw = (np.geomspace if spacing == "log" else np.linspace)(start, stop, int(num))
     else:
         raw = np.asarray(list(spec), dtype=float)

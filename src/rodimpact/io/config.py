@@ -197,6 +197,10 @@ def _case_files(config: dict, root: Path, config_source: _File) -> list[_File]:
     directory = _File.under(config["cases_dir"], root)
     if not directory.path.is_dir():
         raise config_source.error(f"directory not found: {directory.label}", field="cases_dir")
+    for other in sorted(directory.path.glob("*.yml")):
+        if not other.name.startswith("."):
+            raise _File.under(other, root).error(f"a case file ends in .yaml; rename it {other.stem}.yaml "
+                                                 "(only *.yaml files are read)")
     paths = sorted(p for p in directory.path.glob("*.yaml") if not p.name.startswith("."))
     if not paths:
         raise config_source.error(f"no *.yaml case files in {directory.label}", field="cases_dir")
@@ -262,6 +266,8 @@ class _ProjectBuilder:
             case, CASES_SCHEMA, "/$defs/resolved_case", fill_defaults=True
         )
         if problem:
+            if problem.path[:1] == ("id",):  # the id itself is wrong: no case to name
+                raise source.error(problem.message, field="id")
             raise error(problem.message, field=format_path(problem.path) or None)
         if case_id in self.cases or case_id in self.sweeps:
             other = {**self.cases, **self.sweeps}[case_id]["source_file"]

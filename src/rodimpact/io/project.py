@@ -91,7 +91,7 @@ class _File:
         if len(path) >= 2 and path[0] == "cases" and isinstance(path[1], int):
             entry = document["cases"][path[1]]
             case_id = entry.get("id") if isinstance(entry, dict) else None
-            if isinstance(case_id, str) and case_id:
+            if isinstance(case_id, str) and case_id and path[2:] != ("id",):  # not an id at fault
                 field = format_path(path[2:]) or None
                 return self.error(problem.message, case=case_id, field=field)
         return self.error(problem.message, field=format_path(path) or None)

@@ -46,12 +46,20 @@ class YamlError(ValueError):
 # --------------------------------------------------------------------------- YAML
 
 
+_MERGE_TAG = "tag:yaml.org,2002:merge"
+#: Most nodes a document may expand to, its aliases followed (a case file has a few thousand):
+#: a document of a few nested aliases (the "billion laughs") is refused before it is built.
+MAX_EXPANDED_NODES = 200_000
+
+
 class _Loader(getattr(yaml, "CSafeLoader", yaml.SafeLoader)):  # libyaml's parser when available
     """Safe loader that rejects duplicate keys and reads ``2.1e11`` as a float (YAML 1.2)."""
 
     def construct_mapping(self, node: yaml.MappingNode, deep: bool = False) -> dict:
         seen: set[Any] = set()
         for key_node, _ in node.value:
+            if key_node.tag == _MERGE_TAG:
+                continue  # `<<: *defaults`: merged (and overridden by the keys here) by the base class
             key = self.construct_object(key_node, deep=True)
             if not isinstance(key, Hashable):
                 continue  # the base class reports unhashable keys
@@ -82,7 +90,18 @@ def read_yaml(path: Path) -> Any:
     """
     text = Path(path).read_text(encoding="utf-8")
     try:
-        return yaml.load(text, Loader=_Loader)  # noqa: S506 - _Loader is a SafeLoader
+        loader = _Loader(text)
+        try:
+            node = loader.get_single_node()
+            if node is None:
+                return None
+            expanded = _expanded_size(node)
+            if expanded > MAX_EXPANDED_NODES:
+                raise YamlError(f"invalid YAML: its aliases expand it to {expanded:.3g} nodes, more than the "
+                                f"{MAX_EXPANDED_NODES} allowed (an alias bomb?)", path)
+            return loader.construct_document(node)
+        finally:
+            loader.dispose()
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
@@ -90,6 +109,28 @@ def read_yaml(path: Path) -> Any:
         raise YamlError(f"invalid YAML{where}: {exc.problem}{context}", path) from exc
     except yaml.YAMLError as exc:
         raise YamlError(f"invalid YAML: {exc}", path) from exc
+
+
+def _expanded_size(root: yaml.Node) -> float:
+    """The number of nodes of the document with every alias expanded (each shared node
+    counted once per reference), computed once per node."""
+    sizes: dict[int, float] = {}
+    stack: list[tuple[yaml.Node, bool]] = [(root, False)]
+    while stack:
+        node, ready = stack.pop()
+        if id(node) in sizes:
+            continue
+        children: list[yaml.Node] = []
+        if isinstance(node, yaml.SequenceNode):
+            children = list(node.value)
+        elif isinstance(node, yaml.MappingNode):
+            children = [part for pair in node.value for part in pair]
+        if ready or not children:
+            sizes[id(node)] = 1.0 + sum(sizes.get(id(child), 0.0) for child in children)
+            continue
+        stack.append((node, True))
+        stack.extend((child, False) for child in children if id(child) not in sizes)
+    return sizes[id(root)]
 
 
 # --------------------------------------------------------------------------- schemas
@@ -218,7 +259,10 @@ def _message(error: ValidationError, keyword: str | None, expected: Any, value: 
     if keyword == "uniqueItems":
         return f"items must be unique; {_first_duplicate(value)!r} appears more than once"
     if keyword == "pattern":
-        return f"must match the pattern {expected!r}, got {value!r}"
+        rule = error.schema.get("title")
+        return f"must be {rule}, got {value!r}" if rule else f"must match the pattern {expected!r}, got {value!r}"
+    if keyword == "maxLength":
+        return f"must be at most {expected} characters long, got {len(value)}"
     if keyword in (None, "not"):  # a `false` schema or `not: {}`: the key is forbidden here
         return "is not allowed here"
     return error.message
