@@ -7,7 +7,10 @@ from snakemake.utils import min_version
 min_version("9.0")
 
 
-configfile: "config/config.yaml"
+include: "workflow/rules/preflight.smk"
+
+
+configfile: CONFIG_FILE
 
 
 report: "workflow/report/workflow.rst"
@@ -29,3 +32,7 @@ rule all:
     input:
         default_targets(),
     default_target: True
+
+
+# last: it checks the command line's targets against every rule above
+include: "workflow/rules/targets.smk"

@@ -1,4 +1,5 @@
 # Validation of the configuration (before any job), and the helpers the rules share.
+# (SRC_DIR is on the path: preflight.smk, included before the config file is read.)
 import atexit
 import functools
 import os
@@ -7,14 +8,6 @@ import sys
 from pathlib import Path
 
 from snakemake.utils import Paramspace
-
-# The workflow runs the code of its own checkout (src/), in this process and in its jobs,
-# whatever else is installed: the sources snakemake tracks are the sources that run.
-SRC_DIR = str(Path(workflow.basedir, "src"))
-sys.path.insert(0, SRC_DIR)
-# Set (not read from the user) for the jobs; every job's snakemake re-parses this file, so
-# remote jobs set it too.
-os.environ.update(PYTHONPATH=os.pathsep.join(filter(None, [SRC_DIR, os.environ.get("PYTHONPATH")])))
 
 from rodimpact.analysis.studies import level_case, map_point_case, map_point_names, reference_case
 from rodimpact.analysis.sweeps import sweep_frame, sweep_point_case, sweep_points
@@ -48,6 +41,11 @@ def checked_project():
 # is reused); the checked config (every default filled in) replaces snakemake's.
 PROJECT = PLAN.project(config, workflow.basedir, checked_project)
 config.update(PROJECT.config)
+
+
+def refuse(message):
+    """Stop planning with one line (a target or a wildcard the configuration does not define)."""
+    sys.exit(f"rodimpact: {message}")
 
 
 def sources(*entry_modules):
@@ -123,7 +121,7 @@ def resolved_case_of(wildcards):
     """The resolved case (or sweep case) of a case file."""
     case = PROJECT.cases.get(wildcards.case) or PROJECT.sweeps.get(wildcards.case)
     if case is None:
-        raise ValueError(f"unknown case {wildcards.case!r}; known: {sorted([*PROJECT.cases, *PROJECT.sweeps])}")
+        refuse(f"unknown case {wildcards.case!r}; known: {', '.join([*PROJECT.cases, *PROJECT.sweeps])}")
     return case
 
 
@@ -137,7 +135,8 @@ def tabulated_case_of(wildcards):
     """The resolved case of an indentation; refuses a case whose law is not tabulated."""
     case = resolved_case_of(wildcards)
     if (case.get("contact") or {}).get("law") != "tabulated":
-        raise ValueError(f"case {wildcards.case!r} has no tabulated contact law to calibrate")
+        refuse(f"case {wildcards.case!r} has no tabulated contact law to calibrate; cases that have: "
+               f"{', '.join(c for c, v in PROJECT.cases.items() if (v.get('contact') or {}).get('law') == 'tabulated')}")
     return case
 
 
@@ -159,9 +158,9 @@ def case_of_run(wildcards):
     """The resolved case of a run; refuses a method the case does not list."""
     case = PROJECT.cases.get(wildcards.case)
     if case is None:
-        raise ValueError(f"unknown case {wildcards.case!r}; known: {sorted(PROJECT.cases)}")
+        refuse(f"unknown case {wildcards.case!r}; known: {', '.join(PROJECT.cases)}")
     if wildcards.method not in case["methods"]:
-        raise ValueError(f"case {wildcards.case!r} does not run {wildcards.method!r} (methods: {case['methods']})")
+        refuse(f"case {wildcards.case!r} does not run {wildcards.method!r}; its methods: {', '.join(case['methods'])}")
     return case
 
 
@@ -176,14 +175,14 @@ def sweep_level(method, level):
     """Numerics overrides of one level of the method's work-precision sweep."""
     levels = WORK_PRECISION.get("methods", {}).get(method, {}).get("levels", [])
     if not 0 <= level < len(levels):
-        raise ValueError(f"no level {level} in the work-precision sweep of {method!r} ({len(levels)} levels)")
+        refuse(f"no level {level} in the work-precision sweep of {method!r}; its levels: 0 to {len(levels) - 1}")
     return dict(levels[level])
 
 
 def sweep_case(case_id, method, level):
     """The case of one sweep level (the method need not be among the case's own)."""
     if case_id not in PROJECT.cases:
-        raise ValueError(f"unknown case {case_id!r}")
+        refuse(f"unknown case {case_id!r}; known: {', '.join(PROJECT.cases)}")
     return level_case(PROJECT.cases[case_id], method, config["numerics"], sweep_level(method, level))
 
 

@@ -29,7 +29,8 @@ def sweep_batch_runs(case_id, names):
     def runs(wildcards):
         case = PROJECT.sweeps[case_id]
         if wildcards.method not in case["sweep"]["methods"]:
-            raise ValueError(f"sweep {case_id!r} does not run {wildcards.method!r}")
+            refuse(f"sweep {case_id!r} does not run {wildcards.method!r}; its methods: "
+                   f"{', '.join(case['sweep']['methods'])}")
         return {f"p{k}": {"case": sweep_point_case(case, SWEEP_POINTS[case_id][name], name),
                           "method": wildcards.method, "study": {"name": "sweep", "sweep": case_id, "point": name}}
                 for k, name in enumerate(names)}

@@ -1,10 +1,12 @@
 """Reading and writing: the configuration, the run files, provenance.
 
-What lives here: :mod:`.schema` (YAML and JSON-schema checks), :mod:`.project`
+What lives here: :mod:`.yamlfile` (reading one YAML document, aliases bounded),
+:mod:`.schema` (JSON-schema checks), :mod:`.project`
 (:class:`~rodimpact.io.project.Project` and :class:`~rodimpact.io.project.ConfigError`),
 :mod:`.config` (read, check and resolve config.yaml, materials and case files),
 :mod:`.checks` (each run's options against its case), :mod:`.store` (one HDF5 file per run),
-:mod:`.atomic` (the one whole-or-nothing writer), :mod:`.provenance` (hashes and versions)
+:mod:`.atomic` (the one whole-or-nothing writer), :mod:`.plausible` (each run's scales and cost
+before any job), :mod:`.provenance` (hashes and versions)
 and :mod:`.sidecar` (the provenance sidecars of tables, figures and benchmarks).
 
 What it may import: :mod:`rodimpact.solvers.registry` and the options classes (the methods
