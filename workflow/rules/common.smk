@@ -12,6 +12,7 @@ from snakemake.utils import Paramspace
 from rodimpact.analysis.studies import level_case, map_point_case, map_point_names, reference_case
 from rodimpact.analysis.sweeps import sweep_frame, sweep_point_case, sweep_points
 from rodimpact.solvers.registry import METHODS as METHOD_REGISTRY
+from rodimpact.workflow.locks import register_run
 from rodimpact.workflow.plan_cache import CACHE_FILE, PlanCache, code_fingerprint
 from rodimpact.workflow.sources import module_sources
 
@@ -24,6 +25,7 @@ atexit.register(PLAN.save)
 
 onstart:
     PLAN.save()
+    register_run(workflow.basedir)  # a live run here: no other snakemake releases its lock
 
 
 def checked_project():

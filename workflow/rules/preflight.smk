@@ -1,5 +1,6 @@
-# Before snakemake reads config/config.yaml: the workflow's own code on the path, and the file
-# read by rodimpact's YAML reader, so that a syntax error is one line with its line and column.
+# Before snakemake reads config/config.yaml: the workflow's own code on the path, the file read
+# by rodimpact's YAML reader (a syntax error is one line with its line and column), and the
+# lock of a killed run released (rodimpact.workflow.locks).
 import os
 import sys
 from pathlib import Path
@@ -13,6 +14,7 @@ sys.path.insert(0, SRC_DIR)
 os.environ.update(PYTHONPATH=os.pathsep.join(filter(None, [SRC_DIR, os.environ.get("PYTHONPATH")])))
 
 from rodimpact.io.yamlfile import YamlError, read_yaml
+from rodimpact.workflow.locks import release_stale_lock
 
 CONFIG_FILE = "config/config.yaml"
 
@@ -31,3 +33,10 @@ def preflight_config(path):
 
 
 preflight_config(CONFIG_FILE)
+
+
+# A lock left by a killed run (no snakemake process lives in this directory, no run of
+# another machine registered here) is released, with a one-line notice.
+_released = release_stale_lock(workflow.basedir)
+if _released:
+    print(_released, file=sys.stderr)

@@ -5,7 +5,7 @@ import pandas as pd
 from rodimpact.workflow.bench import benchmark_fem1d, benchmark_fem_axi, write_benchmark
 from rodimpact.workflow.logs import script_logging
 
-with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     frame = pd.concat([benchmark_fem1d(snakemake.params.case),  # noqa: F821
                        benchmark_fem_axi(snakemake.params.axi_cases)], ignore_index=True)  # noqa: F821
     write_benchmark(frame, csv=snakemake.output.csv, provenance=snakemake.output.provenance)  # noqa: F821

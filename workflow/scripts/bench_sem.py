@@ -3,6 +3,6 @@
 from rodimpact.workflow.bench import benchmark_sem, write_benchmark
 from rodimpact.workflow.logs import script_logging
 
-with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     frame = benchmark_sem(snakemake.params.case)  # noqa: F821
     write_benchmark(frame, csv=snakemake.output.csv, provenance=snakemake.output.provenance)  # noqa: F821

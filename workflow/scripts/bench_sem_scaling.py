@@ -4,6 +4,6 @@ from rodimpact.workflow.bench import write_benchmark
 from rodimpact.workflow.bench_scaling import benchmark_sem_scaling
 from rodimpact.workflow.logs import script_logging
 
-with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     frame = benchmark_sem_scaling(snakemake.params.model, snakemake.params.stress)  # noqa: F821
     write_benchmark(frame, csv=snakemake.output.csv, provenance=snakemake.output.provenance)  # noqa: F821

@@ -3,5 +3,5 @@
 from rodimpact.workflow.cases import write_case_file
 from rodimpact.workflow.logs import script_logging
 
-with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     write_case_file(snakemake.params.case, snakemake.output.yaml)  # noqa: F821

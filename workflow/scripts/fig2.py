@@ -3,6 +3,6 @@
 from rodimpact.present.artifacts import make_fig2
 from rodimpact.workflow.logs import script_logging
 
-with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821
     make_fig2(snakemake.input.runs, pdf=out.pdf, png=out.png, provenance=out.provenance)  # noqa: F821

@@ -3,7 +3,7 @@
 from rodimpact.present.artifacts import make_fig_film_force
 from rodimpact.workflow.logs import script_logging
 
-with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821
     make_fig_film_force(snakemake.input.runs, snakemake.params.rows,  # noqa: F821
                         pdf=out.pdf, png=out.png, provenance=out.provenance)

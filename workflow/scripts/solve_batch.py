@@ -4,7 +4,7 @@ work-precision levels), each written to its own HDF5 file."""
 from rodimpact.workflow.batch import run_batch
 from rodimpact.workflow.logs import script_logging
 
-with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     params = snakemake.params  # noqa: F821
     run_batch(params.runs, dict(snakemake.output.items()), case_file=snakemake.input.case,  # noqa: F821
               keep_failed=params.keep_failed, timing=params.timing)

@@ -3,7 +3,7 @@
 from rodimpact.present.artifacts import make_stability_map
 from rodimpact.workflow.logs import script_logging
 
-with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out, params = snakemake.output, snakemake.params  # noqa: F821
     make_stability_map(snakemake.input.runs, snakemake.input.references, params.spec,  # noqa: F821
                        csv=out.csv, pdf=out.pdf, png=out.png, provenance=out.provenance)

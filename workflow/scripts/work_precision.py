@@ -3,7 +3,7 @@
 from rodimpact.present.artifacts import make_work_precision
 from rodimpact.workflow.logs import script_logging
 
-with script_logging(snakemake.log[0]):  # noqa: F821 (injected by snakemake)
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out, params = snakemake.output, snakemake.params  # noqa: F821
     make_work_precision(snakemake.input.runs, params.methods, params.fit_levels, csv=out.csv,  # noqa: F821
                         orders_csv=out.orders_csv, orders_md=out.orders_md, provenance=out.provenance)

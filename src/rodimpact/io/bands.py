@@ -29,6 +29,7 @@ from numpy.typing import NDArray
 
 from rodimpact.io import provenance
 from rodimpact.io.atomic import atomic_output
+from rodimpact.io.faults import UnreadableInput
 
 __all__ = ["BAND_PARAMETERS", "BandFileError", "CaseBand", "band_summary", "read_band", "write_band"]
 
@@ -36,12 +37,12 @@ __all__ = ["BAND_PARAMETERS", "BandFileError", "CaseBand", "band_summary", "read
 BAND_PARAMETERS = ("film_modulus_pa", "film_poisson_ratio", "film_thickness_m")
 
 
-class BandFileError(ValueError):
-    """A band file cannot be read or its data do not match their hash (``path``)."""
+class BandFileError(UnreadableInput):
+    """A band file cannot be read or its data do not match their hash (``path``); a file
+    that exists is marked out of date (:mod:`rodimpact.io.faults`), so that the next build remakes it."""
 
     def __init__(self, path: str | Path, reason: str) -> None:
-        self.path, self.reason = str(path), reason
-        super().__init__(f"{path}: {reason}")
+        super().__init__(path, reason, mark=True)
 
 
 @dataclass(frozen=True)
@@ -131,7 +132,7 @@ def read_band(path: str | Path) -> tuple[str, list[CaseBand]]:
     except (OSError, KeyError) as error:
         raise BandFileError(path, f"not a readable band file ({error})") from None
     if _sha256(bands) != expected:
-        raise BandFileError(path, "the data do not match their data_sha256 (edited or corrupt); rerun the rule")
+        raise BandFileError(path, "the data do not match their data_sha256 (edited or corrupt)")
     return variant, bands
 
 

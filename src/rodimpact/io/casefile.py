@@ -14,6 +14,7 @@ from typing import Any, Mapping
 import yaml
 
 from rodimpact.io.atomic import atomic_output
+from rodimpact.io.faults import UnreadableInput
 from rodimpact.io.provenance import config_sha256, file_sha256
 
 __all__ = ["CASE_FILE_VERSION", "case_file_reference", "read_case_file", "write_case_record"]
@@ -39,14 +40,18 @@ def read_case_file(path: str | Path) -> dict[str, Any]:
 
     Raises
     ------
-    ValueError
-        The file is not a case file, or its case was edited after it was written.
+    UnreadableInput
+        The file is not a case file, or its case was edited after it was written (it is
+        marked out of date: the next build remakes it).
     """
-    record = yaml.load(Path(path).read_text(encoding="utf-8"), Loader=_LOADER)  # noqa: S506 (a safe loader)
+    try:
+        record = yaml.load(Path(path).read_text(encoding="utf-8"), Loader=_LOADER)  # noqa: S506 (a safe loader)
+    except (yaml.YAMLError, UnicodeDecodeError) as exc:
+        raise UnreadableInput(path, f"not a readable case file ({type(exc).__name__})", mark=True) from None
     if not isinstance(record, dict) or record.get("format") != CASE_FILE_VERSION or "case" not in record:
-        raise ValueError(f"{path}: not a case file (format {CASE_FILE_VERSION})")
+        raise UnreadableInput(path, f"not a case file (format {CASE_FILE_VERSION})", mark=True)
     if config_sha256(record["case"]) != record.get("config_sha256"):
-        raise ValueError(f"{path}: its case differs from the hash it was written with (edited by hand?)")
+        raise UnreadableInput(path, "its case differs from the hash it was written with (edited by hand?)", mark=True)
     return record
 
 

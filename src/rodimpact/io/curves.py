@@ -31,6 +31,7 @@ from numpy.typing import NDArray
 
 from rodimpact.io import provenance
 from rodimpact.io.atomic import atomic_output
+from rodimpact.io.faults import UnreadableInput
 
 __all__ = ["CURVE_DATASETS", "ContactCurve", "CurveFileError", "read_contact_curve", "write_contact_curve"]
 
@@ -47,12 +48,12 @@ CURVE_DATASETS: dict[str, tuple[str, str]] = {
 _REQUIRED = ("approach_m", "force_N", "contact_radius_m", "displacement_m")
 
 
-class CurveFileError(ValueError):
-    """A curve file is missing, unreadable or its data do not match their hash (``path``)."""
+class CurveFileError(UnreadableInput):
+    """A curve file is missing, unreadable or its data do not match their hash (``path``); a file
+    that exists is marked out of date (:mod:`rodimpact.io.faults`), so that the next build remakes it."""
 
     def __init__(self, path: str | Path, reason: str) -> None:
-        self.path, self.reason = str(path), reason
-        super().__init__(f"{path}: {reason}")
+        super().__init__(path, reason, mark=True)
 
 
 @dataclass(frozen=True)
@@ -145,6 +146,6 @@ def read_contact_curve(path: str | Path) -> ContactCurve:
     if missing:
         raise CurveFileError(path, f"missing datasets {missing}")
     if _data_sha256(data) != attrs["data_sha256"]:
-        raise CurveFileError(path, "the data do not match their data_sha256 (edited or corrupt); rerun the rule")
+        raise CurveFileError(path, "the data do not match their data_sha256 (edited or corrupt)")
     return ContactCurve(case_id=str(attrs["case_id"]), data=data, summary=json.loads(attrs["summary_json"]),
                         config=json.loads(attrs["config_json"]))

@@ -57,10 +57,11 @@ import numpy as np
 
 from rodimpact.io import provenance
 from rodimpact.io.atomic import atomic_output
+from rodimpact.io.faults import UnreadableInput
 
 logger = logging.getLogger(__name__)
 
-__all__ = ["REQUIRED_SUMMARY", "SCHEMA_VERSION", "RunRecord", "StoreError"]
+__all__ = ["REQUIRED_SUMMARY", "SCHEMA_VERSION", "CorruptRun", "RunRecord", "StoreError"]
 __all__ += ["read_run", "read_summary", "write_run"]
 
 SCHEMA_VERSION = 1
@@ -80,6 +81,14 @@ _COMPRESSION = {"compression": "gzip", "compression_opts": 4, "shuffle": True}
 
 class StoreError(RuntimeError):
     """A file is not a valid rodimpact run file (missing data, hash mismatch, ...)."""
+
+
+class CorruptRun(StoreError, UnreadableInput):
+    """A run file that cannot be read, or whose content no longer matches its digest
+    (``path``, ``reason``); the reader marks it out of date (:mod:`rodimpact.io.faults`)."""
+
+    def __init__(self, path: str | Path, reason: str) -> None:
+        UnreadableInput.__init__(self, path, reason, mark=True)
 
 
 @dataclass(frozen=True)
@@ -311,40 +320,59 @@ def _read_record(path: str | Path, *, verify: bool, with_series: bool) -> RunRec
     if not path.is_file():
         raise FileNotFoundError(f"path does not exist or is not a file: {path}")
     if not h5py.is_hdf5(path):
-        raise StoreError(f"{path} is not an HDF5 file (not a rodimpact run file)")
-    with h5py.File(path, "r") as h5:
-        attrs = {key: _attr_value(h5.attrs[key]) for key in (*_ROOT_ATTRS, "data_sha256") if key in h5.attrs}
-        if missing := [key for key in _ROOT_ATTRS if key not in attrs]:
-            raise StoreError(f"{path} is not a rodimpact run file: missing root attrs {missing}")
-        if attrs["schema_version"] != SCHEMA_VERSION:
-            raise StoreError(f"{path}: unsupported schema_version {attrs['schema_version']!r}")
-        if [key for key in _STR_ATTRS if not isinstance(attrs[key], str)]:
-            raise StoreError(f"{path}: root attributes {list(_STR_ATTRS)} must all be str")
-        if not isinstance(h5.get("time"), h5py.Dataset):
-            raise StoreError(f"{path}: missing required dataset 'time'")
-        if not isinstance(h5.get(_SUMMARY_GROUP), h5py.Group):
-            raise StoreError(f"{path}: missing required group '{_SUMMARY_GROUP}'")
-        summary = {key: _attr_value(value) for key, value in h5[_SUMMARY_GROUP].attrs.items()}
-        if missing := [key for key in REQUIRED_SUMMARY if key not in summary]:
-            raise StoreError(f"{path}: missing required summary attributes {missing}")
-        series, units, descriptions = _read_series(h5, path) if with_series else ({}, {}, {})
+        raise CorruptRun(path, "not an HDF5 file (truncated, or not a rodimpact run file)")
+    try:
+        with h5py.File(path, "r") as h5:
+            attrs, summary, series, units, descriptions = _read_parts(h5, path, verify, with_series)
+    except StoreError:
+        raise
+    except (OSError, KeyError, ValueError, TypeError, RuntimeError) as exc:  # HDF5's errors of a damaged file
+        reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise CorruptRun(path, f"unreadable run file ({reason})") from None
     try:
         config = json.loads(attrs["config_json"])
         libraries = json.loads(attrs["library_versions"])
     except json.JSONDecodeError as exc:
-        raise StoreError(f"{path}: config_json or library_versions is not JSON: {exc}") from exc
+        raise CorruptRun(path, f"config_json or library_versions is not JSON: {exc}") from None
     if verify:
         digest = hashlib.sha256(attrs["config_json"].encode("utf-8")).hexdigest()
         if digest != attrs["config_sha256"]:
-            raise StoreError(f"{path}: config_sha256 mismatch; config_json was modified")
+            raise CorruptRun(path, "config_sha256 mismatch; config_json was modified")
         if not isinstance(config, dict) or config.get("id") != attrs["case_id"]:
-            raise StoreError(f"{path}: case_id {attrs['case_id']!r} does not match config['id']")
+            raise CorruptRun(path, f"case_id {attrs['case_id']!r} does not match config['id']")
+        if attrs.get("data_sha256"):
+            content = {name: (values, units[name], descriptions[name]) for name, values in series.items()}
+            if provenance.data_sha256(attrs["config_json"], attrs["method"], content, summary) != attrs["data_sha256"]:
+                raise CorruptRun(path, "its content differs from its data_sha256 (changed after it was written)")
+    if not with_series:
+        series, units, descriptions = {}, {}, {}
     logger.debug("read run %s (series=%s)", path, with_series)
     return RunRecord(
         path, attrs["case_id"], attrs["method"], config, attrs["config_sha256"],
         attrs["code_version"], libraries, float(attrs["wall_time_s"]), attrs["created_utc"],
         series, units, summary, descriptions, str(attrs.get("data_sha256", "")),
     )  # fmt: skip
+
+
+def _read_parts(h5: h5py.File, path: Path, verify: bool, with_series: bool) -> tuple[dict, dict, dict, dict, dict]:
+    """The root attributes, the summary and (when asked for, or to verify the content) the series."""
+    attrs = {key: _attr_value(h5.attrs[key]) for key in (*_ROOT_ATTRS, "data_sha256") if key in h5.attrs}
+    if missing := [key for key in _ROOT_ATTRS if key not in attrs]:
+        raise CorruptRun(path, f"not a rodimpact run file: missing root attrs {missing}")
+    if attrs["schema_version"] != SCHEMA_VERSION:
+        raise StoreError(f"{path}: unsupported schema_version {attrs['schema_version']!r}")
+    if [key for key in _STR_ATTRS if not isinstance(attrs[key], str)]:
+        raise CorruptRun(path, f"root attributes {list(_STR_ATTRS)} must all be str")
+    if not isinstance(h5.get("time"), h5py.Dataset):
+        raise CorruptRun(path, "missing required dataset 'time'")
+    if not isinstance(h5.get(_SUMMARY_GROUP), h5py.Group):
+        raise CorruptRun(path, f"missing required group '{_SUMMARY_GROUP}'")
+    summary = {key: _attr_value(value) for key, value in h5[_SUMMARY_GROUP].attrs.items()}
+    if missing := [key for key in REQUIRED_SUMMARY if key not in summary]:
+        raise CorruptRun(path, f"missing required summary attributes {missing}")
+    needed = with_series or (verify and bool(attrs.get("data_sha256")))
+    series, units, descriptions = _read_series(h5, path) if needed else ({}, {}, {})
+    return attrs, summary, series, units, descriptions
 
 
 def read_run(path: str | Path, *, verify: bool = True) -> RunRecord:
@@ -355,8 +383,9 @@ def read_run(path: str | Path, *, verify: bool = True) -> RunRecord:
     path : str or Path
         Run file.
     verify : bool, default True
-        Recompute the SHA-256 of the stored ``config_json``, compare it with
-        ``config_sha256`` and check ``case_id`` against ``config["id"]``.
+        Recompute the SHA-256 of the stored ``config_json`` and compare it with
+        ``config_sha256``, check ``case_id`` against ``config["id"]``, and recompute the
+        content digest (``data_sha256``: config, method, every series and the summary).
 
     Returns
     -------
@@ -367,15 +396,19 @@ def read_run(path: str | Path, *, verify: bool = True) -> RunRecord:
     ------
     FileNotFoundError
         If ``path`` does not exist.
+    CorruptRun
+        The file is truncated, unreadable or not a run file, or its content was changed
+        after it was written (verification fails): it is marked out of date.
     StoreError
-        If the file is not a valid run file or verification fails.
+        The file is a run file of another schema version.
     """
     return _read_record(path, verify=verify, with_series=True)
 
 
 def read_summary(path: str | Path, *, verify: bool = True) -> RunRecord:
-    """Fast :func:`read_run` (same parameters and exceptions) without the series.
+    """:func:`read_run` (same parameters and exceptions) that returns no series.
 
     The returned :class:`RunRecord` has empty ``series``, ``units`` and ``descriptions``.
+    With ``verify`` the series are still read, for the content digest.
     """
     return _read_record(path, verify=verify, with_series=False)

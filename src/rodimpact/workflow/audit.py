@@ -38,10 +38,11 @@ import h5py
 from rodimpact.io.bands import BandFileError, read_band
 from rodimpact.io.casefile import read_case_file
 from rodimpact.io.curves import CurveFileError, read_contact_curve
+from rodimpact.io.faults import REBUILD_HINT
 from rodimpact.io.provenance import (
-    canonical_json, commit_exists, data_sha256, file_sha256, find_repo_root, library_versions
+    commit_exists, file_sha256, find_repo_root, library_versions
 )
-from rodimpact.io.store import StoreError, read_run, read_summary
+from rodimpact.io.store import CorruptRun, StoreError, read_run, read_summary
 
 logger = logging.getLogger(__name__)
 
@@ -106,17 +107,14 @@ def code_problems(version: str, repo_root: Path | None) -> list[str]:
 def audit_run(path: str | Path, libraries: Mapping[str, str], repo_root: Path | None) -> Finding:
     """Check one HDF5 run: config hash, content digest, code version and libraries."""
     try:
-        record = read_run(path)
+        record = read_run(path)  # checks the content digest; a damaged or edited file is marked out of date
+    except CorruptRun as error:
+        return Finding(str(path), "run", (f"{error.reason} ({REBUILD_HINT})" if error.marked else error.reason,))
     except (StoreError, OSError, ValueError) as error:
         return Finding(str(path), "run", (f"not a readable run file: {error}",))
     problems = code_problems(record.code_version, repo_root)
     if not record.data_sha256:
         problems.append("no content digest (written by an older version of the code)")
-    else:
-        series = {name: (values, record.units[name], record.descriptions[name])
-                  for name, values in record.series.items()}
-        if data_sha256(canonical_json(record.config), record.method, series, record.summary) != record.data_sha256:
-            problems.append("content differs from its digest: changed after it was written")
     problems += case_file_problems(record.config.get("run", {}).get("case_file"))
     changed = sorted(name for name, version in record.library_versions.items()
                      if libraries.get(name, version) != version)

@@ -1,0 +1,222 @@
+"""Faults a careless user or the machine causes, run through snakemake in a copy of the project.
+
+Each fault stops with one line (no traceback) that names what is wrong, leaves nothing
+readable half-written, and one documented command recovers: the same snakemake command (or
+``make paper``) run again. The copies are tests/test_workflow.py's (coarse fem_axi, small
+studies); the configuration's own refusals are tested in tests/test_config.py.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import h5py
+import pytest
+
+from rodimpact.io.faults import REBUILD_HINT
+from rodimpact.io.store import read_run
+from test_workflow import Run, clone_built, copy_project, snakemake
+
+SOLVE = "results/runs/model/sem.h5"  # one case file and one SEM solve (about 2 s)
+TABLE = "results/tables/fig2_comparison.csv"  # reads the four runs of 'model'
+LONG = "results/tables/table2_r10_l30.csv"  # 25 jobs: six cases, four methods each
+BUILD_TIMEOUT_S = 600
+
+
+def last_line(run: Run) -> str:
+    lines = [line for line in run.output.splitlines() if line.strip()]
+    return lines[-1] if lines else ""
+
+
+def assert_one_line_refusal(run: Run, expected_start: str) -> None:
+    assert run.returncode != 0, run.describe()
+    assert "Traceback" not in run.output, run.describe()
+    assert last_line(run).startswith(expected_start), run.describe()
+
+
+def locks(project: Path) -> list[Path]:
+    directory = project / ".snakemake" / "locks"
+    return sorted(directory.glob("*.lock")) if directory.is_dir() else []
+
+
+def start(project: Path, *args: str) -> subprocess.Popen:
+    """snakemake in the background, in its own process group (to kill it with its jobs)."""
+    env = {key: value for key, value in os.environ.items() if not key.startswith("SNAKEMAKE") and key != "PYTHONPATH"}
+    return subprocess.Popen([sys.executable, "-m", "snakemake", "--nocolor", *args], cwd=project, env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True)
+
+
+def wait_for(condition, timeout: float, what: str) -> None:
+    deadline = time.monotonic() + timeout
+    while not condition():
+        if time.monotonic() > deadline:
+            raise AssertionError(f"timed out waiting for {what}")
+        time.sleep(0.02)
+
+
+@pytest.fixture(scope="module")
+def project(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """An unbuilt copy, for dry runs."""
+    return copy_project(tmp_path_factory.mktemp("faults") / "project")
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A copy with Fig. 2's comparison table and its four runs built."""
+    path = copy_project(tmp_path_factory.mktemp("faults_built") / "project")
+    run = snakemake(path, "-j2", TABLE, timeout=BUILD_TIMEOUT_S)
+    assert run.returncode == 0, run.describe()
+    return path
+
+
+# ------------------------------------------------------------------ targets and config.yaml
+
+
+@pytest.mark.parametrize("target, expected", [
+    ("results/runs/nosuch/sem.h5", "rodimpact: unknown case 'nosuch'; known: model, "),
+    ("results/runs/short_rod/fem_axi.h5", "rodimpact: case 'short_rod' does not run 'fem_axi'; its methods: "
+                                          "sem, sem_paper, fem1d"),
+    ("results/convergence/model/sem_level99.h5", "rodimpact: no rule makes 'results/convergence/model/"
+                                                 "sem_level99.h5'; results/convergence/ holds: "),
+    ("results/sweeps/ball_sweep-r1_l301/sem/ball_diameter_m~0.5.h5",
+     "rodimpact: no rule makes 'results/sweeps/ball_sweep-r1_l301/sem/ball_diameter_m~0.5.h5'; "
+     "results/sweeps/ball_sweep-r1_l301/ holds: results/sweeps/ball_sweep-r1_l301/{method}/ball_diameter_m~"),
+    ("tables", "rodimpact: no rule makes 'tables' and no rule has that name; rules: all, "),
+], ids=["unknown case", "method the case does not run", "missing level", "missing sweep point", "unknown rule"])
+def test_a_target_the_configuration_does_not_define_is_one_line(project: Path, target: str, expected: str) -> None:
+    assert_one_line_refusal(snakemake(project, "-n", target), expected)
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("targets:\n  sets: [model\n", "rodimpact: invalid configuration: config/config.yaml: invalid YAML at line "),
+    ("- just\n- a list\n", "rodimpact: invalid configuration: config/config.yaml: must be a mapping of settings, "
+                           "got list"),
+], ids=["syntax error", "not a mapping"])
+def test_a_broken_config_yaml_is_one_line(project: Path, text: str, expected: str) -> None:
+    config = project / "config" / "config.yaml"
+    original = config.read_text(encoding="utf-8")
+    try:
+        config.write_text(original + text if text.startswith("targets") else text, encoding="utf-8")
+        run = snakemake(project, "-n", SOLVE)
+    finally:
+        config.write_text(original, encoding="utf-8")
+    assert_one_line_refusal(run, expected)
+    if text.startswith("targets"):
+        assert ", column " in last_line(run)
+
+
+# ------------------------------------------------------------------ kills and concurrent builds
+
+
+def test_a_killed_build_leaves_a_lock_that_the_next_run_releases(tmp_path: Path) -> None:
+    path = copy_project(tmp_path / "project")
+    build = start(path, "-j1", SOLVE)
+    try:
+        wait_for(lambda: locks(path) or build.poll() is not None, 120, "the build to lock the directory")
+        os.killpg(build.pid, signal.SIGKILL)  # a power cut: snakemake and its job die at once
+    finally:
+        build.wait(30)
+    assert locks(path), "the killed run left no lock: the test did not kill it in time"
+    target = path / SOLVE
+    assert not target.exists() or read_run(target).case_id == "model"  # nothing readable is half-written
+    # what a kill during the rename-to-target write leaves beside the target
+    target.parent.mkdir(parents=True, exist_ok=True)
+    stale = target.with_name("sem.tmp-0123abcd.h5")
+    stale.write_bytes(b"\x89HDF\r\n\x1a\n" + bytes(64))
+    rerun = snakemake(path, "-j1", SOLVE, timeout=BUILD_TIMEOUT_S)
+    assert rerun.returncode == 0, rerun.describe()
+    assert "rodimpact: released snakemake's lock of " in rerun.output
+    assert not stale.exists() and read_run(target).case_id == "model"
+    assert not locks(path)
+
+
+def test_a_second_build_under_a_live_one_is_refused_and_the_lock_kept(tmp_path: Path) -> None:
+    path = copy_project(tmp_path / "project")
+    first = start(path, "-j1", LONG)  # many jobs one after another: longer than the second's planning
+    try:
+        wait_for(lambda: locks(path) or first.poll() is not None, 120, "the first build to lock the directory")
+        second = snakemake(path, "-j1", LONG, timeout=BUILD_TIMEOUT_S)
+        output, _ = first.communicate(timeout=BUILD_TIMEOUT_S)
+    finally:
+        if first.poll() is None:
+            os.killpg(first.pid, signal.SIGKILL)
+    assert first.returncode == 0, output
+    # snakemake refuses it: the live run's lock, or the job it is writing (its incomplete output)
+    assert second.returncode != 0, second.describe()
+    assert "LockException" in second.output or "IncompleteFilesException" in second.output, second.describe()
+    assert "released snakemake's lock" not in second.output
+    assert (path / LONG).is_file()
+
+
+# ------------------------------------------------------------------ damaged and edited inputs
+
+
+def _damage(run_file: Path, how: str) -> None:
+    if how == "truncated":
+        data = run_file.read_bytes()
+        run_file.write_bytes(data[: len(data) // 2])
+    else:
+        with h5py.File(run_file, "r+") as h5:
+            h5["contact_force"][3] = 7.0
+
+
+@pytest.mark.parametrize("how, reason", [
+    ("truncated", "results/runs/model/sem.h5: "),
+    ("edited", "results/runs/model/sem.h5: its content differs from its data_sha256 (changed after it was written)"),
+])
+def test_a_damaged_run_is_named_marked_and_remade(built: Path, tmp_path: Path, how: str, reason: str) -> None:
+    path = clone_built(built, tmp_path / "project")
+    run_file = path / SOLVE
+    _damage(run_file, how)
+    failed = snakemake(path, "-j1", TABLE, timeout=BUILD_TIMEOUT_S)
+    assert failed.returncode != 0, failed.describe()
+    assert "Traceback" not in failed.output, failed.describe()
+    refusal = [line for line in failed.output.splitlines() if "failed: " in line and reason in line]
+    assert refusal and refusal[0].endswith(REBUILD_HINT), failed.describe()
+    assert run_file.stat().st_mtime == 0.0  # marked out of date
+    table = path / TABLE
+    assert not table.exists() or table.read_text(encoding="utf-8").count("\n") > 1
+    recovered = snakemake(path, "-j1", TABLE, timeout=BUILD_TIMEOUT_S)
+    assert recovered.returncode == 0, recovered.describe()
+    assert read_run(run_file).case_id == "model" and table.is_file()
+
+
+# ------------------------------------------------------------------ a full disk
+
+
+def test_a_full_disk_is_one_line_and_leaves_no_temporary(tmp_path: Path) -> None:
+    path = copy_project(tmp_path / "project")
+    mount = path / "results" / "runs"  # the run's folder is made inside it (snakemake removes it on failure)
+    mount.mkdir(parents=True)
+    mounted = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=4m", "tmpfs", str(mount)],
+                             capture_output=True, text=True, check=False)
+    if mounted.returncode != 0:
+        pytest.skip(f"cannot mount a small file system here ({mounted.stderr.strip() or 'mount failed'})")
+    try:
+        filler = mount / "filler"
+        try:  # fill it to the last block
+            with open(filler, "wb", buffering=0) as handle:
+                while True:
+                    handle.write(bytes(4096))
+        except OSError:
+            pass
+        failed = snakemake(path, "-j1", SOLVE, timeout=BUILD_TIMEOUT_S)
+        assert failed.returncode != 0, failed.describe()
+        assert "Traceback" not in failed.output, failed.describe()
+        assert any("failed: " in line and "No space left on device" in line for line in failed.output.splitlines()), \
+            failed.describe()
+        left = sorted(p.name for p in (mount / "model").iterdir()) if (mount / "model").is_dir() else []
+        assert left == []  # no temporary, no half-written run
+        filler.unlink()
+        recovered = snakemake(path, "-j1", SOLVE, timeout=BUILD_TIMEOUT_S)
+        assert recovered.returncode == 0, recovered.describe()
+        assert read_run(path / SOLVE).case_id == "model"
+    finally:
+        subprocess.run(["umount", str(mount)], capture_output=True, check=False)
+        shutil.rmtree(mount, ignore_errors=True)
