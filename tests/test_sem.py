@@ -202,3 +202,24 @@ def test_options_are_validated():
         SEMOptions(dt_s=-1e-6)
     with pytest.raises(ValueError, match="steps_per_contact"):
         SEMOptions(steps_per_contact=3)
+
+
+def test_automatic_step_judges_whole_runs_when_the_first_contact_end_is_ill_conditioned(shipped_project) -> None:
+    """A 10 g impactor on a rod of impedance 1 kg/s (the stability map's corner): two contacts, the
+    first ending in a near-grazing separation whose time does not converge at order 2. The
+    automatic step then compares whole runs, and its result agrees with a run at half its step
+    within the tolerance."""
+    from rodimpact.analysis.studies import map_point_case
+
+    config = shipped_project.config
+    spec = config["stability"]["map"]
+    case = map_point_case(shipped_project.cases[spec["base_case"]], spec, "m2_z0", "reference", config["numerics"])
+    problem = ImpactProblem.from_case(case)
+    assert (problem.mass_kg, problem.rod.impedance) == pytest.approx((1e-2, 1.0))
+    options = SEMOptions(tolerance=1e-5, max_steps=400_000)
+    auto = solve_sem(problem, options)
+    assert auto.success, auto.message
+    assert "whole-run" in auto.extra["error_estimate_basis"]
+    assert auto.extra["error_estimate"] <= 1e-5
+    half = solve_sem(problem, SEMOptions(dt_s=0.5 * auto.dt_s, max_steps=400_000))
+    assert auto.contact_time_s == pytest.approx(half.contact_time_s, rel=1e-5)

@@ -24,6 +24,8 @@ import math
 import time as _time
 from typing import Sequence
 
+import numpy as np
+
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.result import ImpactResult
 from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
@@ -38,6 +40,9 @@ log = logging.getLogger(__name__)
 _MAX_REFINEMENTS = 8
 #: The predicted step for the tolerance is taken this much finer.
 _SAFETY = 0.8
+#: A refinement whose error estimate is above this fraction of the last one's is not converging
+#: (order 2 at a step ratio of 2 or more gives at most 1/4).
+_CONVERGING = 0.5
 #: The first candidate step in units of the error model's guess
 #: (:func:`~rodimpact.solvers.sem.stability.implicit_step`, whose error constant has a
 #: margin of 4 over the measured one).
@@ -106,7 +111,7 @@ def _automatic(problem: ImpactProblem, options: SEMOptions, h: float, stations: 
     h = commensurate_step(_FIRST_STEP_FACTOR * h, period)
     coarse = SEMRun(problem, options, commensurate_step(2.0 * h, period))
     fine = SEMRun(problem, options, h)
-    checks = 0
+    checks, previous = 0, math.inf
     for refinement in range(_MAX_REFINEMENTS + 1):
         c, f = coarse.first_contact(), fine.first_contact()
         if c is None or f is None:  # a run failed: the finer one is the answer
@@ -115,6 +120,11 @@ def _automatic(problem: ImpactProblem, options: SEMOptions, h: float, stations: 
         estimate = _richardson(f, c, coarse.st.h / fine.st.h)
         if estimate <= options.tolerance or refinement == _MAX_REFINEMENTS:
             break
+        if estimate > _CONVERGING * previous:
+            # a finer step did not shrink the first contact's error as order 2 says: its end
+            # is ill-conditioned (a grazing separation); judge the whole runs instead
+            return _whole_runs(problem, options, coarse, fine, stations, started, checks)
+        previous = estimate
         h_new = commensurate_step(fine.st.h * min(0.5, _SAFETY * math.sqrt(options.tolerance / estimate)), period)
         log.info("SEM auto step %.4g s: error estimate %.2g > tolerance %.2g, next step %.4g s", fine.st.h,
                  estimate, options.tolerance, h_new)
@@ -130,6 +140,51 @@ def _automatic(problem: ImpactProblem, options: SEMOptions, h: float, stations: 
     result = fine.finish(stations, started, extra)
     return _with_extra(result, {}, message=f"{result.message}; step {h:.4g} s chosen for tolerance "
                        f"{options.tolerance:.3g} (estimated error {estimate:.2g})")
+
+
+def _whole_runs(problem: ImpactProblem, options: SEMOptions, coarse: SEMRun, fine: SEMRun,
+                stations: tuple[float, ...], started: float, checks: int) -> ImpactResult:
+    """The automatic step judged on whole runs: both runs finished, their contact time (first
+    contact to last) and their first contact's largest force compared, the step halved until
+    the estimate meets the tolerance."""
+    period = problem.rod.reflection_period
+    coarse_result = coarse.finish(stations, started, {})
+    fine_result, h, ratio = fine.finish(stations, started, {}), fine.st.h, coarse.st.h / fine.st.h
+    for refinement in range(_MAX_REFINEMENTS + 1):
+        if not (fine_result.success and coarse_result.success):
+            return _with_extra(fine_result, {"step_choice": "auto"})
+        estimate = _whole_run_estimate(fine_result, coarse_result, ratio)
+        if estimate <= options.tolerance or refinement == _MAX_REFINEMENTS:
+            break
+        h_new = commensurate_step(0.5 * h, period)
+        log.info("SEM auto step %.4g s: whole-run error estimate %.2g > tolerance %.2g, next step %.4g s", h,
+                 estimate, options.tolerance, h_new)
+        checks += coarse_result.n_steps
+        coarse_result, ratio, h = fine_result, h / h_new, h_new
+        fine_result = SEMRun(problem, options, h).finish(stations, started, {})
+    checks += coarse_result.n_steps
+    extra = {"step_choice": "auto", "tolerance": options.tolerance, "error_estimate": estimate,
+             "error_estimate_basis": "Richardson (order 2) between two steps: whole-run contact time and the first "
+                                     "contact's largest force (the first contact's end was ill-conditioned)",
+             "n_steps_error_check": checks}
+    if estimate > options.tolerance:
+        return _with_extra(fine_result, extra, status="failed", message=(
+            f"automatic step: error estimate {estimate:.3g} still above tolerance {options.tolerance:.3g} "
+            f"after {_MAX_REFINEMENTS} halvings (dt_s={h:.4g} s)"))
+    return _with_extra(fine_result, extra, message=f"{fine_result.message}; step {h:.4g} s chosen for tolerance "
+                       f"{options.tolerance:.3g} (estimated error {estimate:.2g})")
+
+
+def _whole_run_estimate(fine: ImpactResult, coarse: ImpactResult, ratio: float) -> float:
+    """Richardson error estimate (order 2) of the fine run's contact time and its first
+    contact's largest force, from a run at ``ratio`` times its step."""
+    def first_peak(result: ImpactResult) -> float:
+        inside = result.peak_time_s <= result.contact_end_s[0]
+        return float(np.max(result.peak_force_N[inside], initial=np.max(result.contact_force)))
+
+    tc = abs(fine.contact_time_s - coarse.contact_time_s) / fine.contact_time_s
+    peak = abs(first_peak(fine) - first_peak(coarse)) / first_peak(fine)
+    return max(tc, peak) / (ratio**2 - 1.0)
 
 
 def _richardson(fine: tuple[float, float], coarse: tuple[float, float], ratio: float) -> float:
