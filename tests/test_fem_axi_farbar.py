@@ -33,11 +33,13 @@ def _rod_with_bar(length: float, z_c: float, fixed: bool = True) -> AxiBody:
                    joint=dofs_of(basis, mesh.boundaries["far"], 1))
 
 
-def test_the_continuum_ends_after_its_diameters_when_the_bar_is_a_diameter_long():
+def test_the_continuum_ends_after_its_diameters_on_a_rod_ten_continua_long():
     assert continuum_length(1e-3, 0.301, 5.0) == pytest.approx(0.010)
     assert continuum_length(0.01, 0.030, 5.0) is None  # the rod is shorter than 5 diameters
-    assert continuum_length(1e-3, 0.0115, 5.0) is None  # the bar would be 1.5 mm < 2 mm
-    assert continuum_length(1e-3, 0.012, 5.0) == pytest.approx(0.010)
+    assert continuum_length(1e-3, 0.0301, 5.0) is None  # 3 continua: the 1 mm rods of 30.1 mm
+    assert continuum_length(0.01, 0.301, 5.0) is None  # 3 continua: the 10 mm rods of 301 mm
+    assert continuum_length(1e-3, 0.100, 5.0) == pytest.approx(0.010)  # exactly 10
+    assert continuum_length(1e-3, 0.0999, 5.0) is None
     assert continuum_length(1e-3, 0.301, None) is None
 
 

@@ -29,7 +29,8 @@ from rodimpact.io.bodies import MATERIAL_FIELDS, check_law, check_material_range
 from rodimpact.io.checks import check_run, check_stability, check_work_precision
 from rodimpact.io.plausible import Budget, check_plausible
 from rodimpact.io.project import ConfigError, Project, _File
-from rodimpact.io.schema import Schemas, YamlError, deep_merge, format_path, with_floats
+from rodimpact.io.schema import Schemas, deep_merge, format_path, with_floats
+from rodimpact.io.yamlfile import YamlError
 from rodimpact.solvers.options import OptionError
 from rodimpact.solvers.registry import METHODS as METHOD_REGISTRY
 

@@ -63,7 +63,7 @@ class _File:
 
     def read(self) -> Any:
         """The file's YAML content (None when empty); ConfigError if missing or not YAML."""
-        from rodimpact.io.schema import YamlError, read_yaml  # the checker's; a checked Project needs none
+        from rodimpact.io.yamlfile import YamlError, read_yaml  # the checker's; a checked Project needs none
 
         try:
             return read_yaml(self.path)

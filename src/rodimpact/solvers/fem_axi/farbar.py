@@ -11,8 +11,11 @@ The joint is a kinematic constraint: the coupled model is the continuum model wi
 DOFs tied, which stays symmetric and conserves the same energy.
 
 The rule for where the continuum ends (:func:`continuum_length`): z_c = n 2a with n =
-``continuum_diameters`` (default 5) for a rod of radius a, and the bar only when it would be
-at least one diameter long; otherwise the whole rod is a continuum.
+``continuum_diameters`` (default 5) for a rod of radius a, and a bar only on a rod at least
+:data:`MIN_ROD_TO_CONTINUUM` times z_c long; otherwise the whole rod is a continuum. On a
+shorter rod the waves cross the joint many times during a contact, each crossing adds the 3-D
+dispersion the bar leaves out, and the bar saves little: on the 1 mm rods of 30.1 mm (Table 2)
+a bar of 20 mm moved the heaviest ball's contact time by 0.16 % for 7 % of the run time.
 """
 
 from __future__ import annotations
@@ -24,8 +27,10 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-__all__ = ["BAR_ELEMENTS_PER_RADIUS", "FarBar", "continuum_length"]
+__all__ = ["BAR_ELEMENTS_PER_RADIUS", "MIN_ROD_TO_CONTINUUM", "FarBar", "continuum_length"]
 
+#: A bar only on a rod at least this many continuum lengths long (L >= 10 z_c).
+MIN_ROD_TO_CONTINUUM = 10.0
 #: Bar elements per rod radius a: P1 elements a/4 long (the continuum's coarse cells are a/2
 #: long with P2 elements, the same spacing of nodes along the axis).
 BAR_ELEMENTS_PER_RADIUS = 4
@@ -44,12 +49,12 @@ def continuum_length(radius_m: float, length_m: float, diameters: float | None) 
     Returns
     -------
     float or None
-        z_c = 2 a ``diameters`` when L - z_c >= 2 a (the bar at least one diameter long), else None.
+        z_c = 2 a ``diameters`` when L >= :data:`MIN_ROD_TO_CONTINUUM` z_c, else None.
     """
     if diameters is None:
         return None
     z_c = 2.0 * radius_m * diameters
-    return z_c if length_m - z_c >= 2.0 * radius_m else None
+    return z_c if length_m >= MIN_ROD_TO_CONTINUUM * z_c else None
 
 
 @dataclass(frozen=True)

@@ -29,8 +29,8 @@ class FEMAxiOptions(SteppingOptions):
         exclusive_minimum=1)
     continuum_diameters: float | None = setting(
         5.0, "Length of the rod modelled as a continuum from its struck end, in rod diameters; beyond it "
-        "the rod is a 1-D bar joined to the continuum's last section (plane sections, uniaxial stress), when "
-        "that bar is at least one diameter long. Null: the whole rod is a continuum.",
+        "the rod is a 1-D bar joined to the continuum's last section (plane sections, uniaxial stress), on a rod "
+        "at least 10 such continua long. Null: the whole rod is a continuum.",
         nullable=True, minimum=1)
     cap_height: float = setting(
         1.0, "Impactor body 'cap' only: height of the elastic cap, in sphere radii.", exclusive_minimum=0, maximum=1)

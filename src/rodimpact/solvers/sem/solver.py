@@ -40,6 +40,9 @@ log = logging.getLogger(__name__)
 _MAX_REFINEMENTS = 8
 #: The predicted step for the tolerance is taken this much finer.
 _SAFETY = 0.8
+#: The finest next step in units of the last (a far-off first estimate does not jump to a step
+#: the run cannot afford).
+_MIN_FACTOR = 0.25
 #: A refinement whose error estimate is above this fraction of the last one's is not converging
 #: (order 2 at a step ratio of 2 or more gives at most 1/4).
 _CONVERGING = 0.5
@@ -104,7 +107,8 @@ def _automatic(problem: ImpactProblem, options: SEMOptions, h: float, stations: 
     Richardson's estimate for order 2 at the runs' ratio of steps), and the candidate that
     meets the tolerance is then finished: the check costs the coarser run's first contact.
     A candidate that misses the tolerance is replaced by the step the estimate predicts,
-    with a margin. Every step is commensurate with the wave round trip (constant cost per
+    with a margin, between 1/4 and 1/2 of it; when a finer step does not shrink the estimate as
+    order 2 says, the whole runs are compared instead (:func:`_whole_runs`). Every step is commensurate with the wave round trip (constant cost per
     step).
     """
     period = problem.rod.reflection_period
@@ -125,7 +129,8 @@ def _automatic(problem: ImpactProblem, options: SEMOptions, h: float, stations: 
             # is ill-conditioned (a grazing separation); judge the whole runs instead
             return _whole_runs(problem, options, coarse, fine, stations, started, checks)
         previous = estimate
-        h_new = commensurate_step(fine.st.h * min(0.5, _SAFETY * math.sqrt(options.tolerance / estimate)), period)
+        factor = min(0.5, max(_MIN_FACTOR, _SAFETY * math.sqrt(options.tolerance / estimate)))
+        h_new = commensurate_step(fine.st.h * factor, period)
         log.info("SEM auto step %.4g s: error estimate %.2g > tolerance %.2g, next step %.4g s", fine.st.h,
                  estimate, options.tolerance, h_new)
         coarse, fine = fine, SEMRun(problem, options, h_new)
