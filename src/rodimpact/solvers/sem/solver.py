@@ -40,6 +40,9 @@ log = logging.getLogger(__name__)
 _MAX_REFINEMENTS = 8
 #: The predicted step for the tolerance is taken this much finer.
 _SAFETY = 0.8
+#: The first check's run takes this many times the candidate's step (its first contact then
+#: costs a quarter of the candidate's).
+_CHECK_RATIO = 4.0
 #: The finest next step in units of the last (a far-off first estimate does not jump to a step
 #: the run cannot afford).
 _MIN_FACTOR = 0.25
@@ -113,7 +116,7 @@ def _automatic(problem: ImpactProblem, options: SEMOptions, h: float, stations: 
     """
     period = problem.rod.reflection_period
     h = commensurate_step(_FIRST_STEP_FACTOR * h, period)
-    coarse = SEMRun(problem, options, commensurate_step(2.0 * h, period))
+    coarse = SEMRun(problem, options, commensurate_step(_CHECK_RATIO * h, period))
     fine = SEMRun(problem, options, h)
     checks, previous = 0, math.inf
     for refinement in range(_MAX_REFINEMENTS + 1):
