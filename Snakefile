@@ -26,6 +26,7 @@ include: "workflow/rules/figures.smk"
 include: "workflow/rules/studies.smk"
 include: "workflow/rules/sweeps.smk"
 include: "workflow/rules/bench.smk"
+include: "workflow/rules/forces.smk"
 
 
 rule all:

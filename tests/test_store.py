@@ -289,3 +289,18 @@ def test_validation_errors(
 def test_default_code_version(tmp_path: Path) -> None:
     path = write_good(tmp_path / "run.h5", code_version=None)
     assert read_summary(path).code_version == provenance.code_version()
+
+
+def test_series_have_time_as_their_dimension_scale(tmp_path: Path) -> None:
+    path = write_good(tmp_path / "run.h5")
+    with h5py.File(path, "r") as h5:
+        time = h5["time"]
+        assert time.is_scale
+        for name, dataset in h5.items():
+            if not isinstance(dataset, h5py.Dataset) or name == "time":
+                continue
+            assert dataset.dims[0].label == "time" and dataset.dims[0][0] == time, name
+            assert dataset.attrs["long_name"] == dataset.attrs["description"]
+            if dataset.ndim == 2:
+                assert dataset.dims[1].label == "station"
+    assert read_run(path).series.keys() == make_series().keys()  # the scales are not series

@@ -221,6 +221,11 @@ def rule_name(text):
     return re.sub(r"\W", "_", text)
 
 
+def force_files(cases, ext):
+    """The exported contact forces (forces.smk) of every run of ``cases``: ext csv or json."""
+    return [f"results/forces/{c['id']}/{m}.{ext}" for c in cases for m in c["methods"]]
+
+
 def table2_runs(variant):
     return runs_of(PROJECT.cases_in("table2", variant))
 
@@ -242,8 +247,12 @@ def default_targets():
         targets += expand("results/tables/{name}.{ext}", name=["table2_film", "film_band", "film_indentation"],
                           ext=["csv", "md", "provenance.json"])
         targets += expand("results/figures/film_force.{ext}", ext=["pdf", "png"])
+    if "model" in sets:
+        targets += expand("results/figures/force_fit_model.{ext}", ext=["pdf", "png"])
     for name in sets:
         targets += runs_of(PROJECT.cases_in(name))
+        # the contact force handed on (forces.smk)
+        targets += force_files(PROJECT.cases_in(name), "csv") + force_files(PROJECT.cases_in(name), "json")
         if PROJECT.sweeps_in(name):
             targets += expand("results/tables/sweep_{set}.{ext}", set=name, ext=["csv", "md", "provenance.json"])
     if WORK_PRECISION:

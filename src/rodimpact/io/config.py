@@ -34,7 +34,8 @@ from rodimpact.io.yamlfile import YamlError
 from rodimpact.solvers.options import OptionError
 from rodimpact.solvers.registry import METHODS as METHOD_REGISTRY
 
-__all__ = ["ConfigError", "METHODS", "OUTPUTS", "Project", "load_global_config", "load_project", "registry_schema"]
+__all__ = ["ConfigError", "METHODS", "OUTPUTS", "Project", "load_case_file", "load_global_config", "load_project",
+           "registry_schema"]
 
 logger = logging.getLogger(__name__)
 
@@ -182,6 +183,19 @@ def load_project(
     project = builder.build()
     logger.info("loaded %d cases in %d sets", len(project.cases), len(project.sets))
     return project
+
+
+def load_case_file(path: str | Path, config: Mapping, root: str | Path = ".") -> dict[str, dict]:
+    """The resolved cases of one case file (not its sweeps), checked as :func:`load_project`
+    checks them, against the global ``config`` and the materials it names; a file anywhere
+    (``rodimpact run``). Raises :class:`ConfigError` like :func:`load_project`."""
+    root = Path(root)
+    schemas = _load_schemas(root / DEFAULT_SCHEMA_DIR, root)
+    config_source = _File.under(DEFAULT_CONFIG_FILE, root)
+    checked = _checked_config(config, config_source, schemas)
+    builder = _ProjectBuilder(checked, config_source, _load_materials(checked, root, schemas))
+    builder.add_file(_File.under(path, root), schemas)
+    return builder.cases
 
 
 def _load_materials(config: dict, root: Path, schemas: Schemas) -> dict[str, dict]:

@@ -22,8 +22,10 @@ One file per run (one case solved by one method); SI units throughout::
       impactor_velocity       float64 (n,)    m/s  optional
       rod_end_displacement    float64 (n,)    m    optional
       <other name>            float64 (n,) or (n, k), e.g. 2-D station histories
-        every dataset: @units (str), @description (str); first dimension n = len(time);
-        gzip level 4 + shuffle when larger than 4096 elements
+        every dataset: @units (str), @description (str) and @long_name (the description,
+        the name netCDF/CF readers show); first dimension n = len(time), attached to
+        ``time`` as its HDF5 dimension scale (labelled "time"; a second dimension is
+        labelled "station"); gzip level 4 + shuffle when larger than 4096 elements
       summary/                 group, attributes only
         @contact_time_s        float       duration of contact (s)
         @peak_force_N          float (p,)  contact force maxima, possibly empty (N)
@@ -283,11 +285,25 @@ def write_run(
             for name, array, units, description in checked_series:
                 big = array.size > _COMPRESS_MIN_ELEMENTS
                 dataset = h5.create_dataset(name, data=array, **(_COMPRESSION if big else {}))
-                dataset.attrs.update({"units": units, "description": description})
+                dataset.attrs.update({"units": units, "description": description, "long_name": description})
+            _attach_time_scale(h5)
             _write_summary(h5, checked_summary)
             h5.flush()
     logger.info("wrote run %s/%s to %s (%d bytes)", case_id, method, path, path.stat().st_size)
     return path
+
+
+def _attach_time_scale(h5: h5py.File) -> None:
+    """Make ``time`` the dimension scale of every series' first dimension (netCDF-4 readers,
+    xarray and HDFView then plot each series against time)."""
+    time = h5["time"]
+    time.make_scale("time")
+    for name, dataset in h5.items():
+        if isinstance(dataset, h5py.Dataset) and name != "time":
+            dataset.dims[0].attach_scale(time)
+            dataset.dims[0].label = "time"
+            if dataset.ndim == 2:
+                dataset.dims[1].label = "station"
 
 
 def _attr_value(value: Any) -> Any:

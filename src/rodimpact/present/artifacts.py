@@ -28,7 +28,7 @@ from rodimpact.present.tables import (
 __all__ = ["make_comparison", "make_fig2", "make_fig4", "make_fig_film_force", "make_fig_table2",
            "make_film_band_table", "make_film_indentation_table", "make_stability", "make_stability_map",
            "make_sweep_table", "make_table2", "make_table2_film", "make_table2_variants", "make_work_precision",
-           "make_work_precision_figure"]
+           "make_work_precision_figure", "make_fig_force_fit"]
 
 log = logging.getLogger(__name__)
 
@@ -286,3 +286,18 @@ def make_stability_map(runs: Sequence[str | Path], references: Sequence[str | Pa
     prov = provenance_record([*records, *refs.values()], [csv, pdf, png])
     save_figure(fig, pdf=pdf, png=png, provenance=prov, title="Stability map of the SEM schemes")
     write_provenance(provenance, [*records, *refs.values()], [csv, pdf, png])
+
+
+def make_fig_force_fit(runs: Sequence[str | Path], jsons: Sequence[str | Path], *, pdf: str | Path,
+                       png: str | Path, provenance: str | Path) -> None:
+    """The exported closed forms (``jsons``, one per run) over the computed forces of one case,
+    and their errors."""
+    from rodimpact.present.figures import plot_force_fits
+    from rodimpact.present.forces import read_force_json
+
+    records = [read_run(p) for p in runs]
+    case = _one_case(records, "the force's closed form")
+    fig = plot_force_fits(records, [read_force_json(p) for p in jsons],
+                          title=f"Contact force and its Chebyshev closed form, case {case!r}")
+    _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance,
+                 title="Contact force and its Chebyshev closed form")

@@ -19,7 +19,7 @@ from rodimpact.io.atomic import atomic_output  # noqa: E402
 from rodimpact.io.store import RunRecord  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
 
-__all__ = ["METHOD_LABELS", "plot_contact_force", "plot_station_displacement", "plot_table2_contact_time",
+__all__ = ["METHOD_LABELS", "plot_contact_force", "plot_force_fits", "plot_station_displacement", "plot_table2_contact_time",
            "save_figure"]
 
 log = logging.getLogger(__name__)
@@ -250,4 +250,31 @@ def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame], sweeps: pd.Data
             handles.setdefault(label, handle)
     fig.legend(list(handles.values()), list(handles), loc="outside lower center", ncol=2 if cols > 1 else 1,
                fontsize=7.5, frameon=False)
+    return fig
+
+
+def plot_force_fits(records: Sequence[RunRecord], fits: Sequence[Any], title: str = "") -> matplotlib.figure.Figure:
+    """Each method's computed force (line) with its closed form (markers every few samples)
+    above, and the closed form's error in per cent of the largest force below."""
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(6.4, 6.6), sharex=True, height_ratios=[2.0, 1.0],
+                                      layout="constrained")
+    pairs = sorted(zip(records, fits), key=lambda pair: METHOD_ORDER.index(pair[0].method))
+    for record, fit in pairs:
+        t, force = record.series["time"], record.series["contact_force"]
+        spec = METHODS[record.method]
+        top.plot(1e6 * t, 1e-3 * force, spec.style, color=spec.color, lw=1.2, label=f"{spec.label}, computed")
+        step = max(1, len(t) // 60)
+        top.plot(1e6 * t[::step], 1e-3 * fit.evaluate(t[::step]), "o", color=spec.color, ms=3, mfc="none",
+                 label=f"closed form ({sum(len(p.coefficients) for p in fit.pieces)} coefficients)")
+        bottom.plot(1e6 * t, 100.0 * (fit.evaluate(t) - force) / fit.peak_force_N, spec.style, color=spec.color,
+                    lw=1.0, label=f"{spec.label}: largest {100.0 * fit.max_rel_error:.2g} %")
+    top.set_ylabel("contact force $P$ (kN)")
+    bottom.set_ylabel("closed form − computed\n(% of the largest force)")
+    bottom.set_xlabel("time $t$ (µs)")
+    for ax in (top, bottom):
+        ax.grid(alpha=0.3)
+    top.legend(fontsize=7, loc="upper right", ncol=1, frameon=False)
+    bottom.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.32), ncol=2, frameon=False)
+    if title:
+        top.set_title(title, fontsize=10)
     return fig

@@ -1,0 +1,73 @@
+"""The ``rodimpact`` console command (rodimpact.workflow.cli): ``run`` and its one-line errors."""
+
+from __future__ import annotations
+
+import io
+import re
+import tomllib
+from pathlib import Path
+
+import pytest
+import yaml
+
+import rodimpact
+from rodimpact.workflow.cli import main, run_file
+from rodimpact.workflow.runner import run_case
+
+from conftest import ROOT
+
+
+@pytest.fixture
+def case_file(tmp_path: Path) -> Path:
+    """The model case, SEM only, in a file outside config/cases."""
+    document = yaml.safe_load((ROOT / "config" / "cases" / "model.yaml").read_text(encoding="utf-8"))
+    document["cases"][0]["methods"] = ["sem"]
+    path = tmp_path / "mine.yaml"
+    path.write_text(yaml.safe_dump(document, sort_keys=False), encoding="utf-8")
+    return path
+
+
+def test_run_prints_the_summary_of_each_run(case_file: Path, shipped_project) -> None:
+    out = io.StringIO()
+    assert run_file(case_file, ROOT, None, None, out) == 0
+    (line,) = out.getvalue().splitlines()
+    expected = run_case(shipped_project.cases["model"], "sem")
+    shown = float(re.search(r"contact\s+([0-9.e+-]+) us", line).group(1))
+    assert line.startswith("model") and " sem " in line and "completed" in line
+    assert shown == pytest.approx(1e6 * expected.contact_time_s, rel=1e-3)  # printed to 4 digits
+
+
+@pytest.mark.parametrize("args, expected", [
+    (["--case", "nosuch"], "rodimpact: no case 'nosuch' in "),
+    (["--method", "fem_axi"], "rodimpact: case 'model' does not run 'fem_axi'; its methods: sem"),
+])
+def test_run_refuses_what_the_file_does_not_hold_in_one_line(case_file: Path, capsys, args, expected) -> None:
+    assert main(["run", str(case_file), "--root", str(ROOT), *args]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith(expected) and err.count("\n") == 1
+
+
+def test_run_checks_the_file_as_the_workflow_does(case_file: Path, capsys) -> None:
+    case_file.write_text(case_file.read_text(encoding="utf-8").replace("mass_kg: 0.5", "mass_kg: -0.5"),
+                         encoding="utf-8")
+    assert main(["run", str(case_file), "--root", str(ROOT)]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith("rodimpact: invalid configuration: ") and "field 'impactor.mass_kg': must be > 0" in err
+    assert err.count("\n") == 1
+
+
+def test_version_is_the_packages(capsys) -> None:
+    with pytest.raises(SystemExit) as stop:
+        main(["--version"])
+    assert stop.value.code == 0
+    assert capsys.readouterr().out.strip() == f"rodimpact {rodimpact.__version__}"
+
+
+def test_pyproject_declares_the_direct_dependencies_and_the_command() -> None:
+    project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
+    pinned = [line.split("#")[0].strip() for line in (ROOT / "requirements.in").read_text(encoding="utf-8").splitlines()]
+    tools = {"pytest", "setuptools", "wheel"}  # tests and the build backend, not runtime
+    runtime = [p for p in pinned if p and re.split(r"[=<>]", p)[0] not in tools]
+    assert project["dependencies"] == runtime
+    assert project["scripts"]["rodimpact"] == "rodimpact.workflow.cli:main"
+    assert project["version"] == rodimpact.__version__
