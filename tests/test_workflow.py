@@ -563,7 +563,7 @@ def test_provenance_audit_fails_on_hand_edits_and_stale_artifacts(built: Path, t
             path, problem = line[5:].split(": ", 1)
             failed.setdefault(path, []).append(problem)
     assert "bytes differ from those recorded" in " ".join(failed["results/tables/table2_r1_l30.csv"])
-    assert "content differs from its digest" in " ".join(failed["results/runs/model/fem1d.h5"])
+    assert "its content differs from its data_sha256" in " ".join(failed["results/runs/model/fem1d.h5"])
     assert "no provenance record lists it" in " ".join(failed["results/tables/old_table.csv"])
     assert "not an output of the current workflow" in " ".join(failed["results/tables/old_table.csv"])
     assert "snakemake: params changed" in " ".join(failed["results/runs/model/sem.h5"])
