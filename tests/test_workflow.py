@@ -689,14 +689,14 @@ def test_changed_case_value_reruns_only_that_case(built: Path, tmp_path: Path) -
 
     run = snakemake(project, "-n", "-j2")
     assert run.returncode == 0, run.describe()
-    # model's runs and what shows them, and the studies built on model: its work-precision
+    # model's runs and what shows them (its forces handed on too), and the studies built on model: its work-precision
     # levels (3 methods x 3 levels in the copy, a job per method) and the stability map, whose
     # base case it is (2 masses x 3 methods in the copy, a job per mass and method)
     assert job_stats(run.output) == {"case_file": 1, "solve": 4, "fig2": 1, "fig4": 1, "fig2_comparison": 1,
                                      "all": 1, "solve_levels_sem": 1, "solve_levels_sem_paper": 1,
                                      "solve_levels_fem1d": 1, "work_precision_table": 1,
                                      "work_precision_figure": 1, "solve_map_row": 6,
-                                     "stability_map": 1}, run.describe()
+                                     "stability_map": 1, "forces_model": 1, "fig_force_fit": 1}, run.describe()
     assert pending(rows := summary(project), "case_file") == {"results/cases/model.yaml"}
     assert pending(rows, "solve") == {run_path("model", m) for m in ("sem", "sem_paper", "fem1d", "fem_axi")}
     assert pending(rows, "fig2") == {
@@ -853,7 +853,8 @@ def test_failing_solver_leaves_no_file(tmp_path: Path) -> None:
 
 REPORT_TIMEOUT_S = 120
 REPORT_MAX_BYTES = 20 * 2**20
-REPORT_CATEGORIES = {"Paper, Table 2", "Paper, Fig. 2 and Fig. 4", "Error against run time", "Stability"}
+REPORT_CATEGORIES = {"Paper, Table 2", "Paper, Fig. 2 and Fig. 4", "Error against run time", "Stability",
+                     "The force handed on"}
 REPORT_MIME = {".csv": "text/csv", ".png": "image/png", ".pdf": "application/pdf"}
 #: The attribute through which each tag makes a browser fetch something as the page renders.
 FETCHING = {"script": "src", "link": "href", "img": "src", "iframe": "src", "frame": "src",
@@ -959,6 +960,8 @@ def _expected_report(project_dir: Path) -> dict[str, list[str]]:
             ", ".join(map(str, spec["mass_kg"])) + " kg",
             f"{len(spec['mass_kg']) * len(spec['impedance_kg_s'])} points",
             "2 Z / k_c(alpha_H)"]
+        expected[f"results/figures/force_fit_model.{ext}"] = [
+            "The contact force handed on", "Chebyshev series", "1 % of the largest force"]
     expected["results/tables/stability_map.csv"] = expected["results/figures/stability_map.png"]
     expected["results/tables/fig2_comparison.csv"] = [
         "Fig. 2's numbers", "paper_fem_vs_sem_contact_time_pct", "11 % and 9 %", *(settings[m] for m in model)]
