@@ -28,6 +28,8 @@ log = logging.getLogger(__name__)
 METHOD_LABELS = {name: spec.label for name, spec in METHODS.items()}
 _STYLE = {name: spec.style for name, spec in METHODS.items()}
 METHOD_ORDER = tuple(METHODS)
+#: Open markers that tell apart curves lying on each other, in the methods' order.
+_MARKERS = ("s", "^", "D", "v", "o", "x")
 
 
 def save_figure(fig: matplotlib.figure.Figure, *, pdf: str | Path, png: str | Path,
@@ -71,17 +73,25 @@ def plot_contact_force(records: Sequence[RunRecord], title: str = "") -> matplot
     """
     fig, ax = plt.subplots(figsize=(7.0, 5.0), layout="constrained")
     last_end = 0.0
-    for rec in _ordered(records):
+    ordered = _ordered(records)
+    for index, rec in enumerate(ordered):
         t_us = 1e6 * rec.series["time"]
+        # curves that lie on each other are told apart by their own markers, placed at
+        # staggered times so that each stays visible
+        marker = _MARKERS[index % len(_MARKERS)]
+        every = (index * max(1, len(t_us) // 40) // max(1, len(ordered)), max(1, len(t_us) // 40))
         ax.plot(t_us, 1e-3 * rec.series["contact_force"], _STYLE.get(rec.method, "-"), lw=1.4,
+                color=METHODS[rec.method].color if rec.method in METHODS else None,
+                marker=marker, markevery=every, ms=4, mfc="none",
                 label=f"{METHOD_LABELS.get(rec.method, rec.method)}: "
                       f"contact {1e6 * rec.summary['contact_time_s']:.1f} µs")
         last_end = max(last_end, float(np.atleast_1d(rec.summary["contact_end_s"])[-1]))
         peaks_t = 1e6 * np.asarray(rec.summary["peak_time_s"])
-        ax.plot(peaks_t, 1e-3 * np.asarray(rec.summary["peak_force_N"]), "o", ms=3.5,
-                color=ax.lines[-1].get_color())
-    ax.set_xlabel("time t, µs")
-    ax.set_ylabel("contact force P, kN")
+        ax.plot(peaks_t, 1e-3 * np.asarray(rec.summary["peak_force_N"]), "o", ms=4.5,
+                color=ax.lines[-1].get_color(), label="_nolegend_")
+    ax.plot([], [], "o", color="0.3", ms=4.5, label="force maxima (filled dots)")
+    ax.set_xlabel("time $t$ (µs)")
+    ax.set_ylabel("contact force $P$ (kN)")
     ax.set_xlim(0, 1.05e6 * last_end)
     ax.set_ylim(bottom=0)
     return _finish(fig, ax, title)
