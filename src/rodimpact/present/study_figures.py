@@ -59,11 +59,13 @@ def plot_work_precision(frame: pd.DataFrame, orders: pd.DataFrame, case_id: str)
 def plot_stability_map(frame: pd.DataFrame, steps_per_contact: int, accuracy: float) -> matplotlib.figure.Figure:
     """Where each SEM scheme is stable and accurate at one step, over mass and rod impedance.
 
-    One panel per method; the line is the paper scheme's enforced limit (h = 2 Z / k_c at
-    the rigid-rod Hertz approach), below which the scheme is refused unless asked.
+    One panel per method; on the paper scheme's panel the line is its enforced limit (h = 2 Z / k_c
+    at the rigid-rod Hertz approach): below the line (small Z) its step is beyond the limit and
+    the scheme is refused unless asked. The implicit scheme has no such limit.
     """
     methods = list(dict.fromkeys(frame["method"]))
-    fig, axes = plt.subplots(1, len(methods), figsize=(5.2 * len(methods), 4.6), sharey=True, squeeze=False)
+    fig, axes = plt.subplots(1, len(methods), figsize=(5.2 * len(methods), 5.2), sharey=True, squeeze=False,
+                             layout="constrained")
     line = enforced_limit_line(frame)
     masses, limit = line["mass_kg"].to_numpy(float), line["z_crit"].to_numpy(float)
     styles = {MAP_CLASSES[0]: ("o", "C2"), MAP_CLASSES[1]: ("s", "C1"), MAP_CLASSES[2]: ("X", "C3"),
@@ -74,13 +76,19 @@ def plot_stability_map(frame: pd.DataFrame, steps_per_contact: int, accuracy: fl
             pick = rows[rows["class"] == cls]
             ax.scatter(pick["mass_kg"], pick["impedance_kg_s"], marker=marker, color=color, s=40,
                        label=f"{cls} ({len(pick)})")
-        ax.loglog(masses, limit, "k--", linewidth=1, label="paper scheme's limit h = 2 Z / k_c(alpha_H)")
-        ax.set_xlabel("impactor mass, kg")
+        if getattr(METHODS[method].options(), "scheme", None) == "paper":
+            floor = 0.5 * float(frame["impedance_kg_s"].min())
+            ax.loglog(masses, limit, "k--", linewidth=1,
+                      label=r"stability limit $h = 2Z/k_c(\alpha_H)$; shaded: unstable")
+            ax.fill_between(masses, np.maximum(limit, floor), floor, color="0.85", alpha=0.6, lw=0, zorder=0)
+            ax.set_ylim(bottom=floor)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("impactor mass $m$ (kg)")
         ax.set_title(f"{METHOD_LABELS.get(method, method)}\n{steps_per_contact} steps per Hertz time", fontsize=9)
         ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), frameon=False)
-    axes[0][0].set_ylabel("rod impedance Z = S sqrt(E rho), kg/s")
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), frameon=False)
+    axes[0][0].set_ylabel(r"rod impedance $Z = S\sqrt{E\rho}$ (kg/s)")
     fig.suptitle(f"Stability map: accurate = contact time (against the reference) and energy balance "
                  f"within {accuracy:g}", fontsize=10)
-    fig.tight_layout()
     return fig
