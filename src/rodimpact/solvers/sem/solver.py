@@ -26,6 +26,7 @@ from typing import Sequence
 
 import numpy as np
 
+from rodimpact.analysis.signals import first_contact_maxima
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.result import ImpactResult
 from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
@@ -186,13 +187,11 @@ def _whole_runs(problem: ImpactProblem, options: SEMOptions, coarse: SEMRun, fin
 def _whole_run_estimate(fine: ImpactResult, coarse: ImpactResult, ratio: float) -> float:
     """Richardson error estimate (order 2) of the fine run's contact time and its first
     contact's largest force, from a run at ``ratio`` times its step."""
-    def first_peak(result: ImpactResult) -> float:
-        inside = result.peak_time_s <= result.contact_end_s[0]
-        return float(np.max(result.peak_force_N[inside], initial=np.max(result.contact_force)))
+    def measures(result: ImpactResult) -> tuple[float, float]:
+        maxima = first_contact_maxima(result.peak_time_s, result.peak_force_N, result.contact_end_s)
+        return result.contact_time_s, float(np.max(maxima, initial=np.max(result.contact_force)))
 
-    tc = abs(fine.contact_time_s - coarse.contact_time_s) / fine.contact_time_s
-    peak = abs(first_peak(fine) - first_peak(coarse)) / first_peak(fine)
-    return max(tc, peak) / (ratio**2 - 1.0)
+    return _richardson(measures(fine), measures(coarse), ratio)
 
 
 def _richardson(fine: tuple[float, float], coarse: tuple[float, float], ratio: float) -> float:
