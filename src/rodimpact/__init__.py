@@ -2,26 +2,17 @@
 
 Rebuilds Belyaev, Shurpatov & Ma (2018), "Determining the contact force of an axial
 collision of an elastic rod with a rigid impactor", from configuration alone.
+
+``rodimpact.__version__`` is read from the git tags (:mod:`rodimpact._version`) when first
+asked for, so importing the package runs no git command.
 """
 
-from importlib import metadata as _metadata
-from pathlib import Path as _Path
+from typing import Any as _Any
 
 
-def _version() -> str:
-    """The version in pyproject.toml, its one place: read from the checkout this package lives
-    in, else from the installed distribution's metadata."""
-    pyproject = _Path(__file__).resolve().parents[2] / "pyproject.toml"
-    if pyproject.is_file():
-        import tomllib
+def __getattr__(name: str) -> _Any:
+    if name == "__version__":
+        from rodimpact._version import version
 
-        project = tomllib.loads(pyproject.read_text(encoding="utf-8")).get("project", {})
-        if project.get("name") == "rodimpact" and "version" in project:
-            return str(project["version"])
-    try:
-        return _metadata.version("rodimpact")
-    except _metadata.PackageNotFoundError:
-        return "0+unknown"
-
-
-__version__ = _version()
+        return version()
+    raise AttributeError(f"module 'rodimpact' has no attribute {name!r}")
