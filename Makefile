@@ -1,6 +1,7 @@
 # rodimpact: two commands do all the set-up on a fresh machine with Python 3.11 and pip.
 #   make paper   build .venv from environment.lock if missing or stale, then snakemake -j2
-#   make test    same environment; snakemake --lint, a dry run, pytest
+#   make test    same environment; snakemake --lint, a dry run, the small configuration in .test/
+#                built end to end (.test/results), pytest
 #   make bench   benchmarks -> results/benchmarks/*.csv (one job at a time, for clean timings), and
 #                results/benchmarks/build.csv: the last build's time per rule (jobs, solvers, overhead)
 #                from snakemake's job records; run make paper first
@@ -35,6 +36,7 @@ paper: $(STAMP)
 test: $(STAMP)
 	$(BIN)/snakemake --lint
 	$(BIN)/snakemake -n --quiet rules
+	$(BIN)/snakemake -j$(CORES) --directory .test
 	$(BIN)/python -m pytest
 
 bench: $(STAMP)

@@ -25,7 +25,10 @@ atexit.register(PLAN.save)
 
 onstart:
     PLAN.save()
-    register_run(workflow.basedir)  # a live run here: no other snakemake releases its lock
+    register_run(WORKDIR)  # a live run here: no other snakemake releases its lock
+
+
+SCHEMA_DIR = os.path.join(workflow.basedir, "workflow", "schemas")
 
 
 def checked_project():
@@ -34,14 +37,14 @@ def checked_project():
     from rodimpact.io.project import ConfigError
 
     try:
-        return load_project(config, root=workflow.basedir)
+        return load_project(config, root=WORKDIR, schema_dir=SCHEMA_DIR)
     except ConfigError as error:
         sys.exit(f"rodimpact: invalid configuration: {error}")
 
 
 # The configuration is checked here, before any job (or its check of the same files and code
 # is reused); the checked config (every default filled in) replaces snakemake's.
-PROJECT = PLAN.project(config, workflow.basedir, checked_project)
+PROJECT = PLAN.project(config, WORKDIR, checked_project, schema_dir=SCHEMA_DIR)
 config.update(PROJECT.config)
 
 
@@ -53,7 +56,8 @@ def refuse(message):
 def sources(*entry_modules):
     """Package files a script's imports reach: listed as inputs, a code change reruns the rule."""
     files = PLAN.remember((SRC_DIR, entry_modules), module_sources)
-    return [os.path.relpath(p, workflow.basedir) for p in files]
+    # relative to the working directory (the project, or another one given by --directory)
+    return [os.path.relpath(p) for p in files]
 
 
 def per_job(function):

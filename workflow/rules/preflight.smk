@@ -16,6 +16,9 @@ os.environ.update(PYTHONPATH=os.pathsep.join(filter(None, [SRC_DIR, os.environ.g
 from rodimpact.io.yamlfile import YamlError, read_yaml
 from rodimpact.workflow.locks import release_stale_lock
 
+# The working directory: the project itself, or another directory with its own config/ (and
+# results/) given by --directory, such as .test. config.yaml's paths are relative to it.
+WORKDIR = os.getcwd()
 CONFIG_FILE = "config/config.yaml"
 
 
@@ -37,6 +40,6 @@ preflight_config(CONFIG_FILE)
 
 # A lock left by a killed run (no snakemake process lives in this directory, no run of
 # another machine registered here) is released, with a one-line notice.
-_released = release_stale_lock(workflow.basedir)
+_released = release_stale_lock(WORKDIR)
 if _released:
     print(_released, file=sys.stderr)

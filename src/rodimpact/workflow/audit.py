@@ -216,6 +216,10 @@ def workflow_status(root: Path, targets: Sequence[str] = ()) -> dict[str, str]:
         snakemake failed (its message is included).
     """
     command = [sys.executable, "-m", "snakemake", "--summary", "--nocolor", *targets]
+    # a working directory of its own (such as .test) is run with the project's Snakefile above it
+    above = next((d / "Snakefile" for d in Path(root).resolve().parents if (d / "Snakefile").is_file()), None)
+    if not (Path(root) / "Snakefile").is_file() and above is not None:
+        command += ["--snakefile", str(above)]
     proc = subprocess.run(command, cwd=root, capture_output=True, text=True, check=False)
     if proc.returncode != 0:
         raise RuntimeError(f"{' '.join(command)} failed:\n{proc.stderr[-3000:]}")

@@ -77,12 +77,13 @@ def _json(value: Any) -> bytes:
     return json.dumps(value, sort_keys=True, separators=(",", ":"), default=repr).encode()
 
 
-def project_key(config: Mapping[str, Any], root: str | Path) -> str:
+def project_key(config: Mapping[str, Any], root: str | Path, schema_dir: str | Path | None = None) -> str:
     """SHA-256 of what :func:`rodimpact.io.config.load_project` reads: ``config``, the files under
     ``<root>/config``, the materials file and the cases directory ``config`` names (when they
-    are paths) and the schemas under ``<root>/workflow/schemas``."""
+    are paths) and the schemas under ``schema_dir`` (default ``<root>/workflow/schemas``)."""
     root = Path(root)
-    parts = [_json(config), *_tree_bytes(root / "config"), *_tree_bytes(root / "workflow" / "schemas")]
+    schemas = root / "workflow" / "schemas" if schema_dir is None else Path(schema_dir)
+    parts = [_json(config), *_tree_bytes(root / "config"), *_tree_bytes(schemas)]
     for name in ("materials", "cases_dir"):
         value = config.get(name) if isinstance(config, Mapping) else None
         if isinstance(value, str):
@@ -120,10 +121,12 @@ class PlanCache:
         if isinstance(stored, dict) and stored.get("format") == _FORMAT and stored.get("fingerprint") == self.fingerprint:
             self._projects, self._estimates = dict(stored["projects"]), dict(stored["estimates"])
 
-    def project(self, config: Mapping[str, Any], root: str | Path, load: Callable[[], T]) -> T:
-        """The checked project of ``config`` under ``root``: cached, or ``load()`` (which raises
-        for a bad input; nothing is cached then)."""
-        key = project_key(config, root)
+    def project(self, config: Mapping[str, Any], root: str | Path, load: Callable[[], T],
+                schema_dir: str | Path | None = None) -> T:
+        """The checked project of ``config`` under ``root`` (schemas in ``schema_dir``, default
+        ``<root>/workflow/schemas``): cached, or ``load()`` (which raises for a bad input; nothing
+        is cached then)."""
+        key = project_key(config, root, schema_dir)
         if key in self._projects:
             self._projects[key] = self._projects.pop(key)  # the newest last
             return pickle.loads(self._projects[key])

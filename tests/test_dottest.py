@@ -1,0 +1,39 @@
+"""The small configuration in .test/ (run end to end by `make test`): valid, and made of the
+shipped cases, so that it tests what users run and does not drift from it."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import yaml
+
+from rodimpact.io.config import load_project
+
+ROOT = Path(__file__).resolve().parents[1]
+TEST = ROOT / ".test"
+
+
+def _config(directory: Path) -> dict:
+    return yaml.safe_load((directory / "config" / "config.yaml").read_text(encoding="utf-8"))
+
+
+def test_the_small_configuration_is_valid_and_exercises_every_stage() -> None:
+    config = _config(TEST)
+    project = load_project(config, root=TEST, schema_dir=ROOT / "workflow" / "schemas",
+                           config_file=TEST / "config" / "config.yaml")
+    assert set(project.sets) >= {"model", "table2", "stress"}
+    assert project.sweeps_in("table2")
+    methods = {m for case in project.cases.values() for m in case["methods"]}
+    assert methods == {"sem", "sem_paper", "fem1d", "fem_axi"}
+    assert config["work_precision"]["cases"] and config["stability"]["map"]["methods"]
+
+
+def test_its_cases_are_the_shipped_cases() -> None:
+    shipped = load_project(_config(ROOT), root=ROOT)
+    small = load_project(_config(TEST), root=TEST, schema_dir=ROOT / "workflow" / "schemas",
+                         config_file=TEST / "config" / "config.yaml")
+    for case_id, case in small.cases.items():
+        assert case_id in shipped.cases, case_id
+        for key in ("impactor", "rod", "contact", "measured", "published", "outputs", "stations"):
+            assert case.get(key) == shipped.cases[case_id].get(key), (case_id, key)
+    assert small.cases["model"]["methods"] == shipped.cases["model"]["methods"]
