@@ -135,27 +135,31 @@ def plot_station_displacement(records: Sequence[RunRecord], fraction: float,
 
 
 def plot_force_fits(records: Sequence[RunRecord], fits: Sequence[Any], title: str = "") -> matplotlib.figure.Figure:
-    """Each method's computed force (line) with its closed form (markers every few samples)
-    above, and the closed form's error in per cent of the largest force below."""
+    """Each method's computed force (line) with its closed form (open circles every few samples)
+    above, and the closed form's error in per cent of the largest force below; one legend below
+    both names each method with its closed form's size and largest error."""
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(6.4, 6.6), sharex=True, height_ratios=[2.0, 1.0],
                                       layout="constrained")
     pairs = sorted(zip(records, fits), key=lambda pair: METHOD_ORDER.index(pair[0].method))
-    for record, fit in pairs:
+    for index, (record, fit) in enumerate(pairs):
         t, force = record.series["time"], record.series["contact_force"]
         spec = METHODS[record.method]
-        top.plot(1e6 * t, 1e-3 * force, spec.style, color=spec.color, lw=1.2, label=f"{spec.label}, computed")
+        top.plot(1e6 * t, 1e-3 * force, spec.style, color=spec.color, lw=1.2)
         step = max(1, len(t) // 60)
-        top.plot(1e6 * t[::step], 1e-3 * fit.evaluate(t[::step]), "o", color=spec.color, ms=3, mfc="none",
-                 label=f"closed form ({sum(len(p.coefficients) for p in fit.pieces)} coefficients)")
+        # staggered, so that the circles of closed forms lying on each other stay visible
+        every = slice(index * step // max(1, len(pairs)), None, step)
+        top.plot(1e6 * t[every], 1e-3 * fit.evaluate(t[every]), "o", color=spec.color, ms=3, mfc="none")
         bottom.plot(1e6 * t, 100.0 * (fit.evaluate(t) - force) / fit.peak_force_N, spec.style, color=spec.color,
-                    lw=1.0, label=f"{spec.label}: largest {100.0 * fit.max_rel_error:.2g} %")
+                    lw=1.0, label=f"{spec.label}: closed form of {sum(len(p.coefficients) for p in fit.pieces)} "
+                                  f"coefficients, largest error {100.0 * fit.max_rel_error:.2g} %")
+    top.plot([], [], "o", color="0.3", ms=3, mfc="none", label="closed form (open circles); lines: computed")
     top.set_ylabel("contact force $P$ (kN)")
     bottom.set_ylabel("closed form − computed\n(% of the largest force)")
     bottom.set_xlabel("time $t$ (µs)")
     for ax in (top, bottom):
         ax.grid(alpha=0.3)
-    top.legend(fontsize=7, loc="upper right", ncol=1, frameon=False)
-    bottom.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.32), ncol=2, frameon=False)
+    top.legend(fontsize=7.5, loc="upper right", frameon=False)
+    bottom.legend(fontsize=7.5, loc="upper center", bbox_to_anchor=(0.5, -0.32), ncol=1, frameon=False)
     if title:
         top.set_title(title, fontsize=10)
     return fig
