@@ -19,7 +19,7 @@ from rodimpact.present.film_figures import plot_film_force
 from rodimpact.present.film_tables import (
     film_band_frame, film_indentation_frame, film_table_frame, headers_with_units, readings_frame, table2_panels
 )
-from rodimpact.present.figures import plot_table2_contact_time
+from rodimpact.present.table2_figures import plot_table2_contact_time
 from rodimpact.present.tables import table2_frame, variants_summary
 
 FILM = {"thickness_m": 2.8e-5, "area_m2": 2.1e-5,
@@ -196,7 +196,7 @@ def test_film_force_figure_renders(store: dict, tmp_path: Path) -> None:
     axes = fig.axes
     assert len(axes) == 2
     for ax in axes:
-        assert "µs" in ax.get_xlabel() and ax.get_ylabel().endswith(", N")
+        assert ax.get_xlabel().endswith("(µs)") and ax.get_ylabel().endswith("(N)")
         labels = [t.get_text() for t in ax.get_legend().get_texts()]
         assert len(labels) == 4, labels
         assert sum("with film" in label for label in labels) == 2 and sum("no film" in label for label in labels) == 2

@@ -68,8 +68,9 @@ rule fig4:
 
 
 rule fig_table2:
-    """Contact time against ball mass: measured, published and ours, one panel per rod, with the
-    curves of the table2 set's sweeps, and the readings with the film and their bands."""
+    """Contact time against ball mass: measured, published and ours, one panel per rod (a grid by
+    rod radius and length), with the curves of the table2 set's sweeps, and the readings with the
+    film and their bands."""
     input:
         runs=[run for v in TABLE2_VARIANTS for run in table2_runs(v)],
         sweep_runs=sweep_point_runs(PROJECT.sweeps_in("table2")),
@@ -94,6 +95,8 @@ rule fig_table2:
     params:
         variants=TABLE2_VARIANTS,
         film_variants=FILM_VARIANTS,
+        # each reading in words (the case file's description): the panels' titles
+        descriptions={v: spec.get("description", "") for v, spec in PROJECT.variants.get("table2", {}).items()},
     log:
         "logs/figures/table2_contact_time.log",
     threads: 1

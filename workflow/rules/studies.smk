@@ -39,7 +39,7 @@ rule work_precision_table:
 
 
 rule work_precision_figure:
-    """Error against wall time for one case, one line per method and quantity."""
+    """Error against wall time for one case, one panel per error quantity, one line per method."""
     input:
         runs=lambda w: sweep_runs([w.case]),
         code=SRC_PRESENT,

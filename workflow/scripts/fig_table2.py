@@ -9,4 +9,5 @@ with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (
                     provenance=snakemake.output.provenance,  # noqa: F821
                     sweep_runs=snakemake.input.sweep_runs,  # noqa: F821
                     film_variants=snakemake.params.film_variants,  # noqa: F821
-                    band_files=snakemake.input.bands)  # noqa: F821
+                    band_files=snakemake.input.bands,  # noqa: F821
+                    descriptions=snakemake.params.descriptions)  # noqa: F821

@@ -1,7 +1,8 @@
 """Presentation: tables and figures, built from stored runs only (never from a solver).
 
 What lives here: :mod:`.tables` (Table 2, the comparisons, the sweep table), :mod:`.figures`
-(Fig. 2, Fig. 4, the Table 2 figure), :mod:`.film_tables` and :mod:`.film_figures` (the sensor
+(Fig. 2, Fig. 4, the force's closed form), :mod:`.table2_figures` (the Table 2 figure: contact
+time against ball mass per reading of the rod), :mod:`.film_tables` and :mod:`.film_figures` (the sensor
 film: Table 2 with and without it, its prediction bands, the indentation curves, the contact
 force), :mod:`.study_figures` (error against run time, the stability map) and
 :mod:`.artifacts` (one function per artifact of the workflow).

@@ -28,7 +28,7 @@ from rodimpact.present.tables import (
 __all__ = ["make_comparison", "make_fig2", "make_fig4", "make_fig_film_force", "make_fig_table2",
            "make_film_band_table", "make_film_indentation_table", "make_stability", "make_stability_map",
            "make_sweep_table", "make_table2", "make_table2_film", "make_table2_variants", "make_work_precision",
-           "make_work_precision_figure", "make_fig_force_fit"]
+           "make_work_precision_figure", "make_fig_force_fit", "case_in_words"]
 
 log = logging.getLogger(__name__)
 
@@ -92,6 +92,19 @@ def _table_artifact(runs: Sequence[str | Path], build, *, csv: str | Path, md: s
     write_provenance(provenance, records, [csv, md])
 
 
+def case_in_words(config: Mapping[str, Any]) -> str:
+    """A case in words for a title: its ``description`` and its rod (mm), e.g. ``Table 2 row 1:
+    steel ball, diameter 3.16 mm, mass 0.13 g; rod radius 1 mm, length 30.1 mm``."""
+    rod = config.get("rod") or {}
+    if rod.get("radius_m") is not None:
+        words = f"rod radius {1000 * float(rod['radius_m']):.3g} mm, length {1000 * float(rod['length_m']):.3g} mm"
+    else:
+        words = (f"rod length {1000 * float(rod['length_m']):.3g} mm, "
+                 f"cross-section {1e6 * float(rod['area_m2']):.3g} mm²")
+    description = str(config.get("description") or "").strip()
+    return f"{description}; {words}" if description else words[0].upper() + words[1:]
+
+
 def make_fig2(runs: Sequence[str | Path], *, pdf: str | Path, png: str | Path, provenance: str | Path) -> None:
     """Fig. 2: contact force against time for one case, every method stored."""
     from rodimpact.present.figures import plot_contact_force
@@ -120,17 +133,26 @@ def make_fig4(runs: Sequence[str | Path], fraction: float, *, pdf: str | Path, p
 
 def make_fig_table2(runs: Sequence[str | Path], variants: Sequence[str], *, pdf: str | Path,
                     png: str | Path, provenance: str | Path, sweep_runs: Sequence[str | Path] = (),
-                    film_variants: Sequence[str] = (), band_files: Sequence[str | Path] = ()) -> None:
+                    film_variants: Sequence[str] = (), band_files: Sequence[str | Path] = (),
+                    descriptions: Mapping[str, str] | None = None) -> None:
     """Contact time against ball mass, one panel per rod, with the sweeps' curves; the readings
-    with the film (``film_variants``) on the panel of their rod, with their bands (``band_files``)."""
-    from rodimpact.present.figures import plot_table2_contact_time, save_figure
+    with the film (``film_variants``) on the panel of their rod, with their bands (``band_files``).
+
+    ``descriptions`` (variant -> the reading in words, the case file's ``description``) title
+    the panels; the measured points are grouped by their source, and the runs with more than
+    one contact ringed, both read from the runs."""
+    from rodimpact.present.figures import save_figure
+    from rodimpact.present.table2_figures import plot_table2_contact_time
 
     records, frames = _by_variant(runs, variants)
     sweeps = load_records(sweep_runs)
     readings = readings_frame(records)
     bands = film_band_frame(dict(read_band(p) for p in band_files), {r.case_id: r.config for r in records})
+    sources = {r.case_id: str((r.config.get("measured") or {}).get("source", "")) for r in records}
+    contacts = {(r.case_id, r.method): int(r.summary.get("n_contacts", 1)) for r in records}
     fig = plot_table2_contact_time(frames, sweep_results_frame(sweeps), panels=table2_panels(readings, film_variants),
-                                   readings=readings, bands=bands)
+                                   readings=readings, bands=bands, descriptions=descriptions, sources=sources,
+                                   contacts=contacts)
     artifacts = [pdf, png]
     save_figure(fig, pdf=pdf, png=png, provenance=provenance_record([*records, *sweeps], artifacts),
                 title="Table 2: contact time against ball mass")
@@ -244,7 +266,8 @@ def make_work_precision_figure(runs: Sequence[str | Path], methods: Mapping[str,
     records = [read_run(p) for p in runs]
     case = _one_case(records, "a work-precision figure")
     frame = work_precision_frame(records, methods)
-    fig = plot_work_precision(frame, observed_orders(frame, methods, fit_levels), case)
+    fig = plot_work_precision(frame, observed_orders(frame, methods, fit_levels), case,
+                              title=case_in_words(records[0].config))
     _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance,
                  title=f"Error against run time, case {case}")
 

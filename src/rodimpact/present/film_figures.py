@@ -75,8 +75,8 @@ def plot_film_force(records: Sequence[RunRecord], rows: Sequence[str], title: st
             end_us = max(end_us, 1e6 * (float(ends[-1]) - start_s))
         imp = runs[0].config["impactor"]
         ax.set_title(f"ball {2000.0 * imp['radius_m']:.2f} mm, {1000.0 * imp['mass_kg']:.2f} g", fontsize=10)
-        ax.set_xlabel("time from first contact t, µs")
-        ax.set_ylabel("contact force P, N")
+        ax.set_xlabel("time from the first contact $t$ (µs)")
+        ax.set_ylabel("contact force $P$ (N)")
         ax.set_xlim(0, 1.05 * end_us if end_us > 0 else None)
         ax.set_ylim(bottom=0)
         ax.grid(alpha=0.3)
