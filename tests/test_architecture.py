@@ -62,8 +62,13 @@ def _modules() -> list[Path]:
 
 
 def test_every_module_lives_in_a_package_of_a_concern():
-    loose = [p.name for p in PACKAGE.glob("*.py") if p.name != "__init__.py"]
+    # _version.py: the version from the git tags, standard library only (below every layer)
+    loose = [p.name for p in PACKAGE.glob("*.py") if p.name not in ("__init__.py", "_version.py")]
     assert loose == []
+    version_imports = {n.module for n in ast.walk(ast.parse((PACKAGE / "_version.py").read_text()))
+                       if isinstance(n, ast.ImportFrom)} | {a.name for n in ast.walk(ast.parse(
+                           (PACKAGE / "_version.py").read_text())) if isinstance(n, ast.Import) for a in n.names}
+    assert not any(m.startswith("rodimpact") for m in version_imports if m), version_imports
     assert sorted(p.name for p in PACKAGE.iterdir() if p.is_dir() and p.name != "__pycache__") == sorted(LAYERS)
 
 
