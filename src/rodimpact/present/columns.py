@@ -7,7 +7,7 @@ headers and its rounding from here, through :func:`column`. Three kinds of name 
 - the fixed columns of :data:`COLUMNS`;
 - the columns made per method, ``{method}_us`` and ``{method}_error_pct``, and per method and
   reading of the sensor film, ``{method}_{role}_us`` and ``{method}_{role}_error_pct``, labelled
-  with :data:`METHOD_HEADERS` and :data:`ROLE_WORDS`;
+  with each method's ``header`` in the registry and :data:`ROLE_WORDS`;
 - numbered columns (``max_{i}_kN``) and comparisons with a method (``*_vs_{method}_pct``).
 
 Anything else is read from its suffix (:data:`SUFFIX_UNITS`), its words capitalised.
@@ -24,8 +24,8 @@ import numpy as np
 
 from rodimpact.solvers.registry import METHODS
 
-__all__ = ["COLUMNS", "Column", "LATEX_UNITS", "METHOD_HEADERS", "ROLE_WORDS", "SUFFIX_UNITS", "column",
-           "headers_with_units", "method_header"]
+__all__ = ["COLUMNS", "Column", "LATEX_UNITS", "ROLE_WORDS", "SUFFIX_UNITS", "column", "headers_with_units",
+           "method_header"]
 
 
 @dataclass(frozen=True)
@@ -70,9 +70,6 @@ LATEX_UNITS = {"µs": r"$\mu$s", "µm": r"$\mu$m", "%": r"\%", "kg/s": "kg/s", "
 #: Suffix of a machine name -> unit, longest first (``_kg_s`` before ``_s``).
 SUFFIX_UNITS = {"_kg_s": "kg/s", "_m_s": "m/s", "_us": "µs", "_um": "µm", "_mm": "mm", "_kN": "kN", "_pct": "%",
                 "_MiB": "MiB", "_pa": "Pa", "_kg": "kg", "_g": "g", "_N": "N", "_m": "m", "_s": "s"}
-
-#: A method's name in a table header: short, for a column of numbers.
-METHOD_HEADERS = {"sem": "SEM", "sem_paper": "SEM, explicit", "fem1d": "FEM 1-D", "fem_axi": "FEM axisym."}
 
 #: The readings of Table 2 with and without the sensor film (``film_tables.FILM_ROLES``), in words.
 ROLE_WORDS = {"no_film": "no film", "film": "film", "film_calibrated": "film, calibrated",
@@ -138,10 +135,10 @@ COLUMNS: dict[str, Column] = {
 
 
 def method_header(method: str) -> str:
-    """A method's short header (:data:`METHOD_HEADERS`), else its registry label, else its name."""
-    if method in METHOD_HEADERS:
-        return METHOD_HEADERS[method]
-    return METHODS[method].label if method in METHODS else method
+    """A method's name in a table header: its registry ``header``, else its label, else its name."""
+    if method not in METHODS:
+        return method
+    return METHODS[method].header or METHODS[method].label
 
 
 def _per_method(name: str) -> Column | None:

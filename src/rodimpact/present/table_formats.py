@@ -54,7 +54,8 @@ class Panel:
     latex_caption : str
         The LaTeX caption, LaTeX source; empty: ``title``, escaped.
     drop : str
-        Words dropped from every header, when the title says them once for all (" error").
+        Words dropped from the end of the header of every ``*_error_pct`` column, when the title
+        says them once for all (" error").
     rows : tuple of int, optional
         The frame's rows shown (positions); None: every row.
     """
@@ -74,8 +75,8 @@ class Panel:
     def header(self, name: str) -> Column:
         """The column ``name`` as this panel heads it."""
         spec = column(name)
-        if self.drop and self.drop in spec.label and spec.label != self.drop.strip():
-            spec = Column(spec.label.replace(self.drop, ""), spec.unit, spec.fmt)
+        if self.drop and name.endswith("_error_pct") and spec.label.endswith(self.drop):
+            spec = Column(spec.label[: -len(self.drop)], spec.unit, spec.fmt)
         return spec
 
 

@@ -41,7 +41,8 @@ log = logging.getLogger(__name__)
 CHROMIUM = Path("/usr/bin/chromium")
 CHROMEDRIVER = Path("/usr/bin/chromedriver")
 
-#: The window the report is checked in, px (width, height).
+#: The window the report is checked in, px (width, height); its viewport is what the browser's own
+#: frame leaves of it (1400 x 757 in Chromium's headless mode).
 WINDOW = (1400, 900)
 
 #: Chromium's switches: headless, no network of its own, no first-run chores.
@@ -223,9 +224,9 @@ def check_report(report: str | Path, screenshot: str | Path, *, chromium: Path =
     screenshot = Path(screenshot)
     screenshot.parent.mkdir(parents=True, exist_ok=True)
     screenshot.write_bytes(png)
-    log.info("%s: title %r at top %.0f px, bottom %.0f px, left %.0f px, right %.0f px in a %.0f x %.0f window%s; "
-             "screenshot %s", report, box.text, box.top, box.bottom, box.left, box.right, box.width, box.height,
-             "" if box.uncovered else " (covered)", screenshot)
+    log.info("%s: title %r at top %.0f px, bottom %.0f px, left %.0f px, right %.0f px in the %.0f x %.0f px "
+             "viewport of a %d x %d window%s; screenshot %s", report, box.text, box.top, box.bottom, box.left,
+             box.right, box.width, box.height, *WINDOW, "" if box.uncovered else " (covered)", screenshot)
     return box
 
 
