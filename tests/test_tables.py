@@ -23,7 +23,8 @@ from rodimpact.io.store import RunRecord
 from rodimpact.present import table_views
 from rodimpact.present.columns import Column, column, headers_with_units, method_header
 from rodimpact.present.table_formats import (
-    LATEX_CHAR_PT, MAX_COLUMNS, Panel, header_lines, html_tables, latex_tables, latex_width_pt, markdown_table, panels
+    LATEX_CHAR_PT, MAX_COLUMNS, Panel, header_lines, html_tables, latex_escape, latex_tables, latex_width_pt,
+    markdown_table, panels
 )
 from rodimpact.present.tables import table2_frame, write_table
 from rodimpact.solvers.registry import METHODS
@@ -106,6 +107,11 @@ def test_cells_round_and_mark_what_is_missing() -> None:
     assert Column("f").text(np.bool_(True)) == "yes" and Column("f", fmt="").text(False) == "no"
     assert Column("n", fmt="").text(np.int64(6)) == "6"
     assert column("mass_g").text(0.0041) == "0.0041" and column("mass_g").text(8.46) == "8.46"
+
+
+def test_latex_escapes_text_and_sets_units() -> None:
+    assert latex_escape("r10_l30: 28 µm, 3.1e-06 m², 2·3, 50% & #1") == \
+        r"r10\_l30: 28 $\mu$m, 3.1e-06 m$^2$, 2$\cdot$3, 50\% \& \#1"
 
 
 def test_long_labels_wrap_in_two_balanced_lines() -> None:
@@ -364,7 +370,7 @@ def test_the_width_estimate_counts_the_widest_line() -> None:
 @pytest.mark.skipif(shutil.which("pdflatex") is None, reason="pdflatex is not installed: the structure is checked")
 def test_table2_latex_compiles(table2: dict, tmp_path: Path) -> None:
     document = tmp_path / "t.tex"
-    document.write_text("\\documentclass{article}\n\\usepackage[textwidth=6in]{geometry}\n\\usepackage{booktabs}\n"
+    document.write_text("\\documentclass{article}\n\\usepackage{booktabs}\n\\setlength{\\textwidth}{6in}\n"
                         "\\begin{document}\n\\input{" + str(table2["paths"]["tex"]) + "}\n\\end{document}\n")
     run = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", document.name], cwd=tmp_path,
                          capture_output=True, text=True, timeout=120, check=False)

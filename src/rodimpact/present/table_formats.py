@@ -160,7 +160,7 @@ def html_tables(frame: pd.DataFrame, shown: Sequence[Panel], *, scroll_rows: int
 
 _LATEX_SPECIAL = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_",
                   "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}", "–": "--",
-                  "µ": r"$\mu$", "−": "$-$"}
+                  "µ": r"$\mu$", "−": "$-$", "²": r"$^2$", "³": r"$^3$", "·": r"$\cdot$", "×": r"$\times$"}
 
 
 def latex_escape(text: str) -> str:

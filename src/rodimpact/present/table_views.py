@@ -63,21 +63,24 @@ def table2_views(frame: pd.DataFrame, variant: str, records: Sequence[RunRecord]
     slug = variant.replace("_", "-")
     methods = _methods(frame, "{}_us")
     key = ["diameter_mm", "mass_g"]
-    ours = "; ".join(f"{method_header(m)}: {METHODS[m].label}" for m in methods)
+    ours = ", ".join(f"{method_header(m)} ({METHODS[m].label})" for m in methods)
+    ours_tex = latex_escape(ours).replace(". (", ".\\ (")  # an abbreviation's point ends no sentence
     if config:
         speed = float(config["impactor"]["velocity_m_s"])
         ball = str(config["impactor"]["material"].get("name", "")).split("_")[0]
         rod = str(config["rod"]["material"].get("name", "")).split("_")[0]
-        setting = (f"Contact time of the {len(frame)} {ball} balls of Table~2 striking the {rod} rod at "
+        setting = (f"Contact time of the {len(frame)} {ball} balls of Table~2 of Belyaev, Shurpatov and Ma (2018) "
+                   f"striking the {rod} rod at "
                    f"{speed:g}~m/s; rod reading \\texttt{{{latex_escape(variant)}}}: "
                    f"{latex_escape(reading_words(config))}.")
     else:
-        setting = f"Contact time of the balls of Table~2, rod reading \\texttt{{{latex_escape(variant)}}}."
+        setting = (f"Contact time of the balls of Table~2 of Belyaev, Shurpatov and Ma (2018), rod reading "
+                   f"\\texttt{{{latex_escape(variant)}}}.")
     times = panels(frame, "Contact time: measured, printed by the paper, and ours", key,
                    ["measured_us", "published_fem_us", "published_sem_us", *(f"{m}_us" for m in methods)],
                    label=f"tab:table2-{slug}-times",
                    latex_caption=(f"{setting} Measured, printed by the paper (its FEM and SEM), and computed by "
-                                  f"our methods (columns {latex_escape(ours)})."))
+                                  f"our methods: {ours_tex}."))
     errors = panels(frame, "Error against the measurement, |model − measured| / measured", key,
                     ["published_fem_error_pct", "published_sem_error_pct", *(f"{m}_error_pct" for m in methods),
                      "sem_vs_published_sem_pct"],
