@@ -24,7 +24,7 @@ from rodimpact.present import table_views
 from rodimpact.present.columns import Column, column, headers_with_units, method_header
 from rodimpact.present.table_formats import (
     LATEX_CHAR_PT, MAX_COLUMNS, Panel, header_lines, html_tables, latex_escape, latex_tables, latex_width_pt,
-    markdown_table, panels
+    panels
 )
 from rodimpact.present.tables import table2_frame, write_table
 from rodimpact.solvers.registry import METHODS
