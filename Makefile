@@ -9,6 +9,9 @@
 #   make stability     only the stress cases and the stability map -> results/tables/stability.csv
 #   make report        make paper, then the self-contained HTML report -> results/report.html
 #                      (every table and figure with its caption; the benchmarks too if they exist)
+#   make report-check  open results/report.html in headless Chromium at 1400 x 900, save the first
+#                      screen as results/report_screenshot.png, and fail unless the report's title
+#                      is on it (installs Debian's chromium and chromium-driver when missing)
 #   make provenance    audit results/: every file resolves to the config and committed code that
 #                      made it, and is up to date (fails on a hand-edited or stale file)
 
@@ -18,7 +21,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-from-lock
 CORES  ?= 2
 
-.PHONY: paper test bench convergence stability report provenance env clean distclean
+.PHONY: paper test bench convergence stability report report-check provenance env clean distclean
 
 $(STAMP): environment.lock pyproject.toml
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info[:2] == (3, 11) else "rodimpact needs Python 3.11 (environment.lock is for 3.11), found " + sys.version.split()[0])'
@@ -55,6 +58,14 @@ stability: $(STAMP)
 # the benchmarks are not rebuilt (make bench), only reported when they exist.
 report: paper
 	$(BIN)/snakemake --report results/report.html all $(wildcard results/benchmarks/sem.csv results/benchmarks/fem.csv)
+
+# Checks the report as it is (make report builds it); chromium and its driver from Debian's packages.
+report-check: $(STAMP)
+	@if [ ! -x /usr/bin/chromium ] || [ ! -x /usr/bin/chromedriver ]; then \
+		apt-get install -y chromium chromium-driver || \
+		{ apt-get update && apt-get install -y chromium chromium-driver; }; \
+	fi
+	$(BIN)/python -m rodimpact.workflow.report_check results/report.html --screenshot results/report_screenshot.png
 
 provenance: $(STAMP)
 	$(BIN)/python -m rodimpact.workflow.audit --json logs/provenance_audit.json

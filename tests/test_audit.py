@@ -125,6 +125,7 @@ def test_audit_covers_every_file_and_flags_strays(tmp_path: Path, run: Path, mon
     monkeypatch.setattr(audit_module, "find_repo_root", lambda start=None: ROOT)
     _table(tmp_path, [run])
     (tmp_path / "results/report.html").write_text("<html></html>")  # exempt: a view of the artifacts
+    (tmp_path / "results/report_screenshot.png").write_bytes(b"")  # exempt: a view of the report
     (tmp_path / "results/tables/stray.csv").write_text("x\n")
     (tmp_path / "results/runs/c1/sem.h5.tmp.123.ab").write_bytes(b"")
     result = audit(tmp_path, workflow=False)

@@ -16,8 +16,9 @@ from rodimpact.io.curves import ContactCurve, read_contact_curve, write_contact_
 from rodimpact.io.store import read_run, read_summary, write_run
 from rodimpact.present.artifacts import make_fig_film_force, make_table2_film
 from rodimpact.present.film_figures import plot_film_force
+from rodimpact.present.columns import headers_with_units
 from rodimpact.present.film_tables import (
-    film_band_frame, film_indentation_frame, film_table_frame, headers_with_units, readings_frame, table2_panels
+    film_band_frame, film_indentation_frame, film_table_frame, readings_frame, table2_panels
 )
 from rodimpact.present.table2_figures import plot_table2_contact_time
 from rodimpact.present.tables import table2_frame, variants_summary
@@ -185,8 +186,8 @@ def test_readings_variants_summary_and_panels(store: dict) -> None:
 
 def test_headers_carry_units() -> None:
     headers = headers_with_units(["measured_us", "mass_g", "sem_film_error_pct", "row", "force_N"])
-    assert headers == {"measured_us": "measured (µs)", "mass_g": "mass (g)", "sem_film_error_pct": "sem film error (%)",
-                       "row": "row", "force_N": "force (N)"}
+    assert headers == {"measured_us": "Measured (µs)", "mass_g": "Mass (g)", "sem_film_error_pct": "SEM, film error (%)",
+                       "row": "Ball", "force_N": "Force (N)"}
 
 
 def test_film_force_figure_renders(store: dict, tmp_path: Path) -> None:
@@ -210,16 +211,18 @@ def test_film_force_figure_renders(store: dict, tmp_path: Path) -> None:
 
 
 def test_table2_film_artifact_and_sidecar(store: dict, tmp_path: Path) -> None:
-    out = {k: tmp_path / f"table2_film.{k}" for k in ("csv", "md", "provenance.json")}
-    make_table2_film(store["runs"], ROLES, store["band"], csv=out["csv"], md=out["md"], provenance=out["provenance.json"])
+    out = {k: tmp_path / f"table2_film.{k}" for k in ("csv", "md", "html", "provenance.json")}
+    make_table2_film(store["runs"], ROLES, store["band"], csv=out["csv"], md=out["md"], html=out["html"],
+                     provenance=out["provenance.json"])
     table = pd.read_csv(out["csv"])
     assert len(table) == 2 and "model_form_pct" in table
     markdown = out["md"].read_text(encoding="utf-8")
-    assert "measured (µs)" in markdown and "model form (%)" in markdown
+    assert "Measured (µs)" in markdown and "Model-form error (%)" in markdown
+    assert "<th" in out["html"].read_text(encoding="utf-8") and "Model-form error" in out["html"].read_text()
     record = json.loads(out["provenance.json"].read_text())
     assert len(record["inputs"]) == len(store["runs"])
     assert [f["kind"] for f in record["input_files"]] == ["band"]
-    assert set(record["sha256"]) == {str(out["csv"]), str(out["md"])}
+    assert set(record["sha256"]) == {str(out["csv"]), str(out["md"]), str(out["html"])}
     with pytest.raises(ValueError, match="not of the film reading"):
         make_table2_film(store["runs"], {**ROLES, "film": "rod"}, store["band"], csv=out["csv"], md=out["md"],
                          provenance=out["provenance.json"])

@@ -23,6 +23,7 @@ rule work_precision_table:
             labels={"artifact": "Observed orders of convergence", "format": "CSV"},
         ),
         orders_md="results/tables/work_precision_orders.md",
+        orders_html="results/tables/work_precision_orders.html",
         provenance="results/tables/work_precision.provenance.json",
     params:
         methods=WORK_PRECISION.get("methods", {}),
@@ -88,6 +89,7 @@ rule stability_table:
             labels={"artifact": "Every stress run, checked", "format": "CSV"},
         ),
         md="results/tables/stability.md",
+        html="results/tables/stability.html",
         provenance="results/tables/stability.provenance.json",
     params:
         tolerances=STABILITY.get("tolerances", {}),

@@ -51,6 +51,7 @@ rule sweep_table:
             labels={"artifact": "Every sweep point of {set}", "format": "CSV"},
         ),
         md="results/tables/sweep_{set}.md",
+        html="results/tables/sweep_{set}.html",
         provenance="results/tables/sweep_{set}.provenance.json",
     log:
         "logs/tables/sweep_{set}.log",

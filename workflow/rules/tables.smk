@@ -15,6 +15,7 @@ rule table2:
             labels={"artifact": "Table 2, rod reading {variant}", "format": "CSV"},
         ),
         md="results/tables/table2_{variant}.md",
+        html="results/tables/table2_{variant}.html",
         tex="results/tables/table2_{variant}.tex",
         provenance="results/tables/table2_{variant}.provenance.json",
     params:
@@ -44,6 +45,7 @@ rule table2_variants:
             labels={"artifact": "Error per reading and method", "format": "CSV"},
         ),
         md="results/tables/table2_variants.md",
+        html="results/tables/table2_variants.html",
         provenance="results/tables/table2_variants.provenance.json",
     params:
         variants=TABLE2_VARIANTS,
@@ -72,6 +74,7 @@ rule fig2_comparison:
             labels={"artifact": "Fig. 2 in numbers", "format": "CSV"},
         ),
         md="results/tables/fig2_comparison.md",
+        html="results/tables/fig2_comparison.html",
         provenance="results/tables/fig2_comparison.provenance.json",
     log:
         "logs/tables/fig2_comparison.log",
@@ -110,6 +113,7 @@ rule table2_film:
             labels={"artifact": "Table 2 with and without the film", "format": "CSV"},
         ),
         md="results/tables/table2_film.md",
+        html="results/tables/table2_film.html",
         provenance="results/tables/table2_film.provenance.json",
     params:
         variants=TEXT_ROD_READINGS,
@@ -139,6 +143,7 @@ rule film_band_table:
             labels={"artifact": "The film's prediction bands", "format": "CSV"},
         ),
         md="results/tables/film_band.md",
+        html="results/tables/film_band.html",
         provenance="results/tables/film_band.provenance.json",
     params:
         variants=FILM_VARIANTS,
@@ -167,6 +172,7 @@ rule film_indentation_table:
             labels={"artifact": "Indentation by the continuum against the analytic laws", "format": "CSV"},
         ),
         md="results/tables/film_indentation.md",
+        html="results/tables/film_indentation.html",
         provenance="results/tables/film_indentation.provenance.json",
     params:
         cases=CALIBRATED_CASES,

@@ -6,4 +6,4 @@ from rodimpact.workflow.logs import script_logging
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821
     make_film_indentation_table(snakemake.input.curves,  # noqa: F821
-                                csv=out.csv, md=out.md, provenance=out.provenance)
+                                csv=out.csv, md=out.md, html=out.html, provenance=out.provenance)

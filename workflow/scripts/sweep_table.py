@@ -5,4 +5,5 @@ from rodimpact.workflow.logs import script_logging
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821
-    make_sweep_table(snakemake.input.runs, csv=out.csv, md=out.md, provenance=out.provenance)  # noqa: F821
+    make_sweep_table(snakemake.input.runs, csv=out.csv, md=out.md, html=out.html,  # noqa: F821
+                     provenance=out.provenance)

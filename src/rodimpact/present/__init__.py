@@ -1,6 +1,9 @@
 """Presentation: tables and figures, built from stored runs only (never from a solver).
 
-What lives here: :mod:`.tables` (Table 2, the comparisons, the sweep table), :mod:`.figures`
+What lives here: :mod:`.tables` (Table 2, the comparisons, the sweep table, and
+:func:`~.tables.write_table`), :mod:`.columns` (every column's label, unit and rounding, read by
+every table written for people), :mod:`.table_formats` (a table as HTML, LaTeX and Markdown, in
+panels of chosen columns), :mod:`.table_views` (which columns each table shows), :mod:`.figures`
 (Fig. 2, Fig. 4, the force's closed form), :mod:`.table2_figures` (the Table 2 figure: contact
 time against ball mass per reading of the rod), :mod:`.film_tables` and :mod:`.film_figures` (the sensor
 film: Table 2 with and without it, its prediction bands, the indentation curves, the contact

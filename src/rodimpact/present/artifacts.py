@@ -18,8 +18,12 @@ from rodimpact.io.curves import read_contact_curve
 from rodimpact.io.sidecar import provenance_record, write_provenance
 from rodimpact.io.store import read_run
 from rodimpact.present.film_tables import (
-    film_band_frame, film_indentation_frame, film_table_frame, headers_with_units, readings_frame, table2_panels,
+    film_band_frame, film_indentation_frame, film_table_frame, readings_frame, table2_panels,
     write_provenance_with_files
+)
+from rodimpact.present.table_views import (
+    comparison_views, film_band_views, film_indentation_views, film_table_views, orders_views, reading_words,
+    stability_views, sweep_views, table2_views, variants_views
 )
 from rodimpact.present.tables import (
     comparison_frame, load_records, sweep_results_frame, table2_frame, variants_summary, write_table
@@ -32,8 +36,8 @@ __all__ = ["make_comparison", "make_fig2", "make_fig4", "make_fig_film_force", "
 
 log = logging.getLogger(__name__)
 
-TABLE2_CAPTION = ("Table 2: contact time of steel balls on the aluminium rod at 0.3225 m/s, "
-                  "rod geometry variant {variant}. Times in us; errors |model - measured| / measured in %.")
+TABLE2_CAPTION = ("Table 2, rod reading {variant}: {reading}. Contact times in µs; errors "
+                  "|model − measured| / measured in %.")
 
 
 def _by_variant(runs: Sequence[str | Path], variants: Sequence[str]):
@@ -42,29 +46,36 @@ def _by_variant(runs: Sequence[str | Path], variants: Sequence[str]):
     return records, {v: table2_frame(recs) for v, recs in grouped.items() if recs}
 
 
+def _outputs(*paths: str | Path | None) -> list[str | Path]:
+    return [p for p in paths if p is not None]
+
+
 def make_table2(runs: Sequence[str | Path], variant: str, *, csv: str | Path, md: str | Path,
-                tex: str | Path, provenance: str | Path) -> None:
-    """Table 2 for one geometry variant, with its provenance sidecar."""
+                tex: str | Path, provenance: str | Path, html: str | Path | None = None) -> None:
+    """Table 2 for one geometry variant (the LaTeX and HTML in two panels: the contact times,
+    the errors), with its provenance sidecar."""
     records = load_records(runs)
     wrong = sorted({r.case_id for r in records if r.config.get("variant") != variant})
     if wrong:
         raise ValueError(f"runs: cases {wrong} do not belong to variant {variant!r}")
     frame = table2_frame(records)
-    write_table(frame, csv=csv, md=md, tex=tex, caption=TABLE2_CAPTION.format(variant=variant))
-    write_provenance(provenance, records, [csv, md, tex])
+    caption = TABLE2_CAPTION.format(variant=variant, reading=reading_words(records[0].config) if records else "")
+    write_table(frame, csv=csv, md=md, html=html, tex=tex, caption=caption,
+                views=table2_views(frame, variant, records))
+    write_provenance(provenance, records, _outputs(csv, md, html, tex))
     log.info("table 2 (%s): %d rows from %d runs", variant, len(frame), len(records))
 
 
 def make_table2_variants(runs: Sequence[str | Path], variants: Sequence[str], *, csv: str | Path,
-                         md: str | Path, provenance: str | Path) -> None:
+                         md: str | Path, provenance: str | Path, html: str | Path | None = None) -> None:
     """Per variant and method, the mean and max error against the measurements."""
     records, frames = _by_variant(runs, variants)
     readings = readings_frame(records).set_index("variant").to_dict("index")
     summary = variants_summary(frames, readings)
-    write_table(summary, csv=csv, md=md, caption="Error against the measured contact times, per rod "
-                "geometry variant (with or without the sensor film, and its contact law) and method, next to "
-                "the paper's own errors (%).")
-    write_provenance(provenance, records, [csv, md])
+    write_table(summary, csv=csv, md=md, html=html, views=variants_views(summary), caption=(
+        "Error against the measured contact times, per rod geometry reading (with or without the sensor "
+        "film, and its contact law) and method, next to the paper's own errors (%)."))
+    write_provenance(provenance, records, _outputs(csv, md, html))
 
 
 def _one_case(records: Sequence, what: str) -> str:
@@ -84,12 +95,14 @@ def _save_figure(fig, records: Sequence, *, pdf: str | Path, png: str | Path, pr
     write_provenance(provenance, records, [pdf, png])
 
 
-def _table_artifact(runs: Sequence[str | Path], build, *, csv: str | Path, md: str | Path,
-                    provenance: str | Path, caption: str, digits: int) -> None:
-    """Read the runs, build a frame from them, write it as CSV and Markdown with provenance."""
+def _table_artifact(runs: Sequence[str | Path], build, views, *, csv: str | Path, md: str | Path,
+                    html: str | Path | None, provenance: str | Path, caption: str) -> None:
+    """Read the runs, build a frame from them, write it as CSV, Markdown and HTML (its panels
+    ``views(frame)``) with provenance."""
     records = load_records(runs)
-    write_table(build(records), csv=csv, md=md, digits=digits, caption=caption)
-    write_provenance(provenance, records, [csv, md])
+    frame = build(records)
+    write_table(frame, csv=csv, md=md, html=html, caption=caption, views=views(frame))
+    write_provenance(provenance, records, _outputs(csv, md, html))
 
 
 def case_in_words(config: Mapping[str, Any]) -> str:
@@ -169,42 +182,42 @@ FILM_TABLE_CAPTION = (
 
 
 def make_table2_film(runs: Sequence[str | Path], variants: Mapping[str, str], band: str | Path, *,
-                     csv: str | Path, md: str | Path, provenance: str | Path) -> None:
+                     csv: str | Path, md: str | Path, provenance: str | Path, html: str | Path | None = None) -> None:
     """Table 2 on one rod without and with the film (:func:`film_table_frame`), and its sidecar."""
     records = load_records(runs)
     band_variant, bands = read_band(band)
     if band_variant != variants.get("film"):
         raise ValueError(f"{band}: the band of {band_variant!r}, not of the film reading {variants.get('film')!r}")
     frame = film_table_frame(records, variants, bands)
-    write_table(frame, csv=csv, md=md, digits=2, caption=FILM_TABLE_CAPTION, headers=headers_with_units(frame.columns))
-    write_provenance_with_files(provenance, records, [csv, md], {"band": [band]})
+    write_table(frame, csv=csv, md=md, html=html, caption=FILM_TABLE_CAPTION, views=film_table_views(frame))
+    write_provenance_with_files(provenance, records, _outputs(csv, md, html), {"band": [band]})
     log.info("table 2 with the film: %d rows from %d runs", len(frame), len(records))
 
 
 def make_film_band_table(bands: Sequence[str | Path], case_files: Sequence[str | Path], *, csv: str | Path,
-                         md: str | Path, provenance: str | Path) -> None:
+                         md: str | Path, provenance: str | Path, html: str | Path | None = None) -> None:
     """Every case of every band file (:func:`film_band_frame`); rows and masses from the case files."""
     cases = {record["case_id"]: record["case"] for record in map(read_case_file, case_files)}
     frame = film_band_frame(dict(read_band(p) for p in bands), cases)
-    write_table(frame, csv=csv, md=md, digits=2, headers=headers_with_units(frame.columns), caption=(
+    write_table(frame, csv=csv, md=md, html=html, views=film_band_views(frame), caption=(
         "The sensor film's prediction band per Table 2 row and film reading: the SEM's contact time at the "
-        "film's nominal constants and its min and max over the box of their ranges (us), whether the "
+        "film's nominal constants and its min and max over the box of their ranges (µs), whether the "
         "measurement lies inside, and whether the time is monotone along each range (the corners bound it)."))
-    write_provenance_with_files(provenance, [], [csv, md], {"band": bands, "case file": case_files})
+    write_provenance_with_files(provenance, [], _outputs(csv, md, html), {"band": bands, "case file": case_files})
     log.info("film bands: %d cases of %d readings, %d measurements inside", len(frame), len(bands),
              int(frame["measured_in_band"].sum()))
 
 
 def make_film_indentation_table(curves: Sequence[str | Path], *, csv: str | Path, md: str | Path,
-                                provenance: str | Path) -> None:
+                                provenance: str | Path, html: str | Path | None = None) -> None:
     """Every point of every indentation curve against its analytic law (:func:`film_indentation_frame`)."""
     frame = film_indentation_frame([read_contact_curve(p) for p in curves])
-    write_table(frame, csv=csv, md=md, digits=4, headers=headers_with_units(frame.columns), caption=(
+    write_table(frame, csv=csv, md=md, html=html, views=film_indentation_views(frame), caption=(
         "The continuum's static indentation (the calibrated contact laws) against the analytic law at the "
-        "same force (hertz_film with the film, hertz without): approaches (um), the law's error "
-        "(law - continuum) / continuum (%), the contact radius (um) and its ratio to the film thickness, and "
+        "same force (hertz_film with the film, hertz without): approaches (µm), the law's error "
+        "(law − continuum) / continuum (%), the contact radius (µm) and its ratio to the film thickness, and "
         "the tabulated law's interpolation error (every other point)."))
-    write_provenance_with_files(provenance, [], [csv, md], {"contact curve": curves})
+    write_provenance_with_files(provenance, [], _outputs(csv, md, html), {"contact curve": curves})
 
 
 def make_fig_film_force(runs: Sequence[str | Path], rows: Sequence[str], *, pdf: str | Path, png: str | Path,
@@ -222,19 +235,19 @@ def make_fig_film_force(runs: Sequence[str | Path], rows: Sequence[str], *, pdf:
 
 
 def make_sweep_table(runs: Sequence[str | Path], *, csv: str | Path, md: str | Path,
-                     provenance: str | Path) -> None:
+                     provenance: str | Path, html: str | Path | None = None) -> None:
     """Every sweep point's contact time and force, one row per point and method."""
-    _table_artifact(runs, sweep_results_frame, csv=csv, md=md, provenance=provenance, digits=4, caption=(
-        "Parameter sweeps: contact time (first contact, us) and force maxima (N) at every point."))
+    _table_artifact(runs, sweep_results_frame, sweep_views, csv=csv, md=md, html=html, provenance=provenance,
+                    caption="Parameter sweeps: contact time (first contact, µs) and force maxima (N) at every point.")
 
 
 def make_comparison(runs: Sequence[str | Path], *, csv: str | Path, md: str | Path,
-                    provenance: str | Path) -> None:
+                    provenance: str | Path, html: str | Path | None = None) -> None:
     """Fig. 2's numbers: contact time and each maximum per method, differences from the SEM,
     and the paper's 11 % and 9 % beside them."""
-    _table_artifact(runs, comparison_frame, csv=csv, md=md, provenance=provenance, digits=3, caption=(
-        "Fig. 2, case 'model': contact time (us) and force maxima (kN) of the first contact per "
-        "method; differences from our SEM (%), next to the paper's FEM-SEM differences (%)."))
+    _table_artifact(runs, comparison_frame, comparison_views, csv=csv, md=md, html=html, provenance=provenance,
+                    caption=("Fig. 2, case 'model': contact time (µs) and force maxima (kN) of the first contact "
+                             "per method; differences from our SEM (%), next to the paper's FEM-SEM differences (%)."))
 
 
 WORK_PRECISION_CAPTION = (
@@ -245,16 +258,16 @@ WORK_PRECISION_CAPTION = (
 
 def make_work_precision(runs: Sequence[str | Path], methods: Mapping[str, Any], fit_levels: int, *,
                         csv: str | Path, orders_csv: str | Path, orders_md: str | Path,
-                        provenance: str | Path) -> None:
+                        provenance: str | Path, orders_html: str | Path | None = None) -> None:
     """The work-precision table and the fitted orders (with theory) of every method and case."""
     records = [read_run(p) for p in runs]
     frame = work_precision_frame(records, methods)
     orders = observed_orders(frame, methods, fit_levels)
     write_table(frame, csv=csv)
-    write_table(orders, csv=orders_csv, md=orders_md, digits=2, caption=(
+    write_table(orders, csv=orders_csv, md=orders_md, html=orders_html, views=orders_views(orders), caption=(
         f"Observed orders of convergence (log-log fit of the error against h = 1/resolution on the "
         f"finest {fit_levels} levels whose error exceeds 10x the reference's), next to the theory."))
-    write_provenance(provenance, records, [csv, orders_csv, orders_md])
+    write_provenance(provenance, records, _outputs(csv, orders_csv, orders_md, orders_html))
     log.info("work precision: %d runs, %d cases", len(records), frame["case_id"].nunique())
 
 
@@ -274,7 +287,7 @@ def make_work_precision_figure(runs: Sequence[str | Path], methods: Mapping[str,
 
 def make_stability(runs: Sequence[str | Path], references: Sequence[str | Path],
                    tolerances: Mapping[str, Mapping[str, float]], *, csv: str | Path, md: str | Path,
-                   provenance: str | Path) -> None:
+                   provenance: str | Path, html: str | Path | None = None) -> None:
     """The stress runs checked against the stated tolerances; raises when one is a violation
     (a silent wrong answer), after logging the whole table."""
     records = [read_run(p) for p in runs]
@@ -285,11 +298,11 @@ def make_stability(runs: Sequence[str | Path], references: Sequence[str | Path],
         log.error("stability table:\n%s", frame.to_string())
         raise StudyViolation("stability study: runs that neither met their tolerances nor failed clearly:\n  "
                            + "\n  ".join(bad))
-    write_table(frame, csv=csv, md=md, digits=6, caption=(
+    write_table(frame, csv=csv, md=md, html=html, views=stability_views(frame), caption=(
         "Stress cases: every method's result checked (finite, force >= 0, energy balance and first "
         "contact time within the method's stated tolerances against a sem reference at tolerance "
         "1e-8), or its failure message."))
-    write_provenance(provenance, [*records, *refs.values()], [csv, md])
+    write_provenance(provenance, [*records, *refs.values()], _outputs(csv, md, html))
     log.info("stability: %d runs, %d ok, %d failed clearly", len(frame), (frame["verdict"] == "ok").sum(),
              frame["verdict"].str.startswith("failed").sum())
 

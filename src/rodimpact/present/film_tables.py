@@ -30,30 +30,13 @@ from rodimpact.io.sidecar import provenance_record
 from rodimpact.io.store import RunRecord
 from rodimpact.present.tables import METHOD_ORDER, table2_frame
 
-__all__ = ["FILM_ROLES", "film_band_frame", "film_indentation_frame", "film_table_frame", "headers_with_units",
-           "reading_of", "readings_frame", "table2_panels", "write_provenance_with_files"]
+__all__ = ["FILM_ROLES", "film_band_frame", "film_indentation_frame", "film_table_frame", "reading_of",
+           "readings_frame", "table2_panels", "write_provenance_with_files"]
 
 log = logging.getLogger(__name__)
 
 #: The readings :func:`film_table_frame` compares, by role: the column suffix of each.
 FILM_ROLES = ("no_film", "film", "film_calibrated", "no_film_calibrated")
-
-#: Column-name suffix -> unit, for the Markdown headers.
-_UNITS = {"_us": "µs", "_um": "µm", "_mm": "mm", "_g": "g", "_N": "N", "_pct": "%", "_pa": "Pa", "_m": "m"}
-
-
-def headers_with_units(columns: Iterable[str]) -> dict[str, str]:
-    """Column -> a header in words with its unit: ``measured_us`` -> ``measured (µs)``."""
-    headers = {}
-    for column in columns:
-        name, unit = column, ""
-        for suffix, words in _UNITS.items():
-            if column.endswith(suffix):
-                name, unit = column[: -len(suffix)], words
-                break
-        text = name.replace("_", " ")
-        headers[column] = f"{text} ({unit})" if unit else text
-    return headers
 
 
 def reading_of(config: Mapping[str, Any]) -> dict[str, Any]:

@@ -16,6 +16,7 @@ import pandas as pd
 from rodimpact.analysis.signals import first_contact_maxima
 from rodimpact.io.atomic import atomic_output
 from rodimpact.io.store import RunRecord, read_summary
+from rodimpact.present.table_formats import Panel, html_tables, latex_tables, markdown_table
 from rodimpact.solvers.registry import METHODS
 
 __all__ = [
@@ -232,19 +233,28 @@ def comparison_frame(records: Sequence[RunRecord], reference: str = "sem") -> pd
 
 
 def write_table(frame: pd.DataFrame, *, csv: str | Path, md: str | Path | None = None,
-                tex: str | Path | None = None, caption: str = "", digits: int = 2,
-                headers: Mapping[str, str] | None = None) -> None:
-    """Write a table as CSV (full precision) and optionally Markdown and LaTeX (rounded);
-    ``headers`` (column -> header) renames the columns of the Markdown and LaTeX only."""
+                html: str | Path | None = None, tex: str | Path | None = None, caption: str = "",
+                views: Sequence[Panel] = ()) -> None:
+    """Write a table: the CSV with every column at full precision (machine names), and for
+    people, each optional: Markdown (every column, rounded, headers in words with units, after
+    ``caption``), and the panels ``views`` as HTML tables (for the report) and as LaTeX tables
+    (each with its caption and label). Headers, units and rounding: :mod:`.columns`.
+
+    Raises
+    ------
+    ValueError
+        ``html`` or ``tex`` is asked for without ``views``.
+    """
+    if (html is not None or tex is not None) and not views:
+        raise ValueError("write_table: HTML and LaTeX show panels: give views")
     with atomic_output(csv) as tmp:
         frame.to_csv(tmp, index=False, float_format="%.10g")
-    rounded = frame.round(digits).rename(columns=dict(headers or {}))
     if md is not None:
-        text = rounded.to_markdown(index=False, floatfmt=f".{digits}f")
-        _write_text(md, (f"{caption}\n\n" if caption else "") + text + "\n")
+        _write_text(md, (f"{caption}\n\n" if caption else "") + markdown_table(frame) + "\n")
+    if html is not None:
+        _write_text(html, html_tables(frame, views))
     if tex is not None:
-        _write_text(tex, rounded.to_latex(index=False, float_format=f"%.{digits}f",
-                                          caption=caption or None, escape=True))
+        _write_text(tex, latex_tables(frame, views))
 
 
 def _write_text(path: str | Path, text: str) -> None:

@@ -65,6 +65,8 @@ class Method:
         (:mod:`rodimpact.solvers.cost`).
     label : str
         Its name in words, for legends and captions.
+    header : str
+        Its name in a table's column header: short, at most two lines of eight characters.
     order : float
         Theoretical order of convergence in the step (and mesh) size.
     family : {"sem", "fem"}
@@ -85,6 +87,7 @@ class Method:
     solver: str
     cost: str
     label: str
+    header: str
     order: float
     family: str
     style: str
@@ -142,16 +145,17 @@ def _load(path: str) -> Callable[..., Any]:
 METHODS: dict[str, Method] = {m.name: m for m in (
     Method(name="sem", options=SEMOptions, problem=ImpactProblem.from_case,
            solver="rodimpact.solvers.sem.solver:solve_sem", cost="rodimpact.solvers.sem.cost:sem_cost",
-           label="SEM, implicit scheme", order=2.0, family="sem", style="-", color="C0"),
+           label="SEM, implicit scheme", header="SEM", order=2.0, family="sem", style="-", color="C0"),
     Method(name="sem_paper", options=PaperSEMOptions, problem=ImpactProblem.from_case,
            solver="rodimpact.solvers.sem.solver:solve_sem", cost="rodimpact.solvers.sem.cost:sem_cost",
-           label="SEM, the paper's explicit scheme", order=1.0, family="sem", style="--", color="C1"),
+           label="SEM, the paper's explicit scheme", header="SEM, explicit", order=1.0, family="sem", style="--",
+           color="C1"),
     Method(name="fem1d", options=FEM1DOptions, problem=ImpactProblem.from_case,
            solver="rodimpact.solvers.fem1d.solver:solve_fem1d", cost="rodimpact.solvers.fem1d.cost:fem1d_cost",
-           label="FEM, 1D bar", order=2.0, family="fem", style="-.", color="C2"),
+           label="FEM, 1D bar", header="FEM 1-D", order=2.0, family="fem", style="-.", color="C2"),
     Method(name="fem_axi", options=FEMAxiOptions, problem=AxiImpact.from_case,
            solver="rodimpact.solvers.fem_axi.solver:solve_fem_axi", cost="rodimpact.solvers.fem_axi.cost:fem_axi_cost",
-           label="FEM, axisymmetric continuum", order=2.0, family="fem", style=":", color="C3",
+           label="FEM, axisymmetric continuum", header="FEM axisym.", order=2.0, family="fem", style=":", color="C3",
            contact="continuum"),
 )}
 

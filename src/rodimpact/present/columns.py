@@ -1,0 +1,190 @@
+"""What every column of every table means to a reader: a label in words, a unit, a format.
+
+The tables' frames keep machine names (``measured_us``, ``sem_error_pct``: the CSV's header,
+the unit in the suffix); every table written for people (HTML, LaTeX, Markdown) takes its
+headers and its rounding from here, through :func:`column`. Three kinds of name are known:
+
+- the fixed columns of :data:`COLUMNS`;
+- the columns made per method, ``{method}_us`` and ``{method}_error_pct``, and per method and
+  reading of the sensor film, ``{method}_{role}_us`` and ``{method}_{role}_error_pct``, labelled
+  with each method's ``header`` in the registry and :data:`ROLE_WORDS`;
+- numbered columns (``max_{i}_kN``) and comparisons with a method (``*_vs_{method}_pct``).
+
+Anything else is read from its suffix (:data:`SUFFIX_UNITS`), its words capitalised.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from typing import Any, Iterable
+
+import numpy as np
+
+from rodimpact.solvers.registry import METHODS
+
+__all__ = ["COLUMNS", "Column", "LATEX_UNITS", "ROLE_WORDS", "SUFFIX_UNITS", "column", "headers_with_units",
+           "method_header"]
+
+
+@dataclass(frozen=True)
+class Column:
+    """How one column is shown.
+
+    Attributes
+    ----------
+    label : str
+        The header in words, without the unit ("Measured", "SEM error").
+    unit : str
+        The unit as printed ("µs", "%", "g"); empty for a pure number or a text.
+    fmt : str
+        A format spec for a number (``".2f"``: two decimals); empty for a text, a flag or an
+        integer, shown as they are (a flag as yes or no).
+    """
+
+    label: str
+    unit: str = ""
+    fmt: str = ".2f"
+
+    @property
+    def header(self) -> str:
+        """The label and its unit in parentheses: ``Measured (µs)``."""
+        return f"{self.label} ({self.unit})" if self.unit else self.label
+
+    def text(self, value: Any) -> str:
+        """A cell: the number in this column's format, an en dash for a missing value, yes or no
+        for a flag, a text as it is."""
+        if value is None or (isinstance(value, (float, np.floating)) and math.isnan(value)):
+            return "–"
+        if isinstance(value, (bool, np.bool_)):
+            return "yes" if value else "no"
+        if self.fmt and isinstance(value, (int, float, np.integer, np.floating)):
+            return format(float(value), self.fmt)
+        return str(value)
+
+
+#: Units as printed (HTML, Markdown) -> LaTeX (plain, no siunitx).
+LATEX_UNITS = {"µs": r"$\mu$s", "µm": r"$\mu$m", "%": r"\%", "kg/s": "kg/s", "m/s": "m/s"}
+
+#: Suffix of a machine name -> unit, longest first (``_kg_s`` before ``_s``).
+SUFFIX_UNITS = {"_kg_s": "kg/s", "_m_s": "m/s", "_us": "µs", "_um": "µm", "_mm": "mm", "_kN": "kN", "_pct": "%",
+                "_MiB": "MiB", "_pa": "Pa", "_kg": "kg", "_g": "g", "_N": "N", "_m": "m", "_s": "s"}
+
+#: The readings of Table 2 with and without the sensor film (``film_tables.FILM_ROLES``), in words.
+ROLE_WORDS = {"no_film": "no film", "film": "film", "film_calibrated": "film, calibrated",
+              "no_film_calibrated": "calibrated, no film"}
+
+_TEXT = ""
+_ORDINALS = ("1st", "2nd", "3rd")
+
+#: The fixed columns.
+COLUMNS: dict[str, Column] = {
+    # what a row is
+    "case_id": Column("Case", fmt=_TEXT), "row": Column("Ball", fmt=_TEXT), "variant": Column("Reading", fmt=_TEXT),
+    "method": Column("Method", fmt=_TEXT), "sweep": Column("Sweep", fmt=_TEXT), "point": Column("Point", fmt=_TEXT),
+    "quantity": Column("Quantity", fmt=_TEXT), "film": Column("Film", fmt=_TEXT),
+    "contact_law": Column("Contact law", fmt=_TEXT), "law": Column("Law", fmt=_TEXT),
+    "paper_method": Column("Paper's method", fmt=_TEXT), "n_cases": Column("Cases", fmt=_TEXT),
+    # the balls and the rod
+    "diameter_mm": Column("Diameter", "mm"), "mass_g": Column("Mass", "g", ".3g"),
+    "ball_diameter_m": Column("Ball diameter", "m", ".5f"), "velocity_m_s": Column("Velocity", "m/s", ".4f"),
+    "rod_length_mm": Column("Rod length", "mm", ".1f"), "film_modulus_pa": Column("Film modulus", "Pa", ".3g"),
+    # Table 2: measured, printed by the paper, ours
+    "measured_us": Column("Measured", "µs"), "published_fem_us": Column("Paper FEM", "µs"),
+    "published_sem_us": Column("Paper SEM", "µs"), "published_fem_error_pct": Column("Paper FEM error", "%"),
+    "published_sem_error_pct": Column("Paper SEM error", "%"),
+    "sem_vs_published_sem_pct": Column("SEM vs paper SEM", "%"),
+    # the errors per reading
+    "mean_error_pct": Column("Mean error", "%"), "max_error_pct": Column("Largest error", "%"),
+    "mean_signed_error_pct": Column("Mean signed error", "%"),
+    "paper_mean_error_pct": Column("Paper's mean error", "%"),
+    "paper_max_error_pct": Column("Paper's largest error", "%"),
+    # the sensor film
+    "nominal_us": Column("Nominal", "µs"), "band_min_us": Column("Band min", "µs"),
+    "band_max_us": Column("Band max", "µs"), "measured_in_band": Column("Measured in band", fmt=_TEXT),
+    "monotone": Column("Monotone", fmt=_TEXT), "radius_to_thickness": Column("Contact radius / film thickness"),
+    "model_form_pct": Column("Model-form error", "%"),
+    "force_N": Column("Force", "N", ".4g"), "continuum_approach_um": Column("Continuum approach", "µm", ".4f"),
+    "law_approach_um": Column("Law approach", "µm", ".4f"), "law_error_pct": Column("Law error", "%"),
+    "contact_radius_um": Column("Contact radius", "µm", ".1f"),
+    "film_thickness_um": Column("Film thickness", "µm", ".1f"),
+    "radius_to_film_thickness": Column("Contact radius / film thickness"),
+    "interpolation_error_half": Column("Interpolation error", fmt=".1e"),
+    # Fig. 2 and the sweeps
+    "contact_time_us": Column("Contact time", "µs", ".3f"), "n_maxima": Column("Maxima", fmt=_TEXT),
+    "maxima_vs_sem_pct": Column("Maxima vs SEM", "%", ".3f"),
+    "paper_fem_vs_sem_contact_time_pct": Column("Paper FEM vs SEM, contact time", "%", ".0f"),
+    "paper_fem_vs_sem_extrema_pct": Column("Paper FEM vs SEM, extrema", "%", ".0f"),
+    "first_peak_force_N": Column("First force maximum", "N", ".4g"),
+    "max_force_N": Column("Largest force maximum", "N", ".4g"), "n_contacts": Column("Contacts", fmt=_TEXT),
+    # the orders of convergence
+    "observed_order": Column("Observed order"), "theoretical_order": Column("Theoretical order", fmt=".0f"),
+    "fitted_levels": Column("Fitted levels", fmt=_TEXT),
+    # the stress cases
+    "status": Column("Status", fmt=_TEXT), "success": Column("Success", fmt=_TEXT),
+    "finite": Column("Finite", fmt=_TEXT), "min_force_N": Column("Smallest force", "N", ".3g"),
+    "energy_error": Column("Energy error", fmt=".1e"), "energy_tolerance": Column("Energy tolerance", fmt=".0e"),
+    "contact_time_s": Column("Contact time", "s", ".4e"),
+    "reference_contact_time_s": Column("Reference contact time", "s", ".4e"),
+    "contact_time_error": Column("Contact-time error", fmt=".1e"),
+    "contact_time_tolerance": Column("Contact-time tolerance", fmt=".0e"),
+    "contact_intervals_us": Column("Contact intervals", "µs", _TEXT), "wall_time_s": Column("Wall time", "s", ".3f"),
+    "message": Column("Message", fmt=_TEXT), "verdict": Column("Verdict", fmt=_TEXT),
+}
+
+
+def method_header(method: str) -> str:
+    """A method's name in a table header: its registry ``header``, else its label, else its name."""
+    if method not in METHODS:
+        return method
+    return METHODS[method].header or METHODS[method].label
+
+
+def _per_method(name: str) -> Column | None:
+    """``{method}_us``, ``{method}_error_pct``, ``{method}_{role}_us``, ``{method}_{role}_error_pct``."""
+    for suffix, unit, what in (("_error_pct", "%", " error"), ("_us", "µs", "")):
+        if not name.endswith(suffix):
+            continue
+        stem = name[: -len(suffix)]
+        for method in sorted(METHODS, key=len, reverse=True):
+            if stem == method:
+                return Column(method_header(method) + what, unit)
+            for role, words in ROLE_WORDS.items():
+                if stem == f"{method}_{role}":
+                    return Column(f"{method_header(method)}, {words}{what}", unit)
+    return None
+
+
+def column(name: str) -> Column:
+    """How the column ``name`` is shown: its label, unit and format.
+
+    Parameters
+    ----------
+    name : str
+        A column of a table's frame (the CSV's header).
+    """
+    if name in COLUMNS:
+        return COLUMNS[name]
+    per_method = _per_method(name)
+    if per_method is not None:
+        return per_method
+    maximum = re.fullmatch(r"max_(\d+)_kN", name)
+    if maximum:
+        i = int(maximum.group(1))
+        return Column(f"{_ORDINALS[i - 1] if i <= len(_ORDINALS) else f'{i}th'} maximum", "kN", ".3f")
+    versus = re.fullmatch(r"(.+)_vs_(.+)_pct", name)
+    if versus:
+        what, method = versus.groups()
+        return Column(f"{column(what).label} vs {method_header(method)}", "%", ".3f")
+    for suffix, unit in SUFFIX_UNITS.items():
+        if name.endswith(suffix) and len(name) > len(suffix):
+            words = name[: -len(suffix)].replace("_", " ")
+            return Column(words[:1].upper() + words[1:], unit)
+    words = name.replace("_", " ")
+    return Column(words[:1].upper() + words[1:], fmt=_TEXT)
+
+
+def headers_with_units(columns: Iterable[str]) -> dict[str, str]:
+    """Column -> its header in words with its unit: ``measured_us`` -> ``Measured (µs)``."""
+    return {name: column(name).header for name in columns}

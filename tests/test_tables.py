@@ -1,0 +1,378 @@
+"""The tables written for people: headers in words with units, chosen columns, a page's width.
+
+The CSV keeps every column at full precision under its machine name; the HTML (the report),
+the LaTeX (Table 2, for a paper) and the Markdown take their labels, units and rounding from
+``rodimpact.present.columns``. Checked on Table 2 built from in-memory runs, and on every
+view of every table from frames with the columns the workflow writes.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import shutil
+import subprocess
+from html.parser import HTMLParser
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from rodimpact.io.store import RunRecord
+from rodimpact.present import table_views
+from rodimpact.present.columns import Column, column, headers_with_units, method_header
+from rodimpact.present.table_formats import (
+    LATEX_CHAR_PT, MAX_COLUMNS, Panel, header_lines, html_tables, latex_escape, latex_tables, latex_width_pt,
+    panels
+)
+from rodimpact.present.tables import table2_frame, write_table
+from rodimpact.solvers.registry import METHODS
+
+#: The widest table a one-column journal page takes: a 6 in text block, pt (1 in = 72.27 pt).
+PAGE_WIDTH_PT = 6.0 * 72.27
+
+#: Table 2 of the paper (diameter mm, mass g, measured µs, FEM µs, FEM error %, SEM µs, SEM error %).
+ROWS = [(3.16, 0.13, 36.42, 31.20, 14.33, 15.32, 57.93), (4.75, 0.44, 46.83, 60.75, 29.72, 23.63, 49.54),
+        (5.56, 0.71, 52.26, 78.09, 49.42, 27.90, 46.61), (6.34, 1.04, 60.05, 81.61, 35.90, 31.71, 47.19),
+        (9.51, 3.51, 84.96, 106.21, 25.01, 47.94, 43.57), (12.73, 8.46, 111.10, 121.71, 9.54, 64.82, 41.66)]
+
+
+def _record(row: tuple, variant: str, method: str, contact_time_us: float) -> RunRecord:
+    diameter, mass, measured, fem, fem_err, sem, sem_err = row
+    case_id = f"ball_{diameter}mm-{variant}"
+    config = {
+        "id": case_id, "row": f"ball_{diameter}mm", "variant": variant,
+        "impactor": {"radius_m": diameter / 2000, "mass_kg": mass / 1000, "velocity_m_s": 0.3225,
+                     "material": {"name": "steel"}},
+        "rod": {"radius_m": 0.01, "length_m": 0.0301, "material": {"name": "aluminium_table1"}},
+        "measured": {"contact_time_us": measured},
+        "published": {"fem": {"contact_time_us": fem, "error_pct": fem_err},
+                      "sem": {"contact_time_us": sem, "error_pct": sem_err}},
+    }
+    return RunRecord(path=Path(f"{case_id}/{method}.h5"), case_id=case_id, method=method, config=config,
+                     config_sha256="", code_version="", library_versions={}, wall_time_s=0.0, created_utc="",
+                     series={}, units={}, summary={"contact_time_s": contact_time_us * 1e-6})
+
+
+def _records(methods: tuple[str, ...], variant: str = "r10_l30") -> list[RunRecord]:
+    """Each ball by each method, a contact time 0.6 + 0.01 i of the measured (i the method's index)."""
+    return [_record(row, variant, m, row[2] * (0.6 + 0.01 * i)) for row in ROWS for i, m in enumerate(methods)]
+
+
+@pytest.fixture(scope="module")
+def table2(tmp_path_factory) -> dict:
+    """Table 2 of three methods, written as CSV, Markdown, HTML and LaTeX."""
+    out = tmp_path_factory.mktemp("table2")
+    records = _records(("sem", "fem1d", "fem_axi"))
+    frame = table2_frame(records)
+    paths = {ext: out / f"table2_r10_l30.{ext}" for ext in ("csv", "md", "html", "tex")}
+    write_table(frame, **paths, caption="Table 2", views=table_views.table2_views(frame, "r10_l30", records))
+    return {"frame": frame, "records": records, **{ext: p.read_text(encoding="utf-8") for ext, p in paths.items()},
+            "paths": paths}
+
+
+# ---------------------------------------------------------------------------------------------
+# columns: one place for labels and units
+# ---------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("name, header", [
+    ("measured_us", "Measured (µs)"), ("published_sem_error_pct", "Paper SEM error (%)"),
+    ("mass_g", "Mass (g)"), ("diameter_mm", "Diameter (mm)"), ("sem_us", "SEM (µs)"),
+    ("fem_axi_error_pct", "FEM axisym. error (%)"), ("sem_paper_us", "SEM, explicit (µs)"),
+    ("fem1d_film_us", "FEM 1-D, film (µs)"),
+    ("sem_no_film_calibrated_error_pct", "SEM, calibrated, no film error (%)"),
+    ("max_2_kN", "2nd maximum (kN)"), ("contact_time_vs_fem1d_pct", "Contact time vs FEM 1-D (%)"),
+    ("continuum_approach_um", "Continuum approach (µm)"), ("velocity_m_s", "Velocity (m/s)"),
+    ("film_modulus_pa", "Film modulus (Pa)"), ("some_new_length_um", "Some new length (µm)"), ("row", "Ball"),
+    ("some_flag", "Some flag"),
+])  # fmt: skip
+def test_a_header_is_words_and_its_unit(name: str, header: str) -> None:
+    assert column(name).header == header
+    assert headers_with_units([name]) == {name: header}
+
+
+def test_every_method_has_a_short_header() -> None:
+    headers = {m: method_header(m) for m in METHODS}
+    assert all(METHODS[m].header for m in METHODS)
+    assert len(set(headers.values())) == len(headers)
+    # a column of numbers (six characters) is no wider for its method's header, in two lines
+    assert all(max(map(len, header_lines(h))) <= 8 for h in headers.values()), headers
+    assert method_header("not_a_method") == "not_a_method"
+
+
+def test_cells_round_and_mark_what_is_missing() -> None:
+    assert Column("t", "µs").text(36.4249) == "36.42"
+    assert Column("t", "µs").text(np.float64(math.nan)) == "–"
+    assert Column("f").text(np.bool_(True)) == "yes" and Column("f", fmt="").text(False) == "no"
+    assert Column("n", fmt="").text(np.int64(6)) == "6"
+    assert column("mass_g").text(0.0041) == "0.0041" and column("mass_g").text(8.46) == "8.46"
+
+
+def test_latex_escapes_text_and_sets_units() -> None:
+    assert latex_escape("r10_l30: 28 µm, 3.1e-06 m², 2·3, 50% & #1") == \
+        r"r10\_l30: 28 $\mu$m, 3.1e-06 m$^2$, 2$\cdot$3, 50\% \& \#1"
+
+
+def test_long_labels_wrap_in_two_balanced_lines() -> None:
+    assert header_lines("SEM") == ("SEM", "")
+    assert header_lines("SEM vs paper SEM") == ("SEM vs", "paper SEM")
+    assert header_lines("Continuum") == ("Continuum", "")  # one word is never split
+
+
+# ---------------------------------------------------------------------------------------------
+# panels
+# ---------------------------------------------------------------------------------------------
+
+def test_panels_split_evenly_and_repeat_the_key() -> None:
+    frame = pd.DataFrame({c: [1.0, 2.0] for c in ["mass_g", *(f"v{i}_us" for i in range(9))]})
+    shown = panels(frame, "T", ["mass_g", "absent_us"], [f"v{i}_us" for i in range(9)], label="tab:t")
+    assert [p.columns for p in shown] == [("mass_g", "v0_us", "v1_us", "v2_us", "v3_us", "v4_us"),
+                                          ("mass_g", "v5_us", "v6_us", "v7_us", "v8_us")]
+    assert [p.label for p in shown] == ["tab:t-1", "tab:t-2"]
+    assert [p.title for p in shown] == ["T, part 1 of 2", "T, part 2 of 2"]
+    with pytest.raises(ValueError, match="no room"):
+        panels(frame, "T", [f"v{i}_us" for i in range(8)], ["mass_g"])
+
+
+def test_panels_by_a_column_show_each_group_alone() -> None:
+    frame = pd.DataFrame({"variant": ["a", "b", "a"], "row": ["x", "y", "z"], "force_N": [1.0, 2.0, 3.0]})
+    shown = panels(frame, "Indentation", ["row"], ["force_N"], by="variant")
+    assert [(p.title, p.columns, p.rows) for p in shown] == [
+        ("Indentation: reading a", ("row", "force_N"), (0, 2)), ("Indentation: reading b", ("row", "force_N"), (1,))]
+    assert list(shown[0].cells(frame)["row"]) == ["x", "z"]
+
+
+#: The columns each table's frame has (the CSV headers the workflow writes), and its view.
+FRAMES = {
+    "table2_variants": (table_views.variants_views, [
+        "variant", "film", "contact_law", "method", "n_cases", "mean_error_pct", "max_error_pct",
+        "mean_signed_error_pct", "paper_method", "paper_mean_error_pct", "paper_max_error_pct"]),
+    "fig2_comparison": (table_views.comparison_views, [
+        "case_id", "method", "contact_time_us", "n_maxima", "max_1_kN", "max_2_kN", "max_3_kN",
+        "contact_time_vs_sem_pct", "maxima_vs_sem_pct", "paper_fem_vs_sem_contact_time_pct",
+        "paper_fem_vs_sem_extrema_pct"]),
+    "table2_film": (table_views.film_table_views, [
+        "row", "mass_g", "diameter_mm", "measured_us", "published_fem_us", "published_sem_us", "sem_no_film_us",
+        "fem1d_no_film_us", "fem_axi_no_film_us", "sem_film_us", "fem1d_film_us", "fem_axi_film_us",
+        "sem_film_calibrated_us", "sem_no_film_calibrated_us", "band_min_us", "band_max_us",
+        "published_fem_error_pct", "published_sem_error_pct", "sem_no_film_error_pct", "fem1d_no_film_error_pct",
+        "fem_axi_no_film_error_pct", "sem_film_error_pct", "fem1d_film_error_pct", "fem_axi_film_error_pct",
+        "sem_film_calibrated_error_pct", "sem_no_film_calibrated_error_pct", "radius_to_thickness",
+        "model_form_pct"]),
+    "film_band": (table_views.film_band_views, [
+        "variant", "row", "case_id", "mass_g", "measured_us", "nominal_us", "band_min_us", "band_max_us",
+        "measured_in_band", "monotone"]),
+    "film_indentation": (table_views.film_indentation_views, [
+        "case_id", "variant", "row", "point", "force_N", "continuum_approach_um", "law_approach_um", "law",
+        "law_error_pct", "contact_radius_um", "film_thickness_um", "radius_to_film_thickness",
+        "interpolation_error_half"]),
+    "sweep": (table_views.sweep_views, [
+        "sweep", "row", "variant", "method", "ball_diameter_m", "mass_g", "diameter_mm", "velocity_m_s",
+        "rod_length_mm", "contact_time_us", "first_peak_force_N", "max_force_N", "n_contacts", "film_modulus_pa"]),
+    "work_precision_orders": (table_views.orders_views, [
+        "case_id", "method", "quantity", "observed_order", "theoretical_order", "fitted_levels"]),
+    "stability": (table_views.stability_views, [
+        "case_id", "method", "status", "success", "finite", "min_force_N", "energy_error", "energy_tolerance",
+        "contact_time_s", "reference_contact_time_s", "contact_time_error", "contact_time_tolerance", "n_contacts",
+        "contact_intervals_us", "wall_time_s", "message", "verdict"]),
+}
+
+
+def _frame(columns: list[str]) -> pd.DataFrame:
+    text = {"variant", "row", "case_id", "method", "sweep", "contact_law", "paper_method", "law", "quantity",
+            "fitted_levels", "status", "message", "verdict", "contact_intervals_us"}
+    return pd.DataFrame({c: (["r10_l30", "r1_l30", "r10_l30"] if c in text else [1.25, 2.5, 3.75]) for c in columns})
+
+
+@pytest.mark.parametrize("name", sorted(FRAMES))
+def test_every_view_shows_words_and_units_in_a_page(name: str) -> None:
+    views, columns = FRAMES[name]
+    frame = _frame(columns)
+    shown = views(frame)
+    assert shown, name
+    for panel in shown:
+        assert 1 <= len(panel.columns) <= MAX_COLUMNS, (name, panel.columns)
+        assert set(panel.columns) <= set(columns)
+        for c in panel.columns:
+            spec = panel.header(c)
+            assert "_" not in spec.header and not spec.label[:1].islower(), (name, c, spec.header)
+            suffix = re.search(r"_(us|um|mm|g|N|kN|pct)$", c)
+            if suffix:
+                unit = {"us": "µs", "um": "µm", "pct": "%"}.get(suffix.group(1), suffix.group(1))
+                assert spec.unit == unit, (name, c, spec)
+    # the HTML names no column by its machine name, and shows every row of every panel
+    text = html_tables(frame, shown)
+    for c in columns:
+        assert f">{c}<" not in text and f">{column(c).label}_" not in text
+
+
+# ---------------------------------------------------------------------------------------------
+# Table 2: CSV, HTML, LaTeX, Markdown
+# ---------------------------------------------------------------------------------------------
+
+def test_table2_csv_keeps_every_column_at_full_precision(table2: dict) -> None:
+    back = pd.read_csv(table2["paths"]["csv"])
+    frame = table2["frame"]
+    assert list(back.columns) == list(frame.columns)
+    assert {"measured_us", "sem_us", "fem_axi_error_pct", "sem_vs_published_sem_pct"} <= set(back.columns)
+    numeric = frame.select_dtypes("number").columns
+    np.testing.assert_allclose(back[numeric].to_numpy(float), frame[numeric].to_numpy(float), rtol=1e-9)
+    assert back["sem_us"].iloc[0] == pytest.approx(36.42 * 0.6, rel=1e-9)  # not rounded to 21.85
+
+
+class _Tables(HTMLParser):
+    """Each <table>: its caption, header cells and body rows (texts)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.tables: list[dict] = []
+        self._where: str | None = None
+        self.tags: set[str] = set()
+
+    def handle_starttag(self, tag, attrs) -> None:
+        self.tags.add(tag)
+        if tag == "table":
+            self.tables.append({"caption": "", "th": [], "rows": []})
+        elif tag in ("caption", "th", "td"):
+            self._where = tag
+            if tag == "th":
+                self.tables[-1]["th"].append("")
+            elif tag == "td":
+                self.tables[-1]["rows"][-1].append("")
+        elif tag == "tr" and self._in_body:
+            self.tables[-1]["rows"].append([])
+        elif tag == "tbody":
+            self._in_body = True
+        elif tag == "br" and self._where == "th":
+            self.tables[-1]["th"][-1] += " "
+
+    _in_body = False
+
+    def handle_endtag(self, tag) -> None:
+        if tag in ("caption", "th", "td"):
+            self._where = None
+        elif tag == "tbody":
+            self._in_body = False
+
+    def handle_data(self, data) -> None:
+        table = self.tables[-1] if self.tables else None
+        if self._where == "caption":
+            table["caption"] += data
+        elif self._where == "th":
+            table["th"][-1] += data
+        elif self._where == "td":
+            table["rows"][-1][-1] += data
+
+
+def test_table2_html_is_two_tables_with_units(table2: dict) -> None:
+    parser = _Tables()
+    parser.feed(table2["html"])
+    assert parser.tags <= {"div", "table", "caption", "thead", "tbody", "tr", "th", "td", "br", "span"}
+    times, errors = parser.tables
+    assert times["th"] == ["Diameter (mm)", "Mass (g)", "Measured (µs)", "Paper FEM (µs)", "Paper SEM (µs)",
+                           "SEM (µs)", "FEM 1-D (µs)", "FEM axisym. (µs)"]
+    assert errors["th"] == ["Diameter (mm)", "Mass (g)", "Paper FEM (%)", "Paper SEM (%)", "SEM (%)", "FEM 1-D (%)",
+                            "FEM axisym. (%)", "SEM vs paper SEM (%)"]
+    assert len(times["rows"]) == len(errors["rows"]) == 6
+    assert times["rows"][0] == ["3.16", "0.13", "36.42", "31.20", "15.32", "21.85", "22.22", "22.58"]
+    assert errors["rows"][-1][2:5] == ["9.54", "41.66", "40.00"]  # |0.6 t - t| / t
+    assert "url(" not in table2["html"] and "<script" not in table2["html"]
+
+
+def _environments(tex: str) -> list[str]:
+    """The environments of a LaTeX text, checked to nest and close; their names in order of opening."""
+    stack, opened = [], []
+    for kind, name in re.findall(r"\\(begin|end)\{([^}]*)\}", tex):
+        if kind == "begin":
+            stack.append(name)
+            opened.append(name)
+        else:
+            assert stack and stack.pop() == name, f"\\end{{{name}}} closes nothing open"
+    assert not stack, f"unclosed: {stack}"
+    return opened
+
+
+def _braces_balance(tex: str) -> bool:
+    depth = 0
+    for ch in re.sub(r"\\[{}%&$#_]", "", tex):
+        depth += {"{": 1, "}": -1}.get(ch, 0)
+        if depth < 0:
+            return False
+    return depth == 0
+
+
+def _tabulars(tex: str) -> list[tuple[str, list[str], list[str]]]:
+    """Each tabular: its column spec, its header lines, its body lines."""
+    out = []
+    for spec, body in re.findall(r"\\begin\{tabular\}\{([^}]*)\}(.*?)\\end\{tabular\}", tex, re.S):
+        head, _, rows = body.partition(r"\midrule")
+        lines = lambda part: [ln.strip() for ln in part.splitlines() if ln.strip().endswith(r"\\")]  # noqa: E731
+        out.append((spec, lines(head), lines(rows)))
+    return out
+
+
+def _check_latex(tex: str, frame: pd.DataFrame, shown: list[Panel]) -> None:
+    assert _environments(tex) == ["table", "tabular"] * len(shown)
+    assert _braces_balance(tex)
+    floats = re.findall(r"\\begin\{table\}.*?\\end\{table\}", tex, re.S)
+    labels = [re.findall(r"\\label\{([^}]*)\}", f) for f in floats]
+    assert all(len(lab) == 1 and lab[0].startswith("tab:") for lab in labels), labels
+    assert len({lab[0] for lab in labels}) == len(floats)
+    assert all(len(re.findall(r"\\caption\{", f)) == 1 for f in floats)
+    for (spec, head, body), panel in zip(_tabulars(tex), shown):
+        assert len(spec) == len(panel.columns) <= MAX_COLUMNS
+        for line in head + body:
+            assert line.count("&") == len(spec) - 1, line
+        header = " ".join(head)
+        assert "\\_" not in header, header  # no machine name in a header
+        assert latex_width_pt(frame, panel) <= PAGE_WIDTH_PT, (panel.title, latex_width_pt(frame, panel))
+    assert not re.search(r"\bus\b|\bum\b", tex), "a unit written as us or um"
+    assert "booktabs" in tex.splitlines()[0]
+
+
+def test_table2_latex_is_journal_ready(table2: dict) -> None:
+    tex, frame = table2["tex"], table2["frame"]
+    shown = table_views.table2_views(frame, "r10_l30", table2["records"])
+    _check_latex(tex, frame, shown)
+    assert r"\label{tab:table2-r10-l30-times}" in tex and r"\label{tab:table2-r10-l30-errors}" in tex
+    assert r"\ref{tab:table2-r10-l30-times}" in tex
+    (_, head, body), _ = _tabulars(tex)[0], None
+    assert head[-1] == r"(mm) & (g) & ($\mu$s) & ($\mu$s) & ($\mu$s) & ($\mu$s) & ($\mu$s) & ($\mu$s) \\"
+    assert body[0] == r"3.16 & 0.13 & 36.42 & 31.20 & 15.32 & 21.85 & 22.22 & 22.58 \\"
+    caption = re.search(r"\\caption\{(.*)\}\n", tex).group(1)
+    assert "0.3225~m/s" in caption and r"\texttt{r10\_l30}" in caption and "radius 10 mm" in caption
+
+
+def test_table2_of_four_methods_splits_within_a_page() -> None:
+    records = _records(("sem", "sem_paper", "fem1d", "fem_axi"), variant="r1_l30")
+    frame = table2_frame(records)
+    shown = table_views.table2_views(frame, "r1_l30", records)
+    assert len(shown) == 4  # the times and the errors, each in two parts
+    assert all(p.columns[:2] == ("diameter_mm", "mass_g") for p in shown)
+    _check_latex(latex_tables(frame, shown), frame, shown)
+
+
+def test_table2_markdown_has_every_column_in_words(table2: dict) -> None:
+    header = table2["md"].splitlines()[2]
+    cells = [c.strip() for c in header.strip("|").split("|")]
+    assert cells == [column(c).header for c in table2["frame"].columns]
+    assert "Measured (µs)" in cells and not any("_" in c for c in cells)
+    assert "ball_3.16mm" in table2["md"]
+
+
+def test_the_width_estimate_counts_the_widest_line() -> None:
+    frame = pd.DataFrame({"measured_us": [36.42, 111.1]})
+    panel = Panel("t", ("measured_us",))
+    assert latex_width_pt(frame, panel) == pytest.approx(LATEX_CHAR_PT * len("Measured") + 12.0)
+
+
+@pytest.mark.skipif(shutil.which("pdflatex") is None, reason="pdflatex is not installed: the structure is checked")
+def test_table2_latex_compiles(table2: dict, tmp_path: Path) -> None:
+    document = tmp_path / "t.tex"
+    document.write_text("\\documentclass{article}\n\\usepackage{booktabs}\n\\setlength{\\textwidth}{6in}\n"
+                        "\\begin{document}\n\\input{" + str(table2["paths"]["tex"]) + "}\n\\end{document}\n")
+    run = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", document.name], cwd=tmp_path,
+                         capture_output=True, text=True, timeout=120, check=False)
+    assert run.returncode == 0, run.stdout[-2000:]
+    assert "Overfull \\hbox" not in (tmp_path / "t.log").read_text(errors="replace")
