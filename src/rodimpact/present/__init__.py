@@ -3,7 +3,8 @@
 What lives here: :mod:`.tables` (Table 2, the comparisons, the sweep table), :mod:`.figures`
 (Fig. 2, Fig. 4, the Table 2 figure), :mod:`.film_tables` and :mod:`.film_figures` (the sensor
 film: Table 2 with and without it, its prediction bands, the indentation curves, the contact
-force), :mod:`.study_figures` (error against run time, the stability map) and
+force), :mod:`.study_figures` (error against run time, the stability map), :mod:`.wave_figures`
+(the strain over the rod against time: its figure and its artifact) and
 :mod:`.artifacts` (one function per artifact of the workflow).
 
 What it may import: :mod:`rodimpact.io` (to read runs, bands, curves and case files, and write
