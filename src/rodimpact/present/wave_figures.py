@@ -73,7 +73,7 @@ def plot_wave_map(records: Sequence[RunRecord], title: str = "") -> matplotlib.f
     bar = fig.colorbar(mesh, ax=list(axes[0]), shrink=0.9, pad=0.02)
     bar.set_label(r"axial strain $\varepsilon = \partial u / \partial x$ (%)")
     formatter = matplotlib.ticker.ScalarFormatter(useMathText=True)
-    formatter.set_powerlimits((-2, 3))  # a small strain's ticks as multiples of a power of ten
+    formatter.set_powerlimits((-3, 4))  # a small strain's ticks as multiples of a power of ten
     bar.formatter = formatter
     handles = [Line2D([], [], linestyle="-", **_FRONT), Line2D([], [], linestyle="--", **_FRONT),
                Line2D([], [], color="k", linewidth=4.0, solid_capstyle="butt")]
@@ -106,6 +106,15 @@ def _panel(ax: matplotlib.axes.Axes, run: RunRecord, norm: matplotlib.colors.Nor
     return mesh
 
 
+def _title(config: dict) -> str:
+    """The figure's title in words: what it shows, then the case's description and its rod."""
+    rod = config["rod"]
+    words = f"rod {1000 * float(rod['length_m']):.3g} mm long, far end {rod['far_end']}"
+    description = str(config.get("description") or "").strip()
+    return f"Axial strain along the rod against time\n{description}; {words}" if description else (
+        f"Axial strain along the rod against time\n{words[0].upper()}{words[1:]}")
+
+
 def make_wave_map(runs: Sequence[str | Path], *, pdf: str | Path, png: str | Path,
                   provenance: str | Path) -> None:
     """The strain map of one case from its runs that stored the field, with its provenance.
@@ -123,10 +132,7 @@ def make_wave_map(runs: Sequence[str | Path], *, pdf: str | Path, png: str | Pat
     cases = sorted({r.case_id for r in records})
     if len(cases) != 1:
         raise ValueError(f"runs: the wave map shows one case's stored fields, got cases {cases}")
-    rod = records[0].config["rod"]
-    fig = plot_wave_map(records, title=(
-        f"Axial strain along the rod against time, case {cases[0]!r}: struck at x = 0, "
-        f"{rod['far_end']} end at x = {rod['length_m']:g} m"))
+    fig = plot_wave_map(records, title=_title(records[0].config))
     save_figure(fig, pdf=pdf, png=png, provenance=provenance_record(records, [pdf, png]),
                 title="The waves in the rod: axial strain against time and position")
     write_provenance(provenance, records, [pdf, png])
