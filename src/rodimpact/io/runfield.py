@@ -12,8 +12,8 @@
 
 The field has its own time axis (a subsampled grid, :mod:`rodimpact.solvers.field`), so it
 is kept apart from the root's histories, whose first dimension is the run's ``time``. The
-run's content digest covers it under the names ``field/<name>``; a run without a field has
-the digest it had before fields existed.
+run's content digest covers it under the names ``field/<name>``; the digest of a run without a
+field is that of its series and summary alone.
 """
 
 from __future__ import annotations
