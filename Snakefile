@@ -27,6 +27,7 @@ include: "workflow/rules/studies.smk"
 include: "workflow/rules/sweeps.smk"
 include: "workflow/rules/bench.smk"
 include: "workflow/rules/forces.smk"
+include: "workflow/rules/waves.smk"
 
 
 rule all:

@@ -125,10 +125,14 @@ def test_table2_variants_set_rod_geometry(shipped: Project) -> None:
 
 
 def test_defaults_are_filled(shipped: Project) -> None:
-    case = shipped.cases["ball_3.16mm-r10_l30"]
+    case = shipped.cases["ball_3.16mm-r1_l30"]
     assert case["rod"]["far_end"] == "fixed"
     assert case["methods"] == ["sem", "fem1d", "fem_axi"]
-    assert case["outputs"] == ["contact_force"]
+    assert case["outputs"] == ["contact_force"] and "field_grid" not in case
+    # on the text's rod the row adds the strain field (its variant_outputs), with its grid's defaults
+    waves = shipped.cases["ball_3.16mm-r10_l30"]
+    assert waves["outputs"] == ["contact_force", "strain_field"]
+    assert waves["field_grid"] == {"sections": 41, "samples_per_transit": 40, "round_trips_after": 1.0}
     assert case["stations"] == []
     assert case["numerics"] == {
         "sem": {"dt_s": None, "steps_per_contact": None, "max_time_factor": 100.0, "max_contacts": 50,
@@ -202,7 +206,9 @@ def test_case_numerics_override_global(project_dir: Path) -> None:
 
 
 def test_case_variants_list_selects_variants(project_dir: Path) -> None:
-    edit(project_dir / "config/cases/table2.yaml", lambda d: d["cases"][0].update(variants=["r1_l301"]))
+    # (without the row's strain field on r10_l30, a variant it is no longer expanded over)
+    edit(project_dir / "config/cases/table2.yaml",
+         lambda d: d["cases"][0].update(variants=["r1_l301"]) or d["cases"][0].pop("variant_outputs"))
     # the work-precision sweep names ball_3.16mm-r1_l30, which this edit removes
     assert "unknown case 'ball_3.16mm-r1_l30'" in error_of(project_dir)
     edit(project_dir / "config/config.yaml", lambda d: d.pop("work_precision"))

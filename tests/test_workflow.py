@@ -58,6 +58,9 @@ FILM_ARTIFACTS = (*(f"results/tables/{name}.{ext}" for name in ("table2_film", "
                   *(f"results/indentation/{row}-{v}.h5" for row in (
                       "ball_3.16mm", "ball_4.75mm", "ball_5.56mm", "ball_6.34mm", "ball_9.51mm", "ball_12.73mm")
                     for v in ("r10_l30_film_cal", "r10_l30_cal")))
+#: The cases that list the output strain_field, each with its wave map (the runs of the methods
+#: that record the field: sem and fem1d).
+WAVE_CASES = ("model", "ball_3.16mm-r10_l30")
 ROOT_ATTRS = (
     "case_id", "method", "config_json", "config_sha256", "code_version", "library_versions",
     "wall_time_s", "data_sha256",
@@ -362,6 +365,7 @@ def test_full_build_produces_every_artifact(built: Path, expected: dict) -> None
                                                  "stability_map.csv")),
         *(f"results/figures/{name}.{ext}" for name in ("work_precision_model", "stability_map")
           for ext in ("pdf", "png")),
+        *(f"results/figures/wave_map_{case}.{ext}" for case in WAVE_CASES for ext in ("pdf", "png", "provenance.json")),
     ]  # fmt: skip
     missing = [a for a in artifacts if not (built / a).is_file() or (built / a).stat().st_size == 0]
     assert not missing, f"missing or empty: {missing}"
@@ -412,6 +416,8 @@ def test_every_run_file_has_provenance_and_summary(built: Path, expected: dict) 
         assert max(record.summary["peak_force_N"]) > 0
         assert math.isfinite(record.summary["energy_error"])
         assert "contact_force" in record.series and len(record.series["time"]) > 10
+        # the strain field only where the case asks for it, by the methods that record it
+        assert bool(record.field) == (case_id in WAVE_CASES and method in ("sem", "fem1d")), path
 
 
 def test_study_tables(built: Path) -> None:
@@ -477,13 +483,16 @@ def test_table_provenance_matches_run_files(
     assert_inputs_match(record["inputs"], all_table2, stored_hashes)
 
 
-@pytest.mark.parametrize("figure", ["fig2_contact_force", "fig4_midrod_displacement", "table2_contact_time"])
+@pytest.mark.parametrize("figure", ["fig2_contact_force", "fig4_midrod_displacement", "table2_contact_time",
+                                    *(f"wave_map_{case}" for case in WAVE_CASES)])
 def test_figures_carry_provenance(
     built: Path, expected: dict, stored_hashes: dict[str, str], figure: str
 ) -> None:
     runs = (
         expected["model_runs"]
         if figure in ("fig2_contact_force", "fig4_midrod_displacement")
+        else [run_path(figure.removeprefix("wave_map_"), m) for m in ("sem", "fem1d")]
+        if figure.startswith("wave_map_")
         else [run for runs in expected["table2_runs"].values() for run in runs]
     )
     with Image.open(built / f"results/figures/{figure}.png") as png:
@@ -598,6 +607,21 @@ def test_target_plans_only_its_jobs(tmp_path: Path) -> None:
     assert not (project / "results").exists(), "a dry run must not write results"
 
 
+def test_only_the_cases_asking_for_the_field_have_a_wave_map(tmp_path: Path) -> None:
+    """The wave map of a case plans the runs of the methods that record the field; a case that
+    does not list strain_field has none, and none of its runs pays for it."""
+    project = copy_project(tmp_path / "project")
+    assert [c for c, case in project_cases(project).cases.items() if "strain_field" in case["outputs"]] == list(
+        WAVE_CASES)
+    target = "results/figures/wave_map_model.png"
+    run = snakemake(project, "-n", "-j2", target)
+    assert run.returncode == 0, run.describe()
+    assert job_stats(run.output) == {"case_file": 1, "solve": 2, "wave_map": 1}, run.describe()
+    assert pending(summary(project, target), "solve") == {run_path("model", m) for m in ("sem", "fem1d")}
+    run = snakemake(project, "-n", "-j2", "results/figures/wave_map_ball_4.75mm-r10_l30.png")
+    assert run.returncode != 0 and "no rule makes 'results/figures/wave_map_ball_4.75mm-r10_l30.png'" in run.output
+
+
 # --------------------------------------------------------------------------------------------
 # 3. adding a case is adding YAML
 # --------------------------------------------------------------------------------------------
@@ -697,7 +721,8 @@ def test_changed_case_value_reruns_only_that_case(built: Path, tmp_path: Path) -
                                      "all": 1, "solve_levels_sem": 1, "solve_levels_sem_paper": 1,
                                      "solve_levels_fem1d": 1, "work_precision_table": 1,
                                      "work_precision_figure": 1, "solve_map_row": 6,
-                                     "stability_map": 1, "forces_model": 1, "fig_force_fit": 1}, run.describe()
+                                     "stability_map": 1, "forces_model": 1, "fig_force_fit": 1,
+                                     "wave_map": 1}, run.describe()
     assert pending(rows := summary(project), "case_file") == {"results/cases/model.yaml"}
     assert pending(rows, "solve") == {run_path("model", m) for m in ("sem", "sem_paper", "fem1d", "fem_axi")}
     assert pending(rows, "fig2") == {
@@ -963,6 +988,13 @@ def _expected_report(project_dir: Path) -> dict[str, list[str]]:
             "2 Z / k_c(alpha_H)"]
         expected[f"results/figures/force_fit_model.{ext}"] = [
             "The contact force handed on", "Chebyshev series", "1 % of the largest force"]
+        for case in WAVE_CASES:
+            grid = project.cases[case]["field_grid"]
+            expected[f"results/figures/wave_map_{case}.{ext}"] = [
+                "The waves in the rod: the axial strain", case, "The incident wave", "Its reflection at the far end",
+                "The superposition during the contact", "The waves left after the separation",
+                f"recorded on {grid['sections']} cross-sections", "a superposition of waves propagating",
+                *(settings[m] for m in ("sem", "fem1d"))]
     expected["results/tables/stability_map.csv"] = expected["results/figures/stability_map.png"]
     expected["results/tables/fig2_comparison.csv"] = [
         "Fig. 2's numbers", "paper_fem_vs_sem_contact_time_pct", "11 % and 9 %", *(settings[m] for m in model)]

@@ -11,6 +11,7 @@ from snakemake.utils import Paramspace
 
 from rodimpact.analysis.studies import level_case, map_point_case, map_point_names, reference_case
 from rodimpact.analysis.sweeps import sweep_frame, sweep_point_case, sweep_points
+from rodimpact.solvers.field import FIELD_OUTPUT
 from rodimpact.solvers.registry import METHODS as METHOD_REGISTRY
 from rodimpact.workflow.locks import register_run
 from rodimpact.workflow.plan_cache import CACHE_FILE, PlanCache, code_fingerprint
@@ -175,6 +176,9 @@ STABILITY = config.get("stability", {})
 MAP = STABILITY.get("map", {})
 MAP_POINTS = map_point_names(MAP) if MAP else []
 STRESS_CASES = [c for name in STABILITY.get("sets", []) for c in PROJECT.cases_in(name)]
+# The cases that ask for the strain over the rod (output strain_field): each gets its wave map
+# (waves.smk), and only they.
+WAVE_CASES = [case_id for case_id, case in PROJECT.cases.items() if FIELD_OUTPUT in case["outputs"]]
 
 
 def sweep_level(method, level):
@@ -257,6 +261,9 @@ def default_targets():
         targets += runs_of(PROJECT.cases_in(name))
         # the contact force handed on (forces.smk)
         targets += force_files(PROJECT.cases_in(name), "csv") + force_files(PROJECT.cases_in(name), "json")
+        # the waves in the rod (waves.smk), for the cases that list strain_field
+        targets += expand("results/figures/wave_map_{case}.{ext}", ext=["pdf", "png"],
+                          case=[c["id"] for c in PROJECT.cases_in(name) if c["id"] in WAVE_CASES])
         if PROJECT.sweeps_in(name):
             targets += expand("results/tables/sweep_{set}.{ext}", set=name, ext=["csv", "md", "provenance.json"])
     if WORK_PRECISION:

@@ -10,10 +10,11 @@ from __future__ import annotations
 from typing import Any, Callable, Mapping
 
 from rodimpact.analysis.studies import level_case
+from rodimpact.solvers.field import FIELD_OUTPUT
 from rodimpact.solvers.options import OptionError
 from rodimpact.solvers.registry import METHODS
 
-__all__ = ["check_run", "check_stability", "check_work_precision"]
+__all__ = ["check_outputs", "check_run", "check_stability", "check_work_precision"]
 
 
 def check_run(case: Mapping[str, Any], method: str) -> None:
@@ -30,6 +31,29 @@ def check_run(case: Mapping[str, Any], method: str) -> None:
     spec = METHODS[method]
     options = spec.options_of(case["numerics"][method])
     options.check(spec.estimate_problem(case))
+
+
+def check_outputs(case: Mapping[str, Any], variant: str | None, error: Callable[..., Exception]) -> list[str]:
+    """The outputs of a case (checked by the schema, defaults filled) for its ``variant``: its
+    ``outputs`` and those ``variant_outputs`` adds for the variant, checked against the case.
+
+    A station output needs stations; ``strain_field`` needs a method that records it (the
+    registry's ``records_field``); ``field_grid`` is given only with ``strain_field``.
+    ``error(message, field=)`` builds the exception raised.
+    """
+    outputs = list(case["outputs"])
+    outputs += [name for name in case.get("variant_outputs", {}).get(variant, []) if name not in outputs]
+    for index, output in enumerate(outputs):
+        where = f"outputs[{index}]" if index < len(case["outputs"]) else f"variant_outputs.{variant}"
+        if output.startswith("station_") and not case["stations"]:
+            raise error(f"output {output!r} needs stations (fractions of the rod length)", field=where)
+        if output == FIELD_OUTPUT and not any(METHODS[m].records_field for m in case["methods"]):
+            recording = [name for name, spec in METHODS.items() if spec.records_field]
+            raise error(f"output {output!r} is recorded by {', '.join(recording)} only; the case runs none of "
+                        f"them (methods: {', '.join(case['methods'])})", field=where)
+    if "field_grid" in case and FIELD_OUTPUT not in outputs:
+        raise error(f"is the grid of the output {FIELD_OUTPUT!r}, which the case does not list", field="field_grid")
+    return outputs
 
 
 def check_work_precision(study: Mapping[str, Any] | None, cases: Mapping[str, dict],

@@ -26,11 +26,12 @@ from typing import Any
 
 from rodimpact.analysis.sweeps import SweepError, sweep_point_case, sweep_points
 from rodimpact.io.bodies import MATERIAL_FIELDS, check_law, check_material_ranges, resolve_contact, resolve_material
-from rodimpact.io.checks import check_run, check_stability, check_work_precision
+from rodimpact.io.checks import check_outputs, check_run, check_stability, check_work_precision
 from rodimpact.io.plausible import Budget, check_plausible
 from rodimpact.io.project import ConfigError, Project, _File
 from rodimpact.io.schema import Schemas, deep_merge, format_path, with_floats
 from rodimpact.io.yamlfile import YamlError
+from rodimpact.solvers.field import FIELD_OUTPUT, FieldGrid
 from rodimpact.solvers.options import OptionError
 from rodimpact.solvers.registry import METHODS as METHOD_REGISTRY
 
@@ -41,7 +42,8 @@ logger = logging.getLogger(__name__)
 
 #: Known computation methods, in the registry's order.
 METHODS: tuple[str, ...] = tuple(METHOD_REGISTRY)
-#: Known output time series (keep equal to ``$defs/output`` in cases.schema.yaml).
+#: Known outputs (keep equal to ``$defs/output`` in cases.schema.yaml): the time series, and
+#: the strain field over the rod (:mod:`rodimpact.solvers.field`).
 OUTPUTS: tuple[str, ...] = (
     "contact_force",
     "approach",
@@ -52,6 +54,7 @@ OUTPUTS: tuple[str, ...] = (
     "station_strain",
     "energy",
     "contact_radius",
+    FIELD_OUTPUT,
 )
 
 DEFAULT_SCHEMA_DIR = Path("workflow") / "schemas"
@@ -66,7 +69,9 @@ def registry_schema() -> dict[str, Any]:
     """What the method registry adds to ``config.schema.yaml``: the method names
     (``$defs/method``), each method's settings with their bounds and defaults
     (``$defs/numerics_<method>``, and ``numerics.<method>``), and the union of all settings
-    (``$defs/method_numerics_fields``, a case's overrides: checked per method by the loader).
+    (``$defs/method_numerics_fields``, a case's overrides: checked per method by the loader);
+    and to ``cases.schema.yaml`` the settings of the strain field's grid (``$defs/field_grid``,
+    :class:`~rodimpact.solvers.field.FieldGrid`).
     """
     defs: dict[str, Any] = {"method": {
         "title": "method", "type": "string", "enum": list(METHOD_REGISTRY),
@@ -82,7 +87,8 @@ def registry_schema() -> dict[str, Any]:
         "description": "Numerical settings of any method, all optional (each method's own are checked by the loader).",
         "type": "object", "additionalProperties": False, "properties": union}
     numerics = {name: {"$ref": f"#/$defs/numerics_{name}", "default": {}} for name in METHOD_REGISTRY}
-    return {CONFIG_SCHEMA: {"$defs": defs, "properties": {"numerics": {"properties": numerics}}}}
+    return {CONFIG_SCHEMA: {"$defs": defs, "properties": {"numerics": {"properties": numerics}}},
+            CASES_SCHEMA: {"$defs": {"field_grid": FieldGrid.json_schema()}}}
 
 
 def _load_schemas(schema_dir: Path, root: Path) -> Schemas:
@@ -244,7 +250,11 @@ class _ProjectBuilder:
         self.sets.setdefault(set_name, [])
         for entry in document["cases"]:
             base = deep_merge(document.get("defaults", {}), entry)
-            for variant in self._variant_names(source, base, variants):
+            names = self._variant_names(source, base, variants)
+            for name in sorted(set(base.get("variant_outputs", {})) - set(names)):
+                raise source.error(f"not a variant the case is expanded over (its variants: {names})",
+                                   case=base["id"], field=f"variant_outputs.{name}")
+            for variant in names:
                 given = variants.get(variant, {})
                 changes = {key: given[key] for key in _VARIANT_FIELDS if key in given}
                 self._add_case(source, schemas, set_name, variant, deep_merge(base, changes))
@@ -288,13 +298,10 @@ class _ProjectBuilder:
             other = {**self.cases, **self.sweeps}[case_id]["source_file"]
             where = "earlier in this file" if other == source.label else f"in {other}"
             raise error(f"duplicate case id; already defined {where}", field="id")
-        for index, output in enumerate(case["outputs"]):
-            if output.startswith("station_") and not case["stations"]:
-                raise error(f"output {output!r} needs stations (fractions of the rod length)",
-                            field=f"outputs[{index}]")
         sweep = case.get("sweep")
         if sweep is not None:
             case["methods"] = sweep.setdefault("methods", case["methods"])
+        case["outputs"] = check_outputs(case, variant, error)
         resolved = {
             "id": case_id,
             "row": row,
@@ -308,6 +315,8 @@ class _ProjectBuilder:
             "methods": list(case["methods"]),
             "outputs": list(case["outputs"]),
             "stations": [float(x) for x in case["stations"]],
+            **({"field_grid": FieldGrid.from_settings(case.get("field_grid", {})).as_settings()}
+               if FIELD_OUTPUT in case["outputs"] else {}),
             "numerics": self._numerics(case, case_id, source),
             "measured": with_floats(case["measured"]),
             "published": with_floats(case["published"]),

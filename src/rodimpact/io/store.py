@@ -35,6 +35,8 @@ One file per run (one case solved by one method); SI units throughout::
         @<other name>          float, int, bool or str scalar, or 1-D numeric array
                                (e.g. contact_start_s, contact_end_s, n_contacts,
                                success, status, message, n_steps)
+      field/                   group, the strain over the rod on its own grid, when recorded
+                               (:mod:`rodimpact.io.runfield`: time (m,), x (k,), strain (m, k))
 
 Writes go through :func:`rodimpact.io.atomic.atomic_output` (a temporary file beside the
 target, fsynced and moved onto it with :func:`os.replace`); a failed write leaves no
@@ -48,7 +50,8 @@ import json
 import logging
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from dataclasses import field as dataclass_field
 from datetime import datetime, timezone
 from numbers import Integral, Real
 from pathlib import Path
@@ -60,6 +63,7 @@ import numpy as np
 from rodimpact.io import provenance
 from rodimpact.io.atomic import atomic_output
 from rodimpact.io.faults import UnreadableInput
+from rodimpact.io.runfield import check_field, digest_entries, read_field, write_field
 
 logger = logging.getLogger(__name__)
 
@@ -99,7 +103,9 @@ class RunRecord:
 
     ``config``/``library_versions`` are parsed JSON. ``series`` maps name to a float64 array
     (n,) or (n, k), ``units``/``descriptions`` keyed alike (all empty from :func:`read_summary`).
-    ``summary``: Python float/int/bool/str scalars and 1-D numpy arrays.
+    ``summary``: Python float/int/bool/str scalars and 1-D numpy arrays. ``field``: the
+    space-time field (``time`` (m,), ``x`` (k,), ``strain`` (m, k); empty when the run has
+    none, and from :func:`read_summary`), its units in ``field_units``.
     """
 
     path: Path
@@ -114,8 +120,10 @@ class RunRecord:
     series: dict[str, np.ndarray]
     units: dict[str, str]
     summary: dict[str, Any]
-    descriptions: dict[str, str] = field(default_factory=dict)
+    descriptions: dict[str, str] = dataclass_field(default_factory=dict)
     data_sha256: str = ""  # empty: written before the digest was stored
+    field: dict[str, np.ndarray] = dataclass_field(default_factory=dict)
+    field_units: dict[str, str] = dataclass_field(default_factory=dict)
 
 
 def _check_config(config: Mapping[str, Any]) -> tuple[str, str]:
@@ -217,6 +225,7 @@ def write_run(
     summary: Mapping[str, Any],
     wall_time_s: float,
     code_version: str | None = None,
+    field: Mapping[str, tuple[np.ndarray, str, str]] | None = None,
 ) -> Path:
     """Write one solver run to an HDF5 file atomically (schema in the module docstring).
 
@@ -237,6 +246,9 @@ def write_run(
         Solver wall-clock time (s), finite and non-negative.
     code_version : str, optional
         Defaults to :func:`rodimpact.io.provenance.code_version`.
+    field : mapping of str to (array, units, description), optional
+        The space-time field (:mod:`rodimpact.io.runfield`): ``time`` (m,) s, ``x`` (k,) m and
+        2-D datasets (m, k), written to the group ``field``; none by default.
 
     Returns
     -------
@@ -258,6 +270,7 @@ def write_run(
     if not isinstance(method, str) or not method:
         raise ValueError(f"method must be a non-empty str, got {method!r}")
     checked_series = _check_series(series)
+    checked_field = check_field(field)
     checked_summary = _check_summary(summary)
     real = isinstance(wall_time_s, Real) and not isinstance(wall_time_s, bool)
     if not (real and math.isfinite(wall_time_s) and wall_time_s >= 0):
@@ -276,8 +289,9 @@ def write_run(
         "wall_time_s": np.float64(wall_time_s),
         "created_utc": datetime.now(timezone.utc).isoformat(timespec="seconds"),
         "schema_version": np.int64(SCHEMA_VERSION),
-        "data_sha256": provenance.data_sha256(config_json, method, {n: (a, u, d) for n, a, u, d in checked_series},
-                                              checked_summary),
+        "data_sha256": provenance.data_sha256(
+            config_json, method, {**{n: (a, u, d) for n, a, u, d in checked_series}, **digest_entries(checked_field)},
+            checked_summary),
     }
     with atomic_output(path) as tmp:
         with h5py.File(tmp, "x", track_order=True) as h5:
@@ -287,6 +301,7 @@ def write_run(
                 dataset = h5.create_dataset(name, data=array, **(_COMPRESSION if big else {}))
                 dataset.attrs.update({"units": units, "description": description, "long_name": description})
             _attach_time_scale(h5)
+            write_field(h5, checked_field)
             _write_summary(h5, checked_summary)
             h5.flush()
     logger.info("wrote run %s/%s to %s (%d bytes)", case_id, method, path, path.stat().st_size)
@@ -339,7 +354,7 @@ def _read_record(path: str | Path, *, verify: bool, with_series: bool) -> RunRec
         raise CorruptRun(path, "not an HDF5 file (truncated, or not a rodimpact run file)")
     try:
         with h5py.File(path, "r") as h5:
-            attrs, summary, series, units, descriptions = _read_parts(h5, path, verify, with_series)
+            attrs, summary, series, units, descriptions, field = _read_parts(h5, path, verify, with_series)
     except StoreError:
         raise
     except (OSError, KeyError, ValueError, TypeError, RuntimeError) as exc:  # HDF5's errors of a damaged file
@@ -358,20 +373,23 @@ def _read_record(path: str | Path, *, verify: bool, with_series: bool) -> RunRec
             raise CorruptRun(path, f"case_id {attrs['case_id']!r} does not match config['id']")
         if attrs.get("data_sha256"):
             content = {name: (values, units[name], descriptions[name]) for name, values in series.items()}
+            content.update(digest_entries(field))
             if provenance.data_sha256(attrs["config_json"], attrs["method"], content, summary) != attrs["data_sha256"]:
                 raise CorruptRun(path, "its content differs from its data_sha256 (changed after it was written)")
     if not with_series:
-        series, units, descriptions = {}, {}, {}
+        series, units, descriptions, field = {}, {}, {}, []
     logger.debug("read run %s (series=%s)", path, with_series)
     return RunRecord(
         path, attrs["case_id"], attrs["method"], config, attrs["config_sha256"],
         attrs["code_version"], libraries, float(attrs["wall_time_s"]), attrs["created_utc"],
         series, units, summary, descriptions, str(attrs.get("data_sha256", "")),
+        {name: values for name, values, _, _ in field}, {name: units for name, _, units, _ in field},
     )  # fmt: skip
 
 
-def _read_parts(h5: h5py.File, path: Path, verify: bool, with_series: bool) -> tuple[dict, dict, dict, dict, dict]:
-    """The root attributes, the summary and (when asked for, or to verify the content) the series."""
+def _read_parts(h5: h5py.File, path: Path, verify: bool, with_series: bool) -> tuple[dict, dict, dict, dict, dict, list]:
+    """The root attributes, the summary and (when asked for, or to verify the content) the series
+    and the field."""
     attrs = {key: _attr_value(h5.attrs[key]) for key in (*_ROOT_ATTRS, "data_sha256") if key in h5.attrs}
     if missing := [key for key in _ROOT_ATTRS if key not in attrs]:
         raise CorruptRun(path, f"not a rodimpact run file: missing root attrs {missing}")
@@ -388,7 +406,7 @@ def _read_parts(h5: h5py.File, path: Path, verify: bool, with_series: bool) -> t
         raise CorruptRun(path, f"missing required summary attributes {missing}")
     needed = with_series or (verify and bool(attrs.get("data_sha256")))
     series, units, descriptions = _read_series(h5, path) if needed else ({}, {}, {})
-    return attrs, summary, series, units, descriptions
+    return attrs, summary, series, units, descriptions, read_field(h5, path) if needed else []
 
 
 def read_run(path: str | Path, *, verify: bool = True) -> RunRecord:

@@ -3,7 +3,8 @@
 What lives here: :mod:`.registry` (:data:`~rodimpact.solvers.registry.METHODS`, each method
 declared once), :mod:`.options` (how a setting is declared), :mod:`.stepping` (the settings
 and limits every time-stepping solver shares), :mod:`.result` (the
-:class:`~rodimpact.solvers.result.ImpactResult` every solver returns), :mod:`.cost` (the
+:class:`~rodimpact.solvers.result.ImpactResult` every solver returns), :mod:`.field` (the
+grid of the strain field over the rod, output ``strain_field``), :mod:`.cost` (the
 cost model's shared pieces), and the methods' packages :mod:`.sem` (``sem``,
 ``sem_paper``), :mod:`.fem1d` and :mod:`.fem_axi`.
 

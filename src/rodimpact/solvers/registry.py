@@ -25,6 +25,7 @@ import numpy as np
 
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.cost import Cost
+from rodimpact.solvers.field import FIELD_OUTPUT, FieldGrid
 from rodimpact.solvers.fem1d.options import FEM1DOptions
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact
@@ -59,7 +60,8 @@ class Method:
     problem : callable
         ``problem(case) -> problem``: what the solver solves, built from a resolved case.
     solver : str
-        ``"module:function"`` of the driver, ``function(problem, options, stations=...) -> ImpactResult``.
+        ``"module:function"`` of the driver, ``function(problem, options, stations=...) -> ImpactResult``
+        (and ``field=`` a :class:`~rodimpact.solvers.field.FieldGrid` when it records the field).
     cost : str
         ``"module:function"`` of its closed-form cost model, ``function(case, options) -> Cost``
         (:mod:`rodimpact.solvers.cost`).
@@ -79,6 +81,12 @@ class Method:
         ``law``: the method takes the case's contact law P(alpha) (any law); ``continuum``: it
         resolves the contact between the meshed bodies itself and takes only a law that
         describes bodies (:attr:`~rodimpact.contact.law.ContactLaw.continuum_form`).
+    records_field : bool
+        Its solver records the strain over the whole rod (output ``strain_field``, on the
+        case's :class:`~rodimpact.solvers.field.FieldGrid`; the solver's ``field`` argument).
+        A method that does not skips that output: its run stores no field, and a case that
+        lists the output must run at least one method that records it (the configuration
+        check refuses it otherwise).
     """
 
     name: str
@@ -93,6 +101,7 @@ class Method:
     style: str
     color: str
     contact: str = "law"
+    records_field: bool = False
 
     def options_of(self, settings: Mapping[str, Any]) -> Options:
         """This method's options from a resolved ``numerics.<name>`` mapping.
@@ -123,13 +132,22 @@ class Method:
         """
         driver = _load(self.solver)
         problem = self.problem(case)
-        result = driver(problem, self.options_of(settings), stations=case.get("stations", ()))
+        grid = self.field_grid(case)
+        more = {} if grid is None else {"field": grid}
+        result = driver(problem, self.options_of(settings), stations=case.get("stations", ()), **more)
         if self.contact == "law":
             law = problem.law
             result.extra.update({key: value for key, value in law.summary().items() if key not in result.extra})
             if result.approach.size:
                 result.extra.update(law.run_summary(float(np.max(result.approach))))
         return result
+
+    def field_grid(self, case: Mapping[str, Any]) -> FieldGrid | None:
+        """The grid of the strain field this method records for ``case``: None when the case
+        does not list ``strain_field`` or the method does not record it (:attr:`records_field`)."""
+        if not (self.records_field and FIELD_OUTPUT in case.get("outputs", ())):
+            return None
+        return FieldGrid.from_settings(case.get("field_grid", {}))
 
     def estimate(self, case: Mapping[str, Any], settings: Mapping[str, Any]) -> Cost:
         """The cost model of solving ``case`` with the resolved settings ``settings``."""
@@ -145,14 +163,16 @@ def _load(path: str) -> Callable[..., Any]:
 METHODS: dict[str, Method] = {m.name: m for m in (
     Method(name="sem", options=SEMOptions, problem=ImpactProblem.from_case,
            solver="rodimpact.solvers.sem.solver:solve_sem", cost="rodimpact.solvers.sem.cost:sem_cost",
-           label="SEM, implicit scheme", header="SEM", order=2.0, family="sem", style="-", color="C0"),
+           label="SEM, implicit scheme", header="SEM", order=2.0, family="sem", style="-", color="C0",
+           records_field=True),
     Method(name="sem_paper", options=PaperSEMOptions, problem=ImpactProblem.from_case,
            solver="rodimpact.solvers.sem.solver:solve_sem", cost="rodimpact.solvers.sem.cost:sem_cost",
            label="SEM, the paper's explicit scheme", header="SEM, explicit", order=1.0, family="sem", style="--",
            color="C1"),
     Method(name="fem1d", options=FEM1DOptions, problem=ImpactProblem.from_case,
            solver="rodimpact.solvers.fem1d.solver:solve_fem1d", cost="rodimpact.solvers.fem1d.cost:fem1d_cost",
-           label="FEM, 1D bar", header="FEM 1-D", order=2.0, family="fem", style="-.", color="C2"),
+           label="FEM, 1D bar", header="FEM 1-D", order=2.0, family="fem", style="-.", color="C2",
+           records_field=True),
     Method(name="fem_axi", options=FEMAxiOptions, problem=AxiImpact.from_case,
            solver="rodimpact.solvers.fem_axi.solver:solve_fem_axi", cost="rodimpact.solvers.fem_axi.cost:fem_axi_cost",
            label="FEM, axisymmetric continuum", header="FEM axisym.", order=2.0, family="fem", style=":", color="C3",

@@ -3,11 +3,14 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from dataclasses import field as dataclass_field
 from typing import Any, Iterable
 
 import numpy as np
 from numpy.typing import NDArray
+
+from rodimpact.solvers.field import FIELD_OUTPUT
 
 __all__ = ["ImpactResult", "OUTPUT_DATASETS", "SERIES"]
 
@@ -29,6 +32,8 @@ OUTPUT_DATASETS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
     "station_strain": (("station_strain",), ()),
     "energy": (("impactor_kinetic_energy", "contact_energy", "rod_energy"),
                ("rod_kinetic_energy", "rod_strain_energy")),
+    # not a history: the field over the rod on its own grid (ImpactResult.field, :mod:`.field`)
+    "strain_field": ((), ()),
 }
 
 
@@ -71,6 +76,10 @@ class ImpactResult:
     extra_series : dict
         More histories: name -> (array of first dimension n, units, description), e.g.
         ``station_displacement`` or the energies.
+    field : dict
+        The strain over the whole rod on its own grid (output ``strain_field``,
+        :mod:`rodimpact.solvers.field`): ``time`` (m,) s, ``x`` (k,) m and ``strain`` (m, k),
+        each (array, units, description); empty when the run was not asked for it.
     """
 
     success: bool
@@ -95,8 +104,9 @@ class ImpactResult:
     n_newton_iterations: int
     n_events: int
     wall_time_s: float
-    extra: dict[str, Any] = field(default_factory=dict)
-    extra_series: dict[str, tuple[NDArray[np.float64], str, str]] = field(default_factory=dict)
+    extra: dict[str, Any] = dataclass_field(default_factory=dict)
+    extra_series: dict[str, tuple[NDArray[np.float64], str, str]] = dataclass_field(default_factory=dict)
+    field: dict[str, tuple[NDArray[np.float64], str, str]] = dataclass_field(default_factory=dict)
 
     @property
     def contact_time_s(self) -> float:
@@ -155,3 +165,8 @@ class ImpactResult:
                 elif dataset in required:
                     raise ValueError(f"outputs: {name!r} was not computed by this {self.scheme} run")
         return out
+
+    def field_of(self, outputs: Iterable[str]) -> dict[str, tuple[NDArray[np.float64], str, str]]:
+        """The field (:attr:`field`) when ``outputs`` ask for it, else empty (a method that does
+        not record the field skips the output: its field is empty)."""
+        return dict(self.field) if FIELD_OUTPUT in outputs else {}

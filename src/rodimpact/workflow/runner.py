@@ -95,7 +95,8 @@ def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: i
                 contact_curve: str | Path | None = None, code_version: str | None = None) -> Path:
     """Solve and write ``path`` (HDF5, atomically); returns the path.
 
-    Only the outputs the case lists are stored.
+    Only the outputs the case lists are stored (the strain field, ``strain_field``, by the
+    methods that record it; the others skip it).
 
     Parameters
     ----------
@@ -153,14 +154,14 @@ def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: i
     wall = float(np.median(walls))
     if error is not None:
         log.warning("case %s, method %s raised %s: recorded as a failed run", case["id"], method, error)
-        series, summary = _failure_record(error)
+        (series, summary), field = _failure_record(error), {}
     else:
         log.info("case %s, method %s: %s: %s in %.3f s", case["id"], method, result.status, result.message, wall)
-        series, summary = result.series(case["outputs"]), result.summary()
+        series, summary, field = result.series(case["outputs"]), result.summary(), result.field_of(case["outputs"])
     if timed:
         from rodimpact.workflow.machine import machine_description  # only a timed run names its machine
 
         summary.update(wall_time_repeats=len(walls), wall_time_min_s=min(walls), wall_time_median_s=wall,
                        wall_time_max_s=max(walls), machine=machine_description())
     return write_run(path, config=config, method=method, series=series, summary=summary, wall_time_s=wall,
-                     code_version=code_version)
+                     code_version=code_version, field=field)

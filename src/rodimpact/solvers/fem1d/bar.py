@@ -37,6 +37,8 @@ class BarModel:
     dof_spacing_m : float
         Element length / element order.
     n_elements : int
+    field_probes : scipy.sparse.csr_matrix, shape (f, d)
+        Axial strain at the cross-sections of the strain field, as ``strain_probes``.
     """
 
     mass: sp.csc_matrix
@@ -46,10 +48,11 @@ class BarModel:
     strain_probes: sp.csr_matrix
     dof_spacing_m: float
     n_elements: int
+    field_probes: sp.csr_matrix | None = None
 
 
 def bar_model(rod: Rod, element: Literal["P1", "P2"], n_elements: int,
-              stations_m: Sequence[float] = ()) -> BarModel:
+              stations_m: Sequence[float] = (), field_m: Sequence[float] = ()) -> BarModel:
     """Assemble the bar 0 <= x <= l struck at x = 0 (the far end fixed or free).
 
     Parameters
@@ -62,6 +65,8 @@ def bar_model(rod: Rod, element: Literal["P1", "P2"], n_elements: int,
         Number of equal elements (>= 1).
     stations_m : sequence of float
         Positions of the probes, m from the struck end.
+    field_m : sequence of float
+        Cross-sections of the strain field (:attr:`BarModel.field_probes`), m from the struck end.
     """
     if element not in ELEMENTS:
         raise ValueError(f"element must be one of {sorted(ELEMENTS)}, got {element!r}")
@@ -94,23 +99,31 @@ def bar_model(rod: Rod, element: Literal["P1", "P2"], n_elements: int,
 
     stations = np.asarray(list(stations_m), dtype=float)
     h_e = length / n_elements
-    delta = 1e-3 * h_e
     if len(stations):
         values = basis.probes(stations[None, :])
-        lo = np.clip(stations - delta, 0.0, length)
-        hi = np.clip(stations + delta, 0.0, length)
-        strain = (basis.probes(hi[None, :]) - basis.probes(lo[None, :])).multiply(1.0 / (hi - lo)[:, None])
     else:
-        values = strain = sp.csr_matrix((0, basis.N))
+        values = sp.csr_matrix((0, basis.N))
     return BarModel(
         mass=mass[free][:, free].tocsc(),
         stiffness=stiffness[free][:, free].tocsc(),
         end=end,
         station_probes=sp.csr_matrix(values)[:, free],
-        strain_probes=sp.csr_matrix(strain)[:, free],
+        strain_probes=_strain_probes(basis, stations, length, h_e)[:, free],
         dof_spacing_m=h_e / (1 if element == "P1" else 2),
         n_elements=int(n_elements),
+        field_probes=_strain_probes(basis, np.asarray(list(field_m), dtype=float), length, h_e)[:, free],
     )
+
+
+def _strain_probes(basis: Basis, positions: NDArray[np.float64], length: float, h_e: float) -> sp.csr_matrix:
+    """du/dx at ``positions`` (m), shape (k, N): a central difference over 2e-3 element lengths
+    (one-sided at the ends), inside an element its exact strain, at a node the mean of both sides."""
+    if not len(positions):
+        return sp.csr_matrix((0, basis.N))
+    delta = 1e-3 * h_e
+    lo = np.clip(positions - delta, 0.0, length)
+    hi = np.clip(positions + delta, 0.0, length)
+    return sp.csr_matrix((basis.probes(hi[None, :]) - basis.probes(lo[None, :])).multiply(1.0 / (hi - lo)[:, None]))
 
 
 def end_vector(model: BarModel) -> NDArray[np.float64]:

@@ -29,6 +29,7 @@ from rodimpact.model.problem import ImpactProblem
 from rodimpact.model.responses import Rod
 from rodimpact.solvers.fem1d.bar import BarModel, banded_solver, bar_model, end_vector
 from rodimpact.solvers.fem1d.options import FEM1DOptions
+from rodimpact.solvers.field import FieldGrid, field_datasets
 from rodimpact.solvers.result import ImpactResult
 from rodimpact.solvers.stepping import Outcome, limit_reached
 
@@ -83,11 +84,12 @@ def _hermite_root(a0: float, a1: float, d0: float, d1: float, h: float) -> float
     return brentq(cubic, 0.0, h, xtol=1e-14 * h)
 
 
-def _setup(problem: ImpactProblem, options: FEM1DOptions, stations: Sequence[float]) -> _Setup:
+def _setup(problem: ImpactProblem, options: FEM1DOptions, stations: Sequence[float],
+           field: FieldGrid | None = None) -> _Setup:
     n_el, h, warnings = options.resolve(problem)
     rod = problem.rod
     xs = tuple(float(s) * rod.length_m for s in stations)
-    bar = bar_model(rod, options.element, n_el, xs)
+    bar = bar_model(rod, options.element, n_el, xs, () if field is None else field.positions(rod.length_m))
     M, K = bar.mass, bar.stiffness
     solve = banded_solver(K + (4.0 / h**2) * M)
     e0 = end_vector(bar)
@@ -97,7 +99,7 @@ def _setup(problem: ImpactProblem, options: FEM1DOptions, stations: Sequence[flo
 
 
 def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
-                stations: Sequence[float] = ()) -> ImpactResult:
+                stations: Sequence[float] = (), field: FieldGrid | None = None) -> ImpactResult:
     """Solve the impact with the rod as a finite-element bar.
 
     Parameters
@@ -109,6 +111,12 @@ def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
     stations : sequence of float
         Fractions of the rod length, from the struck end, where the displacement and the
         strain are recorded (``station_displacement``, ``station_strain``, shape (n, k)).
+    field : FieldGrid, optional
+        Record the strain over the whole rod on this grid (:attr:`ImpactResult.field`), linear
+        in time between steps. A completed run then keeps stepping the bar alone (the impactor
+        never returns) until the grid's last time, one or more round trips after the last
+        contact; its histories and summary stop where they stop without a field. None
+        (default) records none, and the run is the same.
 
     Returns
     -------
@@ -123,7 +131,7 @@ def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
     """
     options = FEM1DOptions() if options is None else options
     started = _time.perf_counter()
-    setup = _setup(problem, options, stations)
+    setup = _setup(problem, options, stations, field)
     for warning in setup.warnings:
         log.warning(warning)
     bar, h, solve, g = setup.bar, setup.h, setup.solve, setup.g
@@ -135,6 +143,7 @@ def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
     u, v, a = np.zeros(d), np.zeros(d), np.zeros(d)
     x, w, p, alpha = 0.0, problem.velocity_m_s, 0.0, 0.0
     hist = _History(w=[w], station_u=[bar.station_probes @ u], station_e=[bar.strain_probes @ u])
+    recorder = None if field is None else _FieldRecorder(field, rod, bar.field_probes, u)
     starts, ends, AL = hist.starts, hist.ends, hist.alpha
     in_contact = True
     t_max = options.max_time_factor * problem.contact_time_estimate()
@@ -172,6 +181,8 @@ def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
         hist.station_e.append(bar.strain_probes @ u)
         hist.rod_kinetic.append(0.5 * v @ (M @ v))
         hist.rod_strain.append(0.5 * u @ (K @ u))
+        if recorder is not None:
+            recorder.record(t, u)
         if not in_contact and ends and _no_further_contact(
                 rod, x, w, hist.rod_kinetic[-1] + hist.rod_strain[-1], setup.static_end, t - ends[-1],
                 setup.rod_momentum @ v):
@@ -181,7 +192,50 @@ def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
         if limit:
             status, message = limit
             break
-    return _result(problem, options, setup, hist, Outcome(status, message, _time.perf_counter() - started))
+    field_data = {}
+    if recorder is not None:
+        times = field.times(recorder.transit, status, ends, t)
+        while status == "completed" and recorder.count < len(times):
+            u_new = solve(M @ ((4.0 / h**2) * u + (4.0 / h) * v + a))  # the bar alone: no force
+            a_new = (4.0 / h**2) * (u_new - u) - (4.0 / h) * v - a
+            u, v, a = u_new, v + 0.5 * h * (a + a_new), a_new
+            t += h
+            recorder.record(t, u)
+        field_data = recorder.datasets(times)
+    outcome = Outcome(status, message, _time.perf_counter() - started)
+    return _result(problem, options, setup, hist, outcome, field_data)
+
+
+class _FieldRecorder:
+    """The strain at the field's cross-sections at its sample times k dt_f, linear in time
+    between the steps around each."""
+
+    def __init__(self, grid: FieldGrid, rod: Rod, probes: Any, u: NDArray[np.float64]) -> None:
+        self.transit = rod.length_m / rod.wave_speed
+        self.positions = grid.positions(rod.length_m)
+        self.step = grid.sample_step(self.transit)
+        self.probes = probes
+        self.last = (0.0, probes @ u)
+        self.samples = [self.last[1]]
+
+    @property
+    def count(self) -> int:
+        return len(self.samples)
+
+    def record(self, t: float, u: NDArray[np.float64]) -> None:
+        """The bar's state ``u`` at time ``t`` (s): every sample time up to ``t`` is taken."""
+        strain = self.probes @ u
+        t0, before = self.last
+        while len(self.samples) * self.step <= t:
+            weight = (len(self.samples) * self.step - t0) / (t - t0)
+            self.samples.append(before + weight * (strain - before))
+        self.last = (t, strain)
+
+    def datasets(self, times: NDArray[np.float64]) -> dict[str, tuple[NDArray[np.float64], str, str]]:
+        """The field at ``times`` (the grid's; those the run reached)."""
+        count = min(len(times), len(self.samples))
+        return field_datasets(times[:count], self.positions, np.asarray(self.samples[:count]),
+                              "FEM, the bar's displacements")
 
 
 def _no_further_contact(rod: Rod, x: float, w: float, rod_energy: float, static_end: float,
@@ -196,7 +250,7 @@ def _no_further_contact(rod: Rod, x: float, w: float, rod_energy: float, static_
 
 
 def _result(problem: ImpactProblem, options: FEM1DOptions, setup: _Setup, hist: _History,
-            outcome: Outcome) -> ImpactResult:
+            outcome: Outcome, field: dict[str, tuple[NDArray[np.float64], str, str]]) -> ImpactResult:
     time = np.asarray(hist.t)
     force = np.asarray(hist.force)
     alpha = np.asarray(hist.alpha)
@@ -227,6 +281,8 @@ def _result(problem: ImpactProblem, options: FEM1DOptions, setup: _Setup, hist: 
         series["station_strain"] = (np.asarray(hist.station_e), "1",
                                     "axial strain du/dx at station_x_m (negative in compression; FEM)")
         extra["station_x_m"] = np.asarray(setup.stations_m)
+    if field:
+        extra["wave_speed_m_s"] = float(problem.rod.wave_speed)
     status, message = outcome.status, outcome.message
     if status != "failed" and not math.isfinite(energy_error):
         status, message = "failed", "non-finite energy balance"
@@ -240,5 +296,5 @@ def _result(problem: ImpactProblem, options: FEM1DOptions, setup: _Setup, hist: 
         rebound_velocity_m_s=float(velocity[-1]), rod_energy_J=float(rod_kin[-1] + rod_str[-1]),
         energy_error=energy_error, n_steps=len(time) - 1, n_newton_iterations=int(hist.n_newton),
         n_events=len(ends) + len(starts) - 1, wall_time_s=outcome.wall_time_s,
-        extra=extra, extra_series=series,
+        extra=extra, extra_series=series, field=field,
     )

@@ -60,6 +60,14 @@ class ForceHistory:
         self.P: list[float] = [0.0]
         self.Q: list[float] = [0.0]
 
+    @classmethod
+    def of_nodes(cls, rod: Rod, linear: bool, t: NDArray[np.float64], force: NDArray[np.float64]) -> ForceHistory:
+        """The history of a finished run's force nodes (t[0] = 0, P[0] = 0), s and N."""
+        history = cls(rod, linear)
+        for time, value in zip(np.asarray(t, dtype=float)[1:], np.asarray(force, dtype=float)[1:]):
+            history.append(float(time), float(value))
+        return history
+
     # -- nodes -------------------------------------------------------------------------
     def next_step(self, h: float) -> tuple[float, float]:
         """The next node for the nominal step ``h``: (step, time), s.

@@ -28,7 +28,9 @@ import numpy as np
 
 from rodimpact.analysis.signals import first_contact_maxima
 from rodimpact.model.problem import ImpactProblem
+from rodimpact.solvers.field import FieldGrid, field_datasets
 from rodimpact.solvers.result import ImpactResult
+from rodimpact.solvers.sem.history import ForceHistory
 from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
 from rodimpact.solvers.sem.grid import commensurate_step
 from rodimpact.solvers.sem.stepper import SEMRun, run_fixed_step
@@ -57,7 +59,7 @@ _FIRST_STEP_FACTOR = 2.0
 
 
 def solve_sem(problem: ImpactProblem, options: SEMOptions | PaperSEMOptions | None = None,
-              stations: Sequence[float] = ()) -> ImpactResult:
+              stations: Sequence[float] = (), field: FieldGrid | None = None) -> ImpactResult:
     """Solve the SEM contact problem.
 
     Parameters
@@ -71,6 +73,10 @@ def solve_sem(problem: ImpactProblem, options: SEMOptions | PaperSEMOptions | No
         Positions along the rod as fractions of its length from the struck end (0..1);
         the displacement and strain there are computed from the force by d'Alembert's
         solution (``station_displacement``, ``station_strain``, shape (n, k)).
+    field : FieldGrid, optional
+        Record the strain over the whole rod on this grid (:attr:`ImpactResult.field`),
+        through d'Alembert's solution driven by the run's contact force; None (default)
+        records none, and the run is the same.
 
     Returns
     -------
@@ -90,15 +96,35 @@ def solve_sem(problem: ImpactProblem, options: SEMOptions | PaperSEMOptions | No
     """
     options = SEMOptions() if options is None else options
     stations = _check_stations(stations, problem)
+    if field is not None:
+        field.positions(problem.rod.length_m)  # a rod of finite length, before any step
     started = _time.perf_counter()
     h = options.step(problem)
     options.check(problem)
     if not (options.automatic_step and options.scheme == "implicit"):
         if options.dt_s is not None:
-            return run_fixed_step(problem, options, h, stations, started, {"step_choice": "dt_s"})
-        h = commensurate_step(h, problem.rod.reflection_period)
-        return run_fixed_step(problem, options, h, stations, started, {"step_choice": "steps_per_contact"})
-    return _automatic(problem, options, h, stations, started)
+            result = run_fixed_step(problem, options, h, stations, started, {"step_choice": "dt_s"})
+        else:
+            h = commensurate_step(h, problem.rod.reflection_period)
+            result = run_fixed_step(problem, options, h, stations, started, {"step_choice": "steps_per_contact"})
+    else:
+        result = _automatic(problem, options, h, stations, started)
+    return result if field is None else _with_field(result, problem, options, field)
+
+
+def _with_field(result: ImpactResult, problem: ImpactProblem, options: SEMOptions | PaperSEMOptions,
+                grid: FieldGrid) -> ImpactResult:
+    """The result with its strain field: d'Alembert's solution driven by the run's force (its
+    nodes, with the scheme's own interpolation); zero force after the run's last node."""
+    rod = problem.rod
+    transit = rod.length_m / rod.wave_speed
+    times = grid.times(transit, result.status, result.contact_end_s, float(result.time[-1]))
+    history = ForceHistory.of_nodes(rod, options.scheme == "implicit", result.time, result.contact_force)
+    positions = grid.positions(rod.length_m)
+    strain = np.column_stack([history.strain_at(x, times) for x in positions])
+    field = field_datasets(times, positions, strain, "d'Alembert, from the contact force")
+    log.info("SEM strain field: %d times x %d sections to %.6g s", len(times), len(positions), times[-1])
+    return dataclasses.replace(result, field=field, extra={**result.extra, "wave_speed_m_s": rod.wave_speed})
 
 
 def _automatic(problem: ImpactProblem, options: SEMOptions, h: float, stations: tuple[float, ...],

@@ -1,0 +1,49 @@
+# The waves in the rod, drawn: for every case that lists the output strain_field, the axial
+# strain over the whole rod against time, one panel per method that records it (the registry's
+# records_field), on one colour scale, with the wave fronts' paths and the contacts marked
+# (rodimpact.present.wave_figures). No other case pays for it: the rule's {case} takes only
+# the cases asking for the field (WAVE_CASES, common.smk).
+SRC_WAVES = sources("rodimpact.present.wave_figures", "rodimpact.workflow.logs")
+
+
+def field_runs(wildcards):
+    """The runs of the case's methods that record the strain field."""
+    case = PROJECT.cases[wildcards.case]
+    return [f"results/runs/{case['id']}/{m}.h5" for m in case["methods"] if METHOD_REGISTRY[m].records_field]
+
+
+rule wave_map:
+    """The axial strain over the rod against time, for one case that lists strain_field."""
+    input:
+        runs=field_runs,
+        code=SRC_WAVES,
+    output:
+        pdf=report(
+            "results/figures/wave_map_{case}.pdf",
+            caption="../report/wave_map.rst",
+            category="Paper, Fig. 2 and Fig. 4",
+            subcategory="The waves in the rod",
+            labels={"artifact": "Strain along the rod against time, {case}", "format": "PDF"},
+        ),
+        png=report(
+            "results/figures/wave_map_{case}.png",
+            caption="../report/wave_map.rst",
+            category="Paper, Fig. 2 and Fig. 4",
+            subcategory="The waves in the rod",
+            labels={"artifact": "Strain along the rod against time, {case}", "format": "PNG"},
+        ),
+        provenance="results/figures/wave_map_{case}.provenance.json",
+    params:
+        field_grid=lambda w: PROJECT.cases[w.case]["field_grid"],  # for the caption
+        far_end=lambda w: PROJECT.cases[w.case]["rod"]["far_end"],
+    log:
+        "logs/figures/wave_map_{case}.log",
+    wildcard_constraints:
+        case=one_of(WAVE_CASES),
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
+    conda:
+        "../envs/rodimpact.yaml"
+    script:
+        "../scripts/wave_map.py"

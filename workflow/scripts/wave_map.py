@@ -1,0 +1,8 @@
+"""Snakemake adapter: the axial strain over the rod against time, for one case."""
+
+from rodimpact.present.wave_figures import make_wave_map
+from rodimpact.workflow.logs import script_logging
+
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
+    out = snakemake.output  # noqa: F821
+    make_wave_map(snakemake.input.runs, pdf=out.pdf, png=out.png, provenance=out.provenance)  # noqa: F821
