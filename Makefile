@@ -12,6 +12,7 @@
 #   make report-check  open results/report.html in headless Chromium at 1400 x 900, save the first
 #                      screen as results/report_screenshot.png, and fail unless the report's title
 #                      is on it (installs Debian's chromium and chromium-driver when missing)
+#   make readme-images the figures README.md shows -> docs/images/*.png (built first when needed)
 #   make provenance    audit results/: every file resolves to the config and committed code that
 #                      made it, and is up to date (fails on a hand-edited or stale file)
 
@@ -21,7 +22,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-from-lock
 CORES  ?= 2
 
-.PHONY: paper test bench convergence stability report report-check provenance env clean distclean
+.PHONY: paper test bench convergence stability report report-check readme-images provenance env clean distclean
 
 $(STAMP): environment.lock pyproject.toml
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info[:2] == (3, 11) else "rodimpact needs Python 3.11 (environment.lock is for 3.11), found " + sys.version.split()[0])'
@@ -66,6 +67,13 @@ report-check: $(STAMP)
 		{ apt-get update && apt-get install -y chromium chromium-driver; }; \
 	fi
 	$(BIN)/python -m rodimpact.workflow.report_check results/report.html --screenshot results/report_screenshot.png
+
+# The figures README.md embeds: copies of the build's PNGs, committed with the README.
+README_IMAGES := fig2_contact_force table2_contact_time wave_map_model
+readme-images: $(STAMP)
+	$(BIN)/snakemake -j$(CORES) $(README_IMAGES:%=results/figures/%.png)
+	mkdir -p docs/images
+	cp $(README_IMAGES:%=results/figures/%.png) docs/images/
 
 provenance: $(STAMP)
 	$(BIN)/python -m rodimpact.workflow.audit --json logs/provenance_audit.json
