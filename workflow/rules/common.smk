@@ -275,3 +275,8 @@ def default_targets():
     if MAP:
         targets += expand("results/figures/stability_map.{ext}", ext=["pdf", "png"])
     return targets
+
+
+def field_runs(case):
+    """The runs of a case's methods that record the strain field (the wave map's inputs)."""
+    return [f"results/runs/{case['id']}/{m}.h5" for m in case["methods"] if METHOD_REGISTRY[m].records_field]

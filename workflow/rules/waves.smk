@@ -6,16 +6,10 @@
 SRC_WAVES = sources("rodimpact.present.wave_figures", "rodimpact.workflow.logs")
 
 
-def field_runs(wildcards):
-    """The runs of the case's methods that record the strain field."""
-    case = PROJECT.cases[wildcards.case]
-    return [f"results/runs/{case['id']}/{m}.h5" for m in case["methods"] if METHOD_REGISTRY[m].records_field]
-
-
 rule wave_map:
     """The axial strain over the rod against time, for one case that lists strain_field."""
     input:
-        runs=field_runs,
+        runs=lambda w: field_runs(PROJECT.cases[w.case]),
         code=SRC_WAVES,
     output:
         pdf=report(
