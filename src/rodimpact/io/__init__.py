@@ -5,6 +5,7 @@ What lives here: :mod:`.yamlfile` (reading one YAML document, aliases bounded),
 (:class:`~rodimpact.io.project.Project` and :class:`~rodimpact.io.project.ConfigError`),
 :mod:`.config` (read, check and resolve config.yaml, materials and case files),
 :mod:`.checks` (each run's options against its case), :mod:`.store` (one HDF5 file per run),
+:mod:`.runcheck` (what a run file may hold), :mod:`.runfield` (its strain field),
 :mod:`.atomic` (the one whole-or-nothing writer), :mod:`.plausible` (each run's scales and cost
 before any job), :mod:`.provenance` (hashes and versions)
 and :mod:`.sidecar` (the provenance sidecars of tables, figures and benchmarks).

@@ -53,7 +53,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from dataclasses import field as dataclass_field
 from datetime import datetime, timezone
-from numbers import Integral, Real
+from numbers import Real
 from pathlib import Path
 from typing import Any
 
@@ -63,6 +63,7 @@ import numpy as np
 from rodimpact.io import provenance
 from rodimpact.io.atomic import atomic_output
 from rodimpact.io.faults import UnreadableInput
+from rodimpact.io.runcheck import REQUIRED_SUMMARY, SUMMARY_GROUP, all_str, check_config, check_series, check_summary
 from rodimpact.io.runfield import check_field, digest_entries, read_field, write_field
 
 logger = logging.getLogger(__name__)
@@ -71,16 +72,10 @@ __all__ = ["REQUIRED_SUMMARY", "SCHEMA_VERSION", "CorruptRun", "RunRecord", "Sto
 __all__ += ["read_run", "read_summary", "write_run"]
 
 SCHEMA_VERSION = 1
-#: Summary attributes every run must provide; the two peak arrays have equal length.
-REQUIRED_SUMMARY: tuple[str, ...] = (
-    "contact_time_s", "peak_force_N", "peak_time_s", "rebound_velocity_m_s", "energy_error",
-)  # fmt: skip
-_SUMMARY_ARRAYS = ("peak_force_N", "peak_time_s")
 _STR_ATTRS = tuple(
     "case_id method config_json config_sha256 code_version library_versions created_utc".split()
 )
 _ROOT_ATTRS = (*_STR_ATTRS, "wall_time_s", "schema_version")
-_SUMMARY_GROUP = "summary"
 _COMPRESS_MIN_ELEMENTS = 4096
 _COMPRESSION = {"compression": "gzip", "compression_opts": 4, "shuffle": True}
 
@@ -126,94 +121,8 @@ class RunRecord:
     field_units: dict[str, str] = dataclass_field(default_factory=dict)
 
 
-def _check_config(config: Mapping[str, Any]) -> tuple[str, str]:
-    """Return ``(case_id, config_json)`` of a resolved case configuration."""
-    if "id" not in config:
-        raise ValueError("config must contain the case identifier 'id'")
-    if not isinstance(config["id"], str) or not config["id"]:
-        raise ValueError(f"config['id'] must be a non-empty str, got {config['id']!r}")
-    try:
-        return config["id"], provenance.canonical_json(dict(config))
-    except (TypeError, ValueError) as exc:
-        raise type(exc)(f"config is not plain JSON data: {exc}") from exc
-
-
-def _all_str(values: tuple) -> bool:
-    return all(isinstance(value, str) for value in values)
-
-
-def _check_series(
-    series: Mapping[str, tuple[np.ndarray, str, str]],
-) -> list[tuple[str, np.ndarray, str, str]]:
-    """Validate the series and return them as float64 arrays, ``time`` first."""
-    if "time" not in series:
-        raise ValueError("series must contain 'time'")
-    checked: list[tuple[str, np.ndarray, str, str]] = []
-    for name in ["time", *(name for name in series if name != "time")]:
-        if not isinstance(name, str) or not name or "/" in name or name in (".", _SUMMARY_GROUP):
-            raise ValueError(f"series name {name!r} is not a valid dataset name")
-        entry = series[name]
-        if not (isinstance(entry, tuple) and len(entry) == 3 and _all_str(entry[1:])):
-            raise TypeError(f"series[{name!r}] must be a tuple (array, units, description)")
-        values, units, description = entry
-        array = np.asarray(values)
-        if array.dtype.kind not in "biuf":
-            raise TypeError(f"series[{name!r}] must be real numeric, got dtype {array.dtype}")
-        array = np.ascontiguousarray(array, dtype=np.float64)
-        n_time = checked[0][1].shape[0] if checked else -1
-        if name == "time" and array.ndim != 1:
-            raise ValueError(f"series['time'] must be 1-D, got shape {array.shape}")
-        if name != "time" and (array.ndim not in (1, 2) or array.shape[0] != n_time):
-            raise ValueError(
-                f"series[{name!r}] has shape {array.shape}; expected 1-D or 2-D with "
-                f"first dimension len(time) = {n_time}"
-            )
-        checked.append((name, array, units, description))
-    return checked
-
-
-def _summary_value(key: str, value: Any) -> Any:
-    """Normalise one summary value to a type h5py stores faithfully."""
-    if isinstance(value, (bool, np.bool_, str)):
-        return np.bool_(value) if not isinstance(value, str) else value
-    if isinstance(value, (Integral, Real)):
-        return np.int64(value) if isinstance(value, Integral) else np.float64(value)
-    if isinstance(value, (list, tuple, np.ndarray)):
-        array = np.asarray(value)
-        if array.ndim != 1:
-            raise ValueError(f"summary[{key!r}] must be scalar or 1-D, got shape {array.shape}")
-        if array.size == 0 or array.dtype.kind in "biuf":
-            kinds = {"b": np.bool_, "i": np.int64, "u": np.int64}
-            return array.astype(kinds.get(array.dtype.kind, np.float64))
-    raise TypeError(
-        f"summary[{key!r}] has unsupported type {type(value).__name__}; "
-        "use float, int, bool, str or a 1-D numeric array"
-    )
-
-
-def _check_summary(summary: Mapping[str, Any]) -> dict[str, Any]:
-    """Validate the summary attributes and return normalised values."""
-    if missing := [key for key in REQUIRED_SUMMARY if key not in summary]:
-        raise ValueError(f"summary is missing required key(s) {missing}")
-    checked: dict[str, Any] = {}
-    for key, value in summary.items():
-        if not isinstance(key, str) or not key:
-            raise TypeError(f"summary keys must be non-empty str, got {key!r}")
-        checked[key] = _summary_value(key, value)
-    for key in REQUIRED_SUMMARY:
-        value, is_array = checked[key], key in _SUMMARY_ARRAYS
-        if is_array != isinstance(value, np.ndarray) or np.asarray(value).dtype.kind not in "iuf":
-            kind = "a 1-D float array" if is_array else "a real number"
-            raise TypeError(f"summary[{key!r}] must be {kind}, got {type(summary[key]).__name__}")
-        checked[key] = value.astype(np.float64)
-    n_force, n_time = checked["peak_force_N"].size, checked["peak_time_s"].size
-    if n_force != n_time:
-        raise ValueError(f"summary peak_force_N/peak_time_s lengths differ: {n_force} != {n_time}")
-    return checked
-
-
 def _write_summary(h5: h5py.File, summary: Mapping[str, Any]) -> None:
-    h5.create_group(_SUMMARY_GROUP, track_order=True).attrs.update(summary)
+    h5.create_group(SUMMARY_GROUP, track_order=True).attrs.update(summary)
 
 
 def write_run(
@@ -266,12 +175,12 @@ def write_run(
         if not isinstance(arg, Mapping):
             raise TypeError(f"{name} must be a mapping, got {type(arg).__name__}")
     path = Path(path)
-    case_id, config_json = _check_config(config)
+    case_id, config_json = check_config(config)
     if not isinstance(method, str) or not method:
         raise ValueError(f"method must be a non-empty str, got {method!r}")
-    checked_series = _check_series(series)
+    checked_series = check_series(series)
     checked_field = check_field(field)
-    checked_summary = _check_summary(summary)
+    checked_summary = check_summary(summary)
     real = isinstance(wall_time_s, Real) and not isinstance(wall_time_s, bool)
     if not (real and math.isfinite(wall_time_s) and wall_time_s >= 0):
         raise ValueError(f"wall_time_s must be a finite number >= 0, got {wall_time_s!r}")
@@ -335,7 +244,7 @@ def _read_series(h5: h5py.File, path: Path) -> tuple[dict, dict, dict]:
     datasets = {name: obj for name, obj in h5.items() if isinstance(obj, h5py.Dataset)}
     n_time = h5["time"].shape[0] if h5["time"].ndim == 1 else -1
     for name, obj in datasets.items():
-        if not _all_str(tuple(_attr_value(obj.attrs.get(a)) for a in ("units", "description"))):
+        if not all_str(tuple(_attr_value(obj.attrs.get(a)) for a in ("units", "description"))):
             raise StoreError(f"{path}: dataset {name!r} lacks a str units or description")
         if obj.ndim not in (1, 2) or obj.shape[0] != n_time:
             raise StoreError(f"{path}: dataset {name!r} has shape {obj.shape}, n = {n_time}")
@@ -399,9 +308,9 @@ def _read_parts(h5: h5py.File, path: Path, verify: bool, with_series: bool) -> t
         raise CorruptRun(path, f"root attributes {list(_STR_ATTRS)} must all be str")
     if not isinstance(h5.get("time"), h5py.Dataset):
         raise CorruptRun(path, "missing required dataset 'time'")
-    if not isinstance(h5.get(_SUMMARY_GROUP), h5py.Group):
-        raise CorruptRun(path, f"missing required group '{_SUMMARY_GROUP}'")
-    summary = {key: _attr_value(value) for key, value in h5[_SUMMARY_GROUP].attrs.items()}
+    if not isinstance(h5.get(SUMMARY_GROUP), h5py.Group):
+        raise CorruptRun(path, f"missing required group '{SUMMARY_GROUP}'")
+    summary = {key: _attr_value(value) for key, value in h5[SUMMARY_GROUP].attrs.items()}
     if missing := [key for key in REQUIRED_SUMMARY if key not in summary]:
         raise CorruptRun(path, f"missing required summary attributes {missing}")
     needed = with_series or (verify and bool(attrs.get("data_sha256")))
