@@ -26,6 +26,7 @@ from rodimpact.io.config import load_global_config, load_project  # noqa: E402
 from rodimpact.io.project import ConfigError  # noqa: E402
 from rodimpact.io.provenance import canonical_json, data_sha256  # noqa: E402
 from rodimpact.io.store import CorruptRun, read_run, read_summary, write_run  # noqa: E402
+from rodimpact.model.problem import ImpactProblem  # noqa: E402
 from rodimpact.present.wave_figures import make_wave_map, plot_wave_map  # noqa: E402
 from rodimpact.solvers.fem1d.solver import solve_fem1d  # noqa: E402
 from rodimpact.solvers.field import FieldGrid  # noqa: E402
@@ -302,3 +303,15 @@ def test_the_wave_map_is_journal_ready_on_one_colour_scale(wave_case: dict, tmp_
     outputs = {ext: tmp_path / f"wave_map.{ext}" for ext in ("pdf", "png", "json")}
     make_wave_map(runs, pdf=outputs["pdf"], png=outputs["png"], provenance=outputs["json"])
     assert all(path.stat().st_size > 0 for path in outputs.values())
+
+
+def test_fem1d_cost_counts_the_round_trips_it_steps_after_the_last_contact(shipped_project) -> None:
+    case = copy.deepcopy(shipped_project.cases["model"])
+    settings = {**shipped_project.config["numerics"]["fem1d"], **case.get("numerics", {}).get("fem1d", {})}
+    with_field = METHODS["fem1d"].estimate(case, settings)
+    case["outputs"] = [name for name in case["outputs"] if name != "strain_field"]
+    without = METHODS["fem1d"].estimate(case, settings)
+    period = ImpactProblem.from_case(case, estimate=True).rod.reflection_period
+    # one round trip 2 l / a (the default round_trips_after) at the run's step
+    assert with_field.steps - without.steps == pytest.approx(period / with_field.time_step_s, rel=1e-9)
+    assert with_field.time_step_s == without.time_step_s

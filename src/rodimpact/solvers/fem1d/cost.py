@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import math
 from typing import Any, Mapping
 
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.cost import MIB, SOLVE_S, Cost, contact_duration, horizon
 from rodimpact.solvers.fem1d.options import FEM1DOptions
+from rodimpact.solvers.field import FIELD_OUTPUT, FieldGrid
 
 __all__ = ["fem1d_cost"]
 
@@ -29,6 +31,9 @@ def fem1d_cost(case: Mapping[str, Any], options: FEM1DOptions) -> Cost:
     end_test = min(3.0 * contact, period) if problem.rod.far_end == "fixed" else 4.0 * period
     span = horizon(problem, options.max_time_factor, contact, end_test)
     steps = span / step + 1.0
+    if FIELD_OUTPUT in case.get("outputs", ()) and math.isfinite(problem.rod.reflection_period):
+        # the strain field: the bar stepped alone for its round trips after the last contact
+        steps += FieldGrid.from_settings(case.get("field_grid", {})).round_trips_after * problem.rod.reflection_period / step
     stations = len(case.get("stations", ()))
     return Cost(time_step_s=step, steps=steps,
                 solve_s=SOLVE_S + steps * (FEM1D_STEP_S + FEM1D_DOF_STEP_S * dofs),
