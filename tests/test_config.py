@@ -658,7 +658,7 @@ IMPLAUSIBLE = {
                                         "sem would need about 2.32e+151 steps"),
     "fem1d elements 1e9": (_set(MODEL, *_CASE0, "numerics", {"fem1d": {"elements": 10**9}}),
                            f"{MODEL}: case 'model': field 'numerics.fem1d.elements': 1e+09: fem1d would take about "
-                           "1.05e+07 s (1.05e+04 steps of 1.03e-07 s), beyond the budget limits.run_time_s = 3600 s"),
+                           "1.24e+07 s (1.24e+04 steps of 1.03e-07 s), beyond the budget limits.run_time_s = 3600 s"),
     "a budget no case meets": (_set("config/config.yaml", "limits", {"run_time_s": 1e-3}),
                                "config/config.yaml: case 'model': field 'limits.run_time_s': sem would take about "),
 }
