@@ -376,3 +376,17 @@ def test_table2_latex_compiles(table2: dict, tmp_path: Path) -> None:
                          capture_output=True, text=True, timeout=120, check=False)
     assert run.returncode == 0, run.stdout[-2000:]
     assert "Overfull \\hbox" not in (tmp_path / "t.log").read_text(errors="replace")
+
+
+def test_a_table_with_no_rows_says_so(tmp_path: Path) -> None:
+    """A configuration with no calibrated reading has no indentation points: the table is
+    written, empty, and says so in Markdown and HTML."""
+    empty = pd.DataFrame()
+    views = table_views.film_indentation_views(empty)
+    assert views == []
+    paths = {ext: tmp_path / f"t.{ext}" for ext in ("csv", "md", "html")}
+    write_table(empty, csv=paths["csv"], md=paths["md"], html=paths["html"], caption="Nothing here.", views=views)
+    assert paths["md"].read_text(encoding="utf-8") == "Nothing here.\n\nThe table has no rows.\n"
+    assert "no rows" in paths["html"].read_text(encoding="utf-8")
+    with pytest.raises(ValueError, match="give views"):
+        write_table(empty, csv=paths["csv"], html=paths["html"])

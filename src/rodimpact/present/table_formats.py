@@ -96,7 +96,8 @@ def panels(frame: pd.DataFrame, title: str, key: Sequence[str], values: Sequence
         The key columns alone leave no room for a value.
     """
     if by:
-        groups = list(dict.fromkeys(frame[by]))
+        # an empty table (no rows, so no columns: no calibrated reading, say) has no panels
+        groups = list(dict.fromkeys(frame[by])) if by in frame.columns else []
         out = []
         for value in groups:
             rows = tuple(int(i) for i in (frame[by] == value).to_numpy().nonzero()[0])
@@ -135,6 +136,8 @@ def html_tables(frame: pd.DataFrame, shown: Sequence[Panel], *, scroll_rows: int
     cell = "padding:0.12rem 0.25rem;white-space:nowrap;"
     head = ("padding:0.12rem 0.25rem;vertical-align:bottom;position:sticky;top:0;background:#1e293b;"
             "border-bottom:1px solid #94a3b8;")
+    if not shown:
+        return "<p>The table has no rows.</p>\n"
     out = []
     for panel in shown:
         specs = [panel.header(name) for name in panel.columns]
@@ -220,6 +223,8 @@ def latex_tables(frame: pd.DataFrame, shown: Sequence[Panel]) -> str:
 
 def markdown_table(frame: pd.DataFrame) -> str:
     """Every column of the frame, headers in words with units, each column in its format."""
+    if frame.columns.empty:
+        return "The table has no rows."
     specs = [column(name) for name in frame.columns]
     rows = [[spec.text(v) for spec, v in zip(specs, values)] for values in frame.itertuples(index=False)]
     cells = pd.DataFrame(rows, columns=[spec.header for spec in specs])

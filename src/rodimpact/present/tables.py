@@ -234,18 +234,19 @@ def comparison_frame(records: Sequence[RunRecord], reference: str = "sem") -> pd
 
 def write_table(frame: pd.DataFrame, *, csv: str | Path, md: str | Path | None = None,
                 html: str | Path | None = None, tex: str | Path | None = None, caption: str = "",
-                views: Sequence[Panel] = ()) -> None:
+                views: Sequence[Panel] | None = None) -> None:
     """Write a table: the CSV with every column at full precision (machine names), and for
     people, each optional: Markdown (every column, rounded, headers in words with units, after
     ``caption``), and the panels ``views`` as HTML tables (for the report) and as LaTeX tables
-    (each with its caption and label). Headers, units and rounding: :mod:`.columns`.
+    (each with its caption and label). Headers, units and rounding: :mod:`.columns`. A table
+    with no rows (no panels) says so in each format.
 
     Raises
     ------
     ValueError
         ``html`` or ``tex`` is asked for without ``views``.
     """
-    if (html is not None or tex is not None) and not views:
+    if (html is not None or tex is not None) and views is None:
         raise ValueError("write_table: HTML and LaTeX show panels: give views")
     with atomic_output(csv) as tmp:
         frame.to_csv(tmp, index=False, float_format="%.10g")
