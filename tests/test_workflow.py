@@ -595,12 +595,12 @@ def test_target_plans_only_its_jobs(tmp_path: Path) -> None:
     assert run.returncode == 0, run.describe()
     assert job_stats(run.output) == {"case_file": 6, "solve": 18, "table2": 1}, run.describe()
     # Which files: the six r1_l30 balls' case files, their runs by the three methods and the
-    # four outputs of the table2 job.
+    # five outputs of the table2 job.
     rows = summary(project, target)
     balls = [c["id"] for c in project_cases(project).cases_in("table2", "r1_l30")]
     assert pending(rows, "solve") == {run_path(ball, m) for ball in balls for m in ("sem", "fem1d", "fem_axi")}
     assert pending(rows, "table2") == {
-        f"results/tables/table2_r1_l30.{ext}" for ext in ("csv", "md", "tex", "provenance.json")
+        f"results/tables/table2_r1_l30.{ext}" for ext in ("csv", "md", "html", "tex", "provenance.json")
     }
     assert pending(rows, "case_file") == {f"results/cases/{ball}.yaml" for ball in balls}
     assert pending(rows) == pending(rows, "case_file") | pending(rows, "solve") | pending(rows, "table2")
