@@ -150,7 +150,7 @@ def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
     status, message = "failed", ""
     t = 0.0
     while True:
-        u_pred = solve(M @ ((4.0 / h**2) * u + (4.0 / h) * v + a))
+        u_pred = _free_displacement(solve, M, u, v, a, h)
         big_a = x + h * w - h * h * p / (4.0 * m) - u_pred[bar.end]
         big_b = h * h / (4.0 * m) + b_rod
         if big_a > 0.0:
@@ -161,8 +161,7 @@ def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
         else:
             alpha_new, p_new = big_a, 0.0
         u_new = u_pred + p_new * g
-        a_new = (4.0 / h**2) * (u_new - u) - (4.0 / h) * v - a
-        v_new = v + 0.5 * h * (a + a_new)
+        v_new, a_new = _rates(u, v, a, u_new, h)
         x_new = x + h * w - h * h * (p + p_new) / (4.0 * m)
         w_new = w - h * (p + p_new) / (2.0 * m)
         if (p_new > 0.0) != in_contact:  # a contact ends or begins inside this step
@@ -196,14 +195,28 @@ def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
     if recorder is not None:
         times = field.times(recorder.transit, status, ends, t)
         while status == "completed" and recorder.count < len(times):
-            u_new = solve(M @ ((4.0 / h**2) * u + (4.0 / h) * v + a))  # the bar alone: no force
-            a_new = (4.0 / h**2) * (u_new - u) - (4.0 / h) * v - a
-            u, v, a = u_new, v + 0.5 * h * (a + a_new), a_new
+            u_new = _free_displacement(solve, M, u, v, a, h)  # the bar alone: no force
+            v, a = _rates(u, v, a, u_new, h)
+            u = u_new
             t += h
             recorder.record(t, u)
         field_data = recorder.datasets(times)
     outcome = Outcome(status, message, _time.perf_counter() - started)
     return _result(problem, options, setup, hist, outcome, field_data)
+
+
+def _free_displacement(solve: Any, M: Any, u: NDArray[np.float64], v: NDArray[np.float64],
+                       a: NDArray[np.float64], h: float) -> NDArray[np.float64]:
+    """The bar's displacement after a step ``h`` (s) with no contact force (average-acceleration
+    Newmark; ``solve`` factors K + 4 M / h^2)."""
+    return solve(M @ ((4.0 / h**2) * u + (4.0 / h) * v + a))
+
+
+def _rates(u: NDArray[np.float64], v: NDArray[np.float64], a: NDArray[np.float64],
+           u_new: NDArray[np.float64], h: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Velocity and acceleration after a Newmark step from ``u, v, a`` to ``u_new``."""
+    a_new = (4.0 / h**2) * (u_new - u) - (4.0 / h) * v - a
+    return v + 0.5 * h * (a + a_new), a_new
 
 
 class _FieldRecorder:
