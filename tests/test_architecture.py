@@ -2,13 +2,14 @@
 configuration check that loads no solver.
 
 The layers, lowest first (a package may import its own modules and the layers below it):
-contact < model < analysis < solvers < io < present < workflow. Every import counts,
+settings < contact < model < analysis < solvers < io < present < workflow. Every import counts,
 inside functions too, read from the source with :mod:`ast`.
 """
 
 from __future__ import annotations
 
 import ast
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -17,7 +18,7 @@ import pytest
 
 SRC = Path(__file__).resolve().parents[1] / "src"
 PACKAGE = SRC / "rodimpact"
-LAYERS = ("contact", "model", "analysis", "solvers", "io", "present", "workflow")
+LAYERS = ("settings", "contact", "model", "analysis", "solvers", "io", "present", "workflow")
 #: Lines a module may have before it must be split (the project's rule: small modules).
 MAX_LINES = 450
 
@@ -155,3 +156,28 @@ def test_no_module_writes_out_the_list_of_methods():
                 and any(f"[{', '.join(METHODS)}]" in line or f"{', '.join(METHODS)}" in line for line in text.splitlines()):
             holders.append(str(path.relative_to(SRC.parent)))
     assert holders == []
+
+
+def test_no_law_name_appears_outside_the_contact_package():
+    """Each contact law declares itself in rodimpact.contact (name, settings, needs, methods,
+    conflicts); nothing else compares or spells a law's name: no string literal equal to a
+    law's name in a module outside rodimpact/contact/, and no quoted law name in the rules,
+    the scripts or the schemas."""
+    sys.path.insert(0, str(SRC))
+    from rodimpact.contact.laws import LAWS
+
+    contact = PACKAGE / "contact"
+    spelled = []
+    for path in _modules():
+        if contact in path.parents:
+            continue
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Constant) and isinstance(node.value, str) and node.value in LAWS:
+                spelled.append(f"{path.relative_to(SRC)}:{node.lineno} {node.value!r}")
+    quoted = re.compile("|".join(rf"""(["'`]){re.escape(name)}\1""" for name in LAWS))
+    workflow = SRC.parent / "workflow"
+    for path in sorted(workflow.rglob("*.smk")) + sorted(workflow.rglob("*.py")) + sorted(workflow.rglob("*.yaml")):
+        for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+            if quoted.search(line):
+                spelled.append(f"{path.relative_to(SRC.parent)}:{number} {line.strip()}")
+    assert spelled == []

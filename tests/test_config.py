@@ -375,7 +375,7 @@ MALFORMED = {
     ),
     "unknown contact law": (
         _set(TABLE2, "variants", "r10_l30_film", "contact", "law", "hertz_flim"),
-        f"{TABLE2}: case 'ball_3.16mm-r10_l30_film': field 'contact.law': unknown contact law 'hertz_flim'; "
+        f"{TABLE2}: field 'variants.r10_l30_film.contact.law': unknown contact law 'hertz_flim'; "
         "known: hertz, hertz_film, tabulated",
     ),
     "negative film thickness": (
@@ -389,14 +389,13 @@ MALFORMED = {
     ),
     "film on the hertz law": (
         _set(TABLE2, "variants", "r10_l30_film", "contact", "law", "hertz"),
-        f"{TABLE2}: case 'ball_3.16mm-r10_l30_film': field 'contact.film': the hertz law takes no film; use law "
-        "hertz_film (or tabulated) for a film",
+        f"{TABLE2}: case 'ball_3.16mm-r10_l30_film': field 'contact.film': the hertz law takes no 'film'; laws "
+        "that take it: hertz_film, tabulated",
     ),
     "tabulated law on fem_axi": (
         _set(TABLE2, "variants", "r10_l30_cal", "methods", ["sem", "fem_axi"]),
         f"{TABLE2}: case 'ball_3.16mm-r10_l30_cal': field 'methods[1]': method 'fem_axi' resolves the contact in "
-        "the continuum and cannot take the tabulated law (a force-approach curve); run it on the case's bodies "
-        "(law hertz or hertz_film)",
+        "the continuum and cannot take the tabulated law; laws it can take: hertz, hertz_film",
     ),
     "film range without its nominal": (
         _set(TABLE2, "variants", "r10_l30_film", "contact", "film", "thickness_range_m", [3e-5, 4e-5]),

@@ -11,6 +11,7 @@ from snakemake.utils import Paramspace
 
 from rodimpact.analysis.studies import level_case, map_point_case, map_point_names, reference_case
 from rodimpact.analysis.sweeps import sweep_frame, sweep_point_case, sweep_points
+from rodimpact.contact.laws import LAWS, law_of
 from rodimpact.solvers.field import FIELD_OUTPUT
 from rodimpact.solvers.registry import METHODS as METHOD_REGISTRY
 from rodimpact.workflow.locks import register_run
@@ -106,9 +107,22 @@ SRC_BENCH = sources("rodimpact.workflow.bench", "rodimpact.workflow.bench_scalin
 SRC_INDENTATION = sources("rodimpact.workflow.indentation", "rodimpact.workflow.logs")
 SRC_BAND = sources("rodimpact.workflow.band", "rodimpact.workflow.logs")
 TABLE2_VARIANTS = list(PROJECT.variants.get("table2", {}))
-# The readings whose cases carry the thin-layer film law: each gets its prediction band.
+# The readings whose cases' law needs a film (the law declares it: needs.film): each gets its
+# prediction band over the film's ranges.
 FILM_VARIANTS = [v for v in TABLE2_VARIANTS
-                 if all((c.get("contact") or {}).get("law") == "hertz_film" for c in PROJECT.cases_in("table2", v))]
+                 if all(law_of(c.get("contact")).needs.film for c in PROJECT.cases_in("table2", v))]
+# The rules that compute a law's curve per case (a law declares its rule: needs.curve_rule) -> the
+# curve file of a case; a law that names another rule is refused here, before any job.
+CURVE_FILES = {"indentation": "results/indentation/{case}.h5"}
+for _law in LAWS.values():
+    if _law.needs.curve_rule is not None and _law.needs.curve_rule not in CURVE_FILES:
+        sys.exit(f"rodimpact: the {_law.name} contact law needs a curve from the rule {_law.needs.curve_rule!r}, "
+                 f"which the workflow does not have; rules that compute curves: {', '.join(CURVE_FILES)}")
+
+
+def curve_rule_of(case):
+    """The rule that computes the curve of a resolved case's contact law (None: the law needs none)."""
+    return law_of(case.get("contact")).needs.curve_rule
 
 
 def one_of(names):
@@ -138,21 +152,20 @@ def case_file(case_id):
 
 
 @per_job
-def tabulated_case_of(wildcards):
-    """The resolved case of an indentation; refuses a case whose law is not tabulated."""
+def indentation_case_of(wildcards):
+    """The resolved case of an indentation; refuses a case whose law needs no indentation curve."""
     case = resolved_case_of(wildcards)
-    if (case.get("contact") or {}).get("law") != "tabulated":
-        refuse(f"case {wildcards.case!r} has no tabulated contact law to calibrate; cases that have: "
-               f"{', '.join(c for c, v in PROJECT.cases.items() if (v.get('contact') or {}).get('law') == 'tabulated')}")
+    if curve_rule_of(case) != "indentation":
+        refuse(f"case {wildcards.case!r} has no contact law calibrated by the indentation; cases that have: "
+               f"{', '.join(c for c, v in PROJECT.cases.items() if curve_rule_of(v) == 'indentation')}")
     return case
 
 
 def contact_curve(wildcards):
-    """Input function: the curve file of a run whose case has the tabulated law (else none)."""
+    """Input function: the curve file of a run whose case's law needs one (else none)."""
     case = PROJECT.cases.get(wildcards.case)
-    if case is not None and (case.get("contact") or {}).get("law") == "tabulated":
-        return [f"results/indentation/{wildcards.case}.h5"]
-    return []
+    rule = None if case is None else curve_rule_of(case)
+    return [] if rule is None else [CURVE_FILES[rule].format(case=wildcards.case)]
 
 
 def runs_of(cases):

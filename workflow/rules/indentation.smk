@@ -1,4 +1,5 @@
-# The contact law calibrated by the continuum: for each case whose law is `tabulated`, fem_axi's
+# The contact law calibrated by the continuum: for each case whose law needs the indentation's
+# curve (its needs.curve_rule, rodimpact.contact.law), fem_axi's
 # static indentation of the case's ball, film and rod, as the force-approach curve its 1-D runs
 # take (results/indentation/{case}.h5). The case file is its input, so a change of the case's
 # ball, film or rod reruns the indentation and the runs that read it, and nothing else.
@@ -10,9 +11,9 @@ rule indentation:
         case=case_file(lambda w: w.case),
         code=SRC_INDENTATION,
     output:
-        h5="results/indentation/{case}.h5",
+        h5=CURVE_FILES["indentation"],
     params:
-        case=tabulated_case_of,
+        case=indentation_case_of,
         numerics=lambda w: config["numerics"]["fem_axi"],
     log:
         "logs/indentation/{case}.log",

@@ -93,8 +93,7 @@ TEXT_ROD_READINGS = {role: variant for role, variant in (
     ("no_film", "r10_l30"), ("film", "r10_l30_film"), ("film_calibrated", "r10_l30_film_cal"),
     ("no_film_calibrated", "r10_l30_cal")) if variant in TABLE2_VARIANTS}
 # The Table 2 cases whose law the continuum calibrates: one indentation curve each.
-CALIBRATED_CASES = [c["id"] for c in PROJECT.cases_in("table2")
-                    if (c.get("contact") or {}).get("law") == "tabulated"]
+CALIBRATED_CASES = [c["id"] for c in PROJECT.cases_in("table2") if curve_rule_of(c) == "indentation"]
 
 
 rule table2_film:

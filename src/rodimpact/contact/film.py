@@ -38,12 +38,16 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rodimpact.contact.hertz import ElasticMaterial, hertz_constant
-from rodimpact.contact.law import MAX_STEP_ITERATIONS, ContactLaw, StepNotConverged
+from rodimpact.contact.law import MAX_STEP_ITERATIONS, ContactLaw, LawSettings, Needs, StepNotConverged
+from rodimpact.settings.declare import REQUIRED, Material, OptionError, Settings, setting
 
 __all__ = [
+    "DEFAULT_THICKNESS_TOLERANCE",
     "FILM_VALIDITY_RATIO",
     "FilmLayer",
+    "FilmSettings",
     "HertzFilmLaw",
+    "HertzFilmSettings",
     "constrained_modulus",
     "film_constant",
 ]
@@ -53,6 +57,45 @@ log = logging.getLogger(__name__)
 #: The thin-layer law is used with a warning where the contact radius at the largest
 #: approach is below this many film thicknesses (docs/contact-laws.md, "Range of validity").
 FILM_VALIDITY_RATIO = 10.0
+
+
+#: The film's thickness range when its source gives none: +/- this fraction of the thickness.
+DEFAULT_THICKNESS_TOLERANCE = 0.10
+
+
+@dataclass(frozen=True, kw_only=True)
+class FilmSettings(Settings):
+    """A film bonded on the rod's struck end (the experiment's piezoelectric sensor)."""
+
+    thickness_m: float = setting(REQUIRED, "Thickness h of the film.", unit="m", exclusive_minimum=0)
+    thickness_range_m: list[float] | None = setting(
+        None, "[low, high] of the thickness, from the film's source or tolerance (null: +/- 10 % of "
+        "thickness_m); the prediction band reads it.", unit="m", exclusive_minimum=0, items=(2, 2), nullable=True)
+    area_m2: float | None = setting(
+        None, "Area of the film patch (null: the whole end face); fem_axi meshes a disc of this area.",
+        unit="m^2", exclusive_minimum=0, nullable=True)
+    material: Mapping[str, Any] = setting(
+        REQUIRED, "The film's material: a name from the materials file, or an inline material.", kind=Material)
+    source: str = setting("", "Where the film's thickness and size come from.", kind=str)
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        thickness = self.thickness_m
+        if self.thickness_range_m is None:
+            tolerance = DEFAULT_THICKNESS_TOLERANCE
+            object.__setattr__(self, "thickness_range_m", [(1 - tolerance) * thickness, (1 + tolerance) * thickness])
+        low, high = (float(x) for x in self.thickness_range_m)
+        if not (low < high and low <= thickness <= high):
+            raise OptionError("thickness_range_m", f"the thickness {thickness:g} m must lie inside a non-empty "
+                              f"range, got [{low:g}, {high:g}]")
+        object.__setattr__(self, "thickness_range_m", [low, high])
+
+
+@dataclass(frozen=True, kw_only=True)
+class HertzFilmSettings(LawSettings):
+    """The ``hertz_film`` law's settings: the film."""
+
+    film: FilmSettings = setting(REQUIRED, "The film bonded on the rod's struck end.", kind=FilmSettings)
 
 
 def constrained_modulus(youngs_modulus_pa: float, poisson_ratio: float) -> float:
@@ -199,6 +242,9 @@ class HertzFilmLaw(ContactLaw):
     thickness_m: float | None = None
     name = "hertz_film"
     label = "Hertz with a thin film"
+    reading = "Hertz contact in series with the film"
+    settings = HertzFilmSettings
+    needs = Needs(film=True)
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.k) and self.k > 0):

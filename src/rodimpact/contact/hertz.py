@@ -159,6 +159,7 @@ class HertzLaw(ContactLaw):
     sphere_radius_m: float | None = None
     name = "hertz"
     label = "Hertz"
+    reading = "Hertz contact"
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.k) and self.k > 0):

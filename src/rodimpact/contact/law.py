@@ -18,6 +18,19 @@ A law must be monotone: P(0) = 0, P increasing and P' >= 0 for alpha > 0, so tha
 equation has exactly one root for b > 0. :meth:`solve_step` and :meth:`rigid_impact` have
 generic implementations (safeguarded Newton; quadrature of the energy integral) that a law
 may replace with closed forms.
+
+Each law also declares, once and next to its physics, what the rest of the project reads of
+it (the configuration's schema and checks, the rules, the runner, the tables):
+
+- ``name`` and ``label``, and ``reading``: the words a table uses for a case with this law;
+- ``settings``: its settings in a case's ``contact`` block, a :class:`LawSettings` dataclass
+  declared with :func:`~rodimpact.settings.declare.setting` (doc, unit, bounds; nested blocks
+  such as a film, lists of them, materials);
+- ``needs``: what it needs from the workflow before a run (:class:`Needs`: a film, a curve a
+  rule computes, or nothing);
+- ``method_contact``: which methods can run it, by how a method treats the contact (the
+  registry's ``Method.contact``: ``law``, ``continuum``);
+- ``conflicts``: the case fields it cannot be combined with, and why.
 """
 
 from __future__ import annotations
@@ -25,12 +38,16 @@ from __future__ import annotations
 import abc
 import functools
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["ContactLaw", "RigidImpact", "StepNotConverged"]
+from rodimpact.settings.declare import Settings
+
+__all__ = ["ContactLaw", "LawSettings", "Needs", "RigidImpact", "StepNotConverged"]
 
 #: Newton iterations :meth:`ContactLaw.solve_step` takes at most.
 MAX_STEP_ITERATIONS = 60
@@ -59,6 +76,30 @@ class RigidImpact:
     peak_force_N: float
 
 
+@dataclass(frozen=True, kw_only=True)
+class LawSettings(Settings):
+    """A contact law's settings, as a case's ``contact`` block gives them (none: the law is
+    built from the case's bodies alone)."""
+
+
+@dataclass(frozen=True)
+class Needs:
+    """What a contact law needs from the workflow before a run.
+
+    Attributes
+    ----------
+    film : bool
+        The law's cases carry a film on the rod's struck end (their settings' ``film``), and
+        the workflow computes the prediction band over the film's ranges for them.
+    curve_rule : str or None
+        The workflow rule that computes the law's curve for each case (the runner hands it to
+        the law as ``contact.curve``); None: the law is built from the case alone.
+    """
+
+    film: bool = False
+    curve_rule: str | None = None
+
+
 def _check_positive(**values: float) -> None:
     for name, value in values.items():
         if not (math.isfinite(value) and value > 0):
@@ -75,9 +116,19 @@ class ContactLaw(abc.ABC):
     name: str = ""
     #: The law's name in words, for messages, legends and captions.
     label: str = ""
-    #: True when the law describes bodies a continuum method can mesh (a sphere, a flat, a
-    #: bonded film); False for a law that is only a force-approach curve.
-    continuum_form: bool = True
+    #: How a table reads a case with this law, in words (e.g. "Hertz contact").
+    reading: str = ""
+    #: Its settings in a case's ``contact`` block (beside ``law``).
+    settings: type[LawSettings] = LawSettings
+    #: What it needs from the workflow before a run.
+    needs: Needs = Needs()
+    #: The methods that can run it, by how they treat the contact (``Method.contact`` of the
+    #: registry): ``law``, a method that takes P(alpha); ``continuum``, one that meshes the
+    #: bodies and resolves the contact itself, which can run only a law that describes bodies
+    #: (a sphere, a flat, a bonded film), not a law that is only a force-approach curve.
+    method_contact: frozenset[str] = frozenset({"law", "continuum"})
+    #: Case fields the law cannot be combined with -> why.
+    conflicts: Mapping[str, str] = MappingProxyType({})
 
     @abc.abstractmethod
     def force(self, approach_m: float) -> float:

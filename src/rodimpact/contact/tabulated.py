@@ -21,22 +21,40 @@ from __future__ import annotations
 import logging
 import math
 from dataclasses import dataclass, field
+from types import MappingProxyType
 from typing import Any, Mapping
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from rodimpact.contact.film import HertzFilmLaw
-from rodimpact.contact.hertz import ElasticMaterial, HertzLaw
-from rodimpact.contact.law import ContactLaw
+from rodimpact.contact.film import FilmSettings
+from rodimpact.contact.hertz import ElasticMaterial
+from rodimpact.contact.law import ContactLaw, LawSettings, Needs
+from rodimpact.settings.declare import REQUIRED, setting
 
-__all__ = ["CurveMissing", "TabulatedLaw", "pchip_slopes"]
+__all__ = ["CURVE_SOURCES", "CurveMissing", "TabulatedLaw", "TabulatedSettings", "pchip_slopes"]
 
 log = logging.getLogger(__name__)
 
 # 8-point Gauss-Legendre nodes and weights on [0, 1]
 _GX, _GW = np.polynomial.legendre.leggauss(8)
 _GX, _GW = 0.5 * (_GX + 1.0), 0.5 * _GW
+
+
+#: Where a curve may come from -> the workflow rule that computes it.
+CURVE_SOURCES = {"fem_axi_indentation": "indentation"}
+
+
+@dataclass(frozen=True, kw_only=True)
+class TabulatedSettings(LawSettings):
+    """The ``tabulated`` law's settings: where its curve comes from, and the case's film."""
+
+    curve_from: str = setting(
+        REQUIRED, "Where the curve comes from: fem_axi_indentation, the continuum's static indentation of the "
+        "case's ball, film and rod.", kind=str, choices=tuple(CURVE_SOURCES), key="from")
+    film: FilmSettings | None = setting(
+        None, "The film bonded on the rod's struck end, when the case has one (the continuum indents it).",
+        kind=FilmSettings, nullable=True)
 
 
 class CurveMissing(ValueError):
@@ -84,7 +102,7 @@ def pchip_slopes(x: NDArray[np.float64], y: NDArray[np.float64]) -> NDArray[np.f
 
 @dataclass(frozen=True)
 class TabulatedLaw(ContactLaw):
-    """A contact law interpolated from a curve P(alpha) (see the module docstring).
+    """A contact law interpolated from a curve P(alpha) that a rule computes (the continuum's indentation).
 
     Parameters
     ----------
@@ -104,8 +122,13 @@ class TabulatedLaw(ContactLaw):
     source: str = ""
     name = "tabulated"
     label = "tabulated (continuum-calibrated)"
+    reading = "contact law calibrated by the continuum"
+    settings = TabulatedSettings
+    #: The curve of each case, computed by the indentation rule before its runs.
+    needs = Needs(curve_rule=CURVE_SOURCES["fem_axi_indentation"])
     #: A curve is what the 1-D methods take; a continuum method resolves the bodies itself.
-    continuum_form = False
+    method_contact = frozenset({"law"})
+    conflicts = MappingProxyType({"sweep": "its curve is computed per case, not per sweep point"})
     _x: NDArray[np.float64] = field(init=False, repr=False, compare=False)
     _y: NDArray[np.float64] = field(init=False, repr=False, compare=False)
     _d: NDArray[np.float64] = field(init=False, repr=False, compare=False)
@@ -152,16 +175,6 @@ class TabulatedLaw(ContactLaw):
         radius = curve.get("contact_radius_m")
         return cls(tuple(map(float, curve["approach_m"])), tuple(map(float, curve["force_N"])),
                    None if radius is None else tuple(map(float, radius)), str(spec.get("from", "")))
-
-    @staticmethod
-    def estimate_law(spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial,
-                     rod: ElasticMaterial) -> ContactLaw:
-        """The law the curve is calibrating, for estimates made before the curve exists (the
-        configuration check, the resource estimates): Hertz's law of the bodies, with the
-        thin-layer film when the spec has a film."""
-        if spec.get("film") is not None:
-            return HertzFilmLaw.from_bodies(spec, sphere_radius_m, impactor, rod)
-        return HertzLaw.from_bodies(spec, sphere_radius_m, impactor, rod)
 
     # -- interpolation in (ln alpha, ln P) --------------------------------------------------
     def _log_force(self, x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:

@@ -2,9 +2,10 @@
 
 A material is a name from the materials file or an inline mapping; it resolves to its three
 constants (and the source's ``ranges`` where the materials file gives them). A case's
-``contact`` block resolves to ``{"law", "film", "from"}`` with the film's material resolved,
-or to nothing for Hertz's law with no film (the default), so that a case that does not name
-a law is the same resolved case as one that names ``hertz``. Every error names its field.
+``contact`` block resolves, through its law's declared settings, to ``{"law", ...settings}``
+with every material resolved, or to nothing for the default law with no settings, so that a
+case that does not name a law is the same resolved case as one that names it. Every error
+names its field.
 """
 
 from __future__ import annotations
@@ -12,14 +13,13 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from typing import Any
 
-from rodimpact.contact.laws import DEFAULT_LAW, LAWS
-from rodimpact.solvers.registry import METHODS
+from rodimpact.contact.laws import DEFAULT_LAW, LAWS, UnknownLaw, law_of
+from rodimpact.settings.declare import Material, MissingSetting, OptionError
+from rodimpact.solvers.registry import CONTACT_KINDS, METHODS
 
 __all__ = ["MATERIAL_FIELDS", "check_law", "check_material_ranges", "resolve_contact", "resolve_material"]
 
-MATERIAL_FIELDS = ("youngs_modulus_pa", "poisson_ratio", "density_kg_m3")
-#: The film's thickness range when its source gives none: +/- this fraction.
-DEFAULT_THICKNESS_TOLERANCE = 0.10
+MATERIAL_FIELDS = Material.CONSTANTS
 
 ErrorFactory = Callable[..., Exception]
 
@@ -56,53 +56,59 @@ def resolve_material(value: str | Mapping[str, Any], materials: Mapping[str, Map
 
 def resolve_contact(contact: Mapping[str, Any] | None, materials: Mapping[str, Mapping[str, Any]],
                     error: ErrorFactory) -> dict[str, Any]:
-    """``{"contact": resolved}``, or ``{}`` for Hertz's law with no film (the default).
+    """``{"contact": resolved}``, or ``{}`` for the default law with no settings.
 
-    Raises (through ``error``) on an unknown law, a law without what it needs (hertz_film
-    without a film, tabulated without ``from``), a film on the hertz law, an unknown film
-    material or a thickness outside its range.
+    The law's declared settings (``settings`` of its class in
+    :data:`~rodimpact.contact.laws.LAWS`) say which keys it takes, which it needs, their
+    bounds and defaults; materials are resolved from the materials file. The resolved block
+    is ``{"law": name, ...every setting, defaults filled in}``.
+
+    Raises (through ``error``, with the field) on an unknown law, a key the law does not
+    take, a setting it needs and is not given, a value out of its bounds, an unknown
+    material.
     """
     if contact is None:
         return {}
-    law = contact["law"]
-    if law not in LAWS:
-        raise error(f"unknown contact law {law!r}; known: {', '.join(LAWS)}", field="contact.law")
-    film = contact.get("film")
-    if law == "hertz_film" and film is None:
-        raise error("the hertz_film law needs a film (thickness_m, material)", field="contact.film")
-    if law == DEFAULT_LAW and film is not None:
-        raise error("the hertz law takes no film; use law hertz_film (or tabulated) for a film", field="contact.film")
-    if law == "tabulated" and "from" not in contact:
-        raise error("the tabulated law needs 'from' (where its curve comes from)", field="contact.from")
-    if law == DEFAULT_LAW:
+    try:
+        law = law_of(contact)
+    except UnknownLaw as unknown:
+        raise error(str(unknown), field=UnknownLaw.field) from None
+    declared = law.settings.settings()
+    for key in contact:
+        if key != "law" and key not in declared:
+            takers = [name for name, other in LAWS.items() if key in other.settings.settings()]
+            hint = (f"laws that take it: {', '.join(takers)}" if takers else
+                    f"its settings: {', '.join(declared) or 'none'}")
+            raise error(f"the {law.name} law takes no {key!r}; {hint}", field=f"contact.{key}")
+
+    def material(value: Any, path: str) -> dict[str, Any]:
+        return resolve_material(value, materials, error, f"contact.{path}")
+
+    try:
+        settings = law.settings.from_settings({k: v for k, v in contact.items() if k != "law"}, material=material)
+    except MissingSetting as missing:
+        raise error(f"missing; the {law.name} law needs it", field=f"contact.{missing.field}") from None
+    except OptionError as wrong:
+        raise error(wrong.reason, field=f"contact.{wrong.field}") from None
+    resolved = settings.as_settings()
+    if law.name == DEFAULT_LAW and not resolved:
         return {}
-    resolved: dict[str, Any] = {"law": law}
-    if "from" in contact:
-        resolved["from"] = contact["from"]
-    if film is not None:
-        thickness = float(film["thickness_m"])
-        tolerance = DEFAULT_THICKNESS_TOLERANCE
-        low, high = film.get("thickness_range_m", [(1 - tolerance) * thickness, (1 + tolerance) * thickness])
-        if not (low < high and low <= thickness <= high):
-            raise error(f"the thickness {thickness:g} m must lie inside a non-empty range, got [{low:g}, {high:g}]",
-                        field="contact.film.thickness_range_m")
-        resolved["film"] = {
-            "thickness_m": thickness,
-            "thickness_range_m": [float(low), float(high)],
-            "area_m2": None if film.get("area_m2") is None else float(film["area_m2"]),
-            "material": resolve_material(film["material"], materials, error, "contact.film.material"),
-        }
-    return {"contact": resolved}
+    return {"contact": {"law": law.name, **resolved}}
 
 
 def check_law(case: Mapping[str, Any], error: ErrorFactory) -> None:
-    """Every method of the case (and of its sweep) can take its contact law (a continuum
-    method cannot take a law that is only a curve)."""
-    law = LAWS[(case.get("contact") or {}).get("law", DEFAULT_LAW)]
+    """Every method of the case (and of its sweep) can run its contact law (the law's
+    ``method_contact``), and the case sets no field the law conflicts with (``conflicts``)."""
+    law = law_of(case.get("contact"))
+    for field, why in law.conflicts.items():
+        if case.get(field) is not None:
+            raise error(f"the {law.name} law cannot be combined with {field!r}: {why}", field="contact.law")
     own = list(case["methods"])
     swept = [m for m in (case.get("sweep") or {}).get("methods", []) if m not in own]
     for index, name in enumerate(own + swept):
-        if METHODS[name].contact == "continuum" and not law.continuum_form:
-            raise error(f"method {name!r} resolves the contact in the continuum and cannot take the {law.name} law "
-                        "(a force-approach curve); run it on the case's bodies (law hertz or hertz_film)",
+        kind = METHODS[name].contact
+        if kind not in law.method_contact:
+            can = [other for other, other_law in LAWS.items() if kind in other_law.method_contact]
+            raise error(f"method {name!r} {CONTACT_KINDS[kind]} and cannot take the {law.name} law; "
+                        f"laws it can take: {', '.join(can)}",
                         field=f"methods[{index}]" if index < len(own) else "sweep.methods")

@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from rodimpact.analysis.sweeps import SweepError, sweep_point_case, sweep_points
+from rodimpact.contact.laws import contact_schema
 from rodimpact.io.bodies import MATERIAL_FIELDS, check_law, check_material_ranges, resolve_contact, resolve_material
 from rodimpact.io.checks import check_outputs, check_run, check_stability, check_work_precision
 from rodimpact.io.plausible import Budget, check_plausible
@@ -62,6 +63,8 @@ DEFAULT_CONFIG_FILE = "config/config.yaml"
 CONFIG_SCHEMA = "config.schema.yaml"
 CASES_SCHEMA = "cases.schema.yaml"
 MATERIALS_SCHEMA = "materials.schema.yaml"
+#: What a resolved case's materials refer to: a name or a complete inline material.
+COMPLETE_MATERIAL = "materials.schema.yaml#/$defs/complete_material"
 _VARIANT_FIELDS = ("impactor", "rod", "contact", "methods", "numerics")  # what a variant may change in a case
 
 
@@ -71,7 +74,9 @@ def registry_schema() -> dict[str, Any]:
     (``$defs/numerics_<method>``, and ``numerics.<method>``), and the union of all settings
     (``$defs/method_numerics_fields``, a case's overrides: checked per method by the loader);
     and to ``cases.schema.yaml`` the settings of the strain field's grid (``$defs/field_grid``,
-    :class:`~rodimpact.solvers.field.FieldGrid`).
+    :class:`~rodimpact.solvers.field.FieldGrid`) and the ``contact`` block from the contact
+    laws' declarations (``$defs/contact``; ``$defs/resolved_contact``, with complete materials:
+    :func:`~rodimpact.contact.laws.contact_schema`).
     """
     defs: dict[str, Any] = {"method": {
         "title": "method", "type": "string", "enum": list(METHOD_REGISTRY),
@@ -88,7 +93,8 @@ def registry_schema() -> dict[str, Any]:
         "type": "object", "additionalProperties": False, "properties": union}
     numerics = {name: {"$ref": f"#/$defs/numerics_{name}", "default": {}} for name in METHOD_REGISTRY}
     return {CONFIG_SCHEMA: {"$defs": defs, "properties": {"numerics": {"properties": numerics}}},
-            CASES_SCHEMA: {"$defs": {"field_grid": FieldGrid.json_schema()}}}
+            CASES_SCHEMA: {"$defs": {"field_grid": FieldGrid.json_schema(), "contact": contact_schema(),
+                                     "resolved_contact": contact_schema(COMPLETE_MATERIAL)}}}
 
 
 def _load_schemas(schema_dir: Path, root: Path) -> Schemas:
@@ -321,7 +327,7 @@ class _ProjectBuilder:
             "measured": with_floats(case["measured"]),
             "published": with_floats(case["published"]),
         }
-        check_law(resolved, error)
+        check_law(resolved if sweep is None else {**resolved, "sweep": sweep}, error)
         if sweep is not None:
             self.sweeps[case_id] = self._sweep(resolved, sweep, source)
             return
@@ -338,9 +344,6 @@ class _ProjectBuilder:
         parameters = {name: sorted({point[name] for point in points}) for name in points[0]}
         case = {**case, "sweep": {"description": sweep["description"], "methods": list(sweep["methods"]),
                                   "parameters": parameters}}
-        if case.get("contact", {}).get("law") == "tabulated":
-            raise source.error("a sweep cannot take the tabulated law (its curve is computed per case, not per "
-                               "sweep point)", case=case["id"], field="contact.law")
         for row in points:
             where = ", ".join(f"{name} = {value:g}" for name, value in row.items())
             try:

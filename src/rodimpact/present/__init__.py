@@ -13,6 +13,6 @@ force), :mod:`.study_figures` (error against run time, the stability map), :mod:
 
 What it may import: :mod:`rodimpact.io` (to read runs, bands, curves and case files, and write
 files), :mod:`rodimpact.analysis`, :mod:`rodimpact.solvers.registry` (labels, styles, order of the
-methods), :data:`rodimpact.contact.laws.DEFAULT_LAW` (the law of a case that names none), pandas
+methods), :mod:`rodimpact.contact.laws` (the law of a case, its words), pandas
 and matplotlib (headless). Never a solver.
 """

@@ -12,6 +12,7 @@ from typing import Any, Mapping, Sequence
 
 import pandas as pd
 
+from rodimpact.contact.laws import UnknownLaw, law_of
 from rodimpact.io.store import RunRecord
 from rodimpact.present.columns import method_header
 from rodimpact.present.table_formats import Panel, latex_escape, panels
@@ -40,9 +41,10 @@ def reading_words(config: Mapping[str, Any]) -> str:
         words.append(f"with the {1e6 * float(film['thickness_m']):g} µm {name} film".replace("  ", " "))
     else:
         words.append("without the film")
-    law = str(contact.get("law", "hertz"))
-    words.append({"hertz": "Hertz contact", "hertz_film": "Hertz contact in series with the film",
-                  "tabulated": "contact law calibrated by the continuum"}.get(law, f"contact law {law}"))
+    try:
+        words.append(law_of(contact).reading)
+    except UnknownLaw as unknown:  # a stored run of a law this code does not have
+        words.append(f"contact law {unknown.name}")
     return ", ".join(words)
 
 

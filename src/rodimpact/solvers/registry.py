@@ -33,7 +33,11 @@ from rodimpact.solvers.options import Options
 from rodimpact.solvers.result import ImpactResult
 from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
 
-__all__ = ["METHODS", "Method", "UnknownMethod", "method"]
+__all__ = ["CONTACT_KINDS", "METHODS", "Method", "UnknownMethod", "method"]
+
+#: How a method treats the contact (``Method.contact``) -> what that means, in words.
+CONTACT_KINDS = {"law": "takes the case's contact law P(alpha)",
+                 "continuum": "resolves the contact in the continuum"}
 
 
 class UnknownMethod(KeyError):
@@ -78,9 +82,10 @@ class Method:
     color : str
         Matplotlib colour of its curves.
     contact : {"law", "continuum"}
-        ``law``: the method takes the case's contact law P(alpha) (any law); ``continuum``: it
-        resolves the contact between the meshed bodies itself and takes only a law that
-        describes bodies (:attr:`~rodimpact.contact.law.ContactLaw.continuum_form`).
+        How the method treats the contact (:data:`CONTACT_KINDS`): ``law``, it takes the case's
+        contact law P(alpha); ``continuum``, it resolves the contact between the meshed bodies
+        itself. A law declares the kinds that can run it
+        (:attr:`~rodimpact.contact.law.ContactLaw.method_contact`).
     records_field : bool
         Its solver records the strain over the whole rod (output ``strain_field``, on the
         case's :class:`~rodimpact.solvers.field.FieldGrid`; the solver's ``field`` argument).

@@ -25,7 +25,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from rodimpact.contact.laws import build_law
+from rodimpact.contact.laws import bodies_contact, build_law
 from rodimpact.contact.tabulated import TabulatedLaw
 from rodimpact.io.curves import ContactCurve, write_contact_curve
 from rodimpact.model.materials import Material
@@ -45,13 +45,12 @@ SMALLEST = 0.03
 
 
 def _bodies_case(case: Mapping[str, Any]) -> dict[str, Any]:
-    """The case with the law of its bodies (hertz_film with its film, else hertz)."""
-    contact = case.get("contact") or {}
-    film = contact.get("film")
+    """The case with the analytic law of its bodies (:func:`~rodimpact.contact.laws.bodies_contact`)."""
+    contact = bodies_contact(case.get("contact"))
     bodies = {**case, "impactor": {**case["impactor"], "body": "cap"},
               "rod": {**case["rod"], "far_end": "fixed"}}
-    if film is not None:
-        bodies["contact"] = {"law": "hertz_film", "film": film}
+    if contact is not None:
+        bodies["contact"] = contact
     else:
         bodies.pop("contact", None)
     return bodies

@@ -10,6 +10,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from rodimpact.contact.laws import law_of
 from rodimpact.io.casefile import case_file_reference
 from rodimpact.io.provenance import file_sha256
 from rodimpact.io.store import write_run
@@ -72,15 +73,17 @@ def _failure_record(error: BaseException) -> tuple[dict, dict]:
 
 
 def _with_curve(case: Mapping[str, Any], path: str | Path | None) -> Mapping[str, Any]:
-    """The case with its tabulated law's curve read from ``path`` (the case itself otherwise)."""
+    """The case with its law's curve read from ``path`` when the law needs one (its
+    ``needs.curve_rule``), the case itself otherwise."""
     contact = case.get("contact") or {}
-    if contact.get("law") != "tabulated":
+    law = law_of(contact)
+    if law.needs.curve_rule is None:
         if path is not None:
-            raise ValueError(f"contact_curve: case {case['id']!r} has the {contact.get('law', 'hertz')} law, "
-                             "which takes no curve")
+            raise ValueError(f"contact_curve: case {case['id']!r} has the {law.name} law, which takes no curve")
         return case
     if path is None:
-        raise ValueError(f"contact_curve: case {case['id']!r} has the tabulated law and needs its curve file")
+        raise ValueError(f"contact_curve: case {case['id']!r} has the {law.name} law and needs its curve file "
+                         f"(rule {law.needs.curve_rule})")
     from rodimpact.io.curves import read_contact_curve  # only a calibrated law's runs read a curve
 
     curve = read_contact_curve(path)
@@ -115,7 +118,7 @@ def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: i
         SHA-256 and its case's hash are stored in the config (``run.case_file``); a mapping
         is that record already read (:func:`rodimpact.io.casefile.case_file_reference`).
     contact_curve : path, optional
-        The curve file of a case whose contact law is ``tabulated`` (the indentation rule's
+        The curve file of a case whose contact law needs one (``needs.curve_rule``: the indentation rule's
         output, :mod:`rodimpact.io.curves`): read, checked against its hash and against
         the case, and given to the law; its path and SHA-256 are stored in the config
         (``run.contact_curve``).
@@ -126,7 +129,7 @@ def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: i
     ------
     ValueError
         ``case_file`` holds another case than this run's (stale or edited); the case's law
-        is ``tabulated`` and no ``contact_curve`` is given, or the curve is another case's.
+        needs a curve and no ``contact_curve`` is given, or the curve is another case's.
     """
     timed, timing = timing is not None, Timing() if timing is None else timing
     config = run_config(case, method, level)
