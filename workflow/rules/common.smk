@@ -114,14 +114,15 @@ FILM_VARIANTS = [v for v in TABLE2_VARIANTS
 # The rules that compute a law's curve per case (a law declares its rule: needs.curve_rule) -> the
 # curve file of a case; a law that names another rule is refused here, before any job.
 CURVE_FILES = {"indentation": "results/indentation/{case}.h5"}
-for _law in LAWS.values():
-    if _law.needs.curve_rule is not None and _law.needs.curve_rule not in CURVE_FILES:
-        sys.exit(f"rodimpact: the {_law.name} contact law needs a curve from the rule {_law.needs.curve_rule!r}, "
-                 f"which the workflow does not have; rules that compute curves: {', '.join(CURVE_FILES)}")
+_NO_CURVE_FILE = [law for law in LAWS.values() if law.needs.curve_rule not in (None, *CURVE_FILES)]
+if _NO_CURVE_FILE:
+    sys.exit(f"rodimpact: the {_NO_CURVE_FILE[0].name} contact law needs a curve from the rule "
+             f"{_NO_CURVE_FILE[0].needs.curve_rule!r}, which the workflow does not have; rules that compute curves: "
+             f"{', '.join(CURVE_FILES)}")
 
 
 def curve_rule_of(case):
-    """The rule that computes the curve of a resolved case's contact law (None: the law needs none)."""
+    """Which rule computes the curve of a resolved case's contact law (None when the law needs none)."""
     return law_of(case.get("contact")).needs.curve_rule
 
 
@@ -164,8 +165,8 @@ def indentation_case_of(wildcards):
 def contact_curve(wildcards):
     """Input function: the curve file of a run whose case's law needs one (else none)."""
     case = PROJECT.cases.get(wildcards.case)
-    rule = None if case is None else curve_rule_of(case)
-    return [] if rule is None else [CURVE_FILES[rule].format(case=wildcards.case)]
+    curve_rule = None if case is None else curve_rule_of(case)
+    return [] if curve_rule is None else [CURVE_FILES[curve_rule].format(case=wildcards.case)]
 
 
 def runs_of(cases):
