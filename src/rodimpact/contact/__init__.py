@@ -1,8 +1,10 @@
 """Contact laws: the quasi-static force-approach law of the impactor's contact with the rod.
 
-What lives here: the interface every law implements (:mod:`.law`), each law in its own
-module (:mod:`.hertz`), and the table of laws by name (:mod:`.laws`), which a case selects.
+What lives here: the interface every law implements and what a law declares of itself (its
+name, label, settings, needs, methods and conflicts: :mod:`.law`), each law in its own module
+with its settings (:mod:`.hertz`, :mod:`.film`, :mod:`.tabulated`), and the table of laws by
+name with the functions that read the declarations for the rest of the project (:mod:`.laws`).
 
-What it may import: numpy and scipy only. It is the lowest layer of the package: the
-model, the solvers and everything above them use it; it uses none of them.
+What it may import: numpy, scipy and :mod:`rodimpact.settings` (how a setting is declared).
+The model, the solvers and everything above them use it; it uses none of them.
 """
