@@ -9,13 +9,11 @@ from __future__ import annotations
 
 import copy
 import math
-from typing import Any, Mapping, Sequence
-
-import numpy as np
+from typing import Any, Mapping
 
 from rodimpact.model.materials import Material
 
-__all__ = ["geometric_ratio", "level_case", "map_point_case", "map_point_names", "map_points", "reference_case"]
+__all__ = ["level_case", "map_point_case", "map_point_names", "reference_case"]
 
 #: Numerics of the sem reference run of a stress case (its tolerance set by the study).
 _REFERENCE_METHOD = "sem"
@@ -81,18 +79,3 @@ def map_point_case(base: Mapping[str, Any], spec: Mapping[str, Any], name: str, 
     if method == "sem_paper":
         overrides["allow_unstable"] = True
     return level_case(case, method, global_numerics, overrides)
-
-
-def map_points(spec: Mapping[str, Any]) -> list[dict[str, Any]]:
-    """The map's points: name, mass (kg), impedance (kg/s), in grid order."""
-    masses, impedances = spec["mass_kg"], spec["impedance_kg_s"]
-    return [{"point": f"m{i}_z{j}", "mass_kg": float(m), "impedance_kg_s": float(z)}
-            for i, m in enumerate(masses) for j, z in enumerate(impedances)]
-
-
-def geometric_ratio(values: Sequence[float]) -> float:
-    """Ratio of the last two of increasing resolutions (the Richardson refinement ratio)."""
-    values = np.asarray(values, dtype=float)
-    if len(values) < 2 or not np.all(np.diff(values) > 0):
-        raise ValueError(f"resolutions must increase, got {list(values)}")
-    return float(values[-1] / values[-2])

@@ -1,8 +1,9 @@
 """The solvers: one package per method, the registry that declares them, and what they share.
 
 What lives here: :mod:`.registry` (:data:`~rodimpact.solvers.registry.METHODS`, each method
-declared once), :mod:`.options` (how a setting is declared), :mod:`.stepping` (the settings
-and limits every time-stepping solver shares), :mod:`.result` (the
+declared once), :mod:`.options` (how a setting is declared), :mod:`.stepping` (what every
+time-stepping solver shares: the settings, the stop limits, the end test's window, the
+histories a run records and the result built from them, with its energy balance), :mod:`.result` (the
 :class:`~rodimpact.solvers.result.ImpactResult` every solver returns), :mod:`.field` (the
 grid of the strain field over the rod, output ``strain_field``), :mod:`.cost` (the
 cost model's shared pieces), and the methods' packages :mod:`.sem` (``sem``,

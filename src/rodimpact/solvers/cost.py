@@ -14,12 +14,16 @@ from dataclasses import dataclass
 
 from rodimpact.model.problem import ImpactProblem
 
-__all__ = ["Cost", "MIB", "SHORT_CONTACT", "SOLVE_S", "contact_duration", "horizon"]
+__all__ = ["Cost", "MIB", "SHORT_CONTACT", "SOLVE_S", "STATION_STEP_BYTES", "contact_duration", "horizon"]
 
 MIB = 2.0**20
 
 #: Every solve's fixed part, s: options, the end test's look-ahead, the result's arrays.
 SOLVE_S = 0.5
+#: Memory per stored step and station, bytes: the station's two histories (displacement and
+#: strain, 8 bytes each a step), allowed four times over for the copies they pass through (what
+#: the solver records or computes them from, the result's arrays, the run's file).
+STATION_STEP_BYTES = 64.0
 #: Rigid-rod contact times within which a contact on a rod that carries the rigid-rod force is over.
 SHORT_CONTACT = 1.5
 

@@ -6,9 +6,10 @@ import math
 from typing import Any, Mapping
 
 from rodimpact.model.problem import ImpactProblem
-from rodimpact.solvers.cost import MIB, SOLVE_S, Cost, contact_duration, horizon
+from rodimpact.solvers.cost import MIB, SOLVE_S, STATION_STEP_BYTES, Cost, contact_duration, horizon
 from rodimpact.solvers.fem1d.options import FEM1DOptions
 from rodimpact.solvers.field import FIELD_OUTPUT, FieldGrid
+from rodimpact.solvers.stepping import SEPARATION_ROUND_TRIPS
 
 __all__ = ["fem1d_cost"]
 
@@ -26,9 +27,9 @@ def fem1d_cost(case: Mapping[str, Any], options: FEM1DOptions) -> Cost:
     elements, step, _ = options.resolve(problem)
     dofs = (1 if options.element == "P1" else 2) * elements + 1
     # its end test: a fixed rod's energy bound (measured: within 2 contact times and half a
-    # round trip), a free rod's 4 round trips
+    # round trip), a free rod's separation window
     contact, period = contact_duration(problem), problem.rod.reflection_period
-    end_test = min(3.0 * contact, period) if problem.rod.far_end == "fixed" else 4.0 * period
+    end_test = min(3.0 * contact, period) if problem.rod.far_end == "fixed" else SEPARATION_ROUND_TRIPS * period
     span = horizon(problem, options.max_time_factor, contact, end_test)
     steps = span / step + 1.0
     if FIELD_OUTPUT in case.get("outputs", ()) and math.isfinite(problem.rod.reflection_period):
@@ -37,4 +38,4 @@ def fem1d_cost(case: Mapping[str, Any], options: FEM1DOptions) -> Cost:
     stations = len(case.get("stations", ()))
     return Cost(time_step_s=step, steps=steps,
                 solve_s=SOLVE_S + steps * (FEM1D_STEP_S + FEM1D_DOF_STEP_S * dofs),
-                mem_mib=(steps * (FEM1D_STEP_BYTES + 64.0 * stations) + dofs * FEM1D_DOF_BYTES) / MIB)
+                mem_mib=(steps * (FEM1D_STEP_BYTES + STATION_STEP_BYTES * stations) + dofs * FEM1D_DOF_BYTES) / MIB)

@@ -24,14 +24,15 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq
 
-from rodimpact.analysis.signals import local_maxima
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.model.responses import Rod
 from rodimpact.solvers.fem1d.bar import BarModel, banded_solver, bar_model, end_vector
 from rodimpact.solvers.fem1d.options import FEM1DOptions
 from rodimpact.solvers.field import FieldGrid, field_datasets
 from rodimpact.solvers.result import ImpactResult
-from rodimpact.solvers.stepping import Outcome, limit_reached
+from rodimpact.solvers.stepping import (
+    SEPARATION_ROUND_TRIPS, Outcome, StepHistory, energy_error, limit_reached
+)
 
 __all__ = ["solve_fem1d"]
 
@@ -53,23 +54,15 @@ class _Setup:
     rod_momentum: NDArray[np.float64]  # momentum of the rod = rod_momentum @ v
 
 
-@dataclass
-class _History:
-    """The histories recorded at every step (lists, turned into arrays by :func:`_result`)."""
+@dataclass(eq=False)
+class _History(StepHistory):
+    """The histories every run records, and fem1d's own: the stations' displacement and strain
+    and the rod's kinetic and strain energies."""
 
-    t: list[float] = field(default_factory=lambda: [0.0])
-    force: list[float] = field(default_factory=lambda: [0.0])
-    x: list[float] = field(default_factory=lambda: [0.0])
-    w: list[float] = field(default_factory=list)
-    u_end: list[float] = field(default_factory=lambda: [0.0])
-    alpha: list[float] = field(default_factory=lambda: [0.0])
     station_u: list[NDArray[np.float64]] = field(default_factory=list)
     station_e: list[NDArray[np.float64]] = field(default_factory=list)
-    rod_kinetic: list[float] = field(default_factory=lambda: [0.0])
-    rod_strain: list[float] = field(default_factory=lambda: [0.0])
-    starts: list[float] = field(default_factory=lambda: [0.0])
-    ends: list[float] = field(default_factory=list)
-    n_newton: int = 0
+    rod_kinetic: list[float] = field(default_factory=list)
+    rod_strain: list[float] = field(default_factory=list)
 
 
 def _hermite_root(a0: float, a1: float, d0: float, d1: float, h: float) -> float:
@@ -142,7 +135,9 @@ def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
     d = M.shape[0]
     u, v, a = np.zeros(d), np.zeros(d), np.zeros(d)
     x, w, p, alpha = 0.0, problem.velocity_m_s, 0.0, 0.0
-    hist = _History(w=[w], station_u=[bar.station_probes @ u], station_e=[bar.strain_probes @ u])
+    hist = _History(t=[0.0], force=[0.0], x=[0.0], w=[w], u_end=[0.0], alpha=[0.0],
+                    station_u=[bar.station_probes @ u], station_e=[bar.strain_probes @ u],
+                    rod_kinetic=[0.0], rod_strain=[0.0])
     recorder = None if field is None else _FieldRecorder(field, rod, bar.field_probes, u)
     starts, ends, AL = hist.starts, hist.ends, hist.alpha
     in_contact = True
@@ -255,27 +250,20 @@ def _no_further_contact(rod: Rod, x: float, w: float, rod_energy: float, static_
                         since_separation: float, rod_momentum: float) -> bool:
     """Fixed far end: the end can never be further out than sqrt(2 E_rod C_static), so an
     impactor moving away beyond that never returns (rigorous). Free far end: the impactor
-    is no faster than the rod's centre of mass and has stayed clear for 8T (a heuristic:
+    is no faster than the rod's centre of mass and has stayed clear for
+    :data:`~rodimpact.solvers.stepping.SEPARATION_ROUND_TRIPS` round trips, 8T (a heuristic:
     the end oscillates about the centre-of-mass motion)."""
     if rod.far_end == "fixed":
         return w <= 0.0 and x + math.sqrt(2.0 * rod_energy * static_end) < 0.0
-    return w <= rod_momentum / rod.mass_kg and since_separation >= 4.0 * rod.reflection_period
+    return w <= rod_momentum / rod.mass_kg and since_separation >= SEPARATION_ROUND_TRIPS * rod.reflection_period
 
 
 def _result(problem: ImpactProblem, options: FEM1DOptions, setup: _Setup, hist: _History,
             outcome: Outcome, field: dict[str, tuple[NDArray[np.float64], str, str]]) -> ImpactResult:
-    time = np.asarray(hist.t)
-    force = np.asarray(hist.force)
-    alpha = np.asarray(hist.alpha)
-    velocity = np.asarray(hist.w)
-    kinetic = 0.5 * problem.mass_kg * velocity**2
-    contact = problem.contact.energy(alpha)
+    nodes = hist.nodes()
+    kinetic = 0.5 * problem.mass_kg * nodes.w**2
+    contact = problem.contact.energy(nodes.alpha)
     rod_kin, rod_str = np.asarray(hist.rod_kinetic), np.asarray(hist.rod_strain)
-    total = kinetic + contact + rod_kin + rod_str
-    energy_error = float((total[0] - total[-1]) / total[0])
-    ends = np.asarray(hist.ends)
-    starts = np.asarray(hist.starts[: len(ends)])
-    peak_t, peak_p = local_maxima(time, force)
     series = {
         "impactor_kinetic_energy": (kinetic, "J", "kinetic energy of the impactor"),
         "contact_energy": (contact, "J", "energy stored in the contact, int_0^alpha P (the contact law)"),
@@ -283,7 +271,7 @@ def _result(problem: ImpactProblem, options: FEM1DOptions, setup: _Setup, hist: 
         "rod_kinetic_energy": (rod_kin, "J", "kinetic energy of the rod, v^T M v / 2"),
         "rod_strain_energy": (rod_str, "J", "strain energy of the rod, u^T K u / 2"),
     }
-    radius = problem.contact.contact_radius(alpha)
+    radius = problem.contact.contact_radius(nodes.alpha)
     if radius is not None:
         series["contact_radius"] = (radius, "m", "radius of the contact patch (the contact law; Hertz: sqrt(R alpha))")
     extra: dict[str, Any] = {"n_elements": int(setup.n_elements), "element": options.element,
@@ -296,18 +284,9 @@ def _result(problem: ImpactProblem, options: FEM1DOptions, setup: _Setup, hist: 
         extra["station_x_m"] = np.asarray(setup.stations_m)
     if field:
         extra["wave_speed_m_s"] = float(problem.rod.wave_speed)
-    status, message = outcome.status, outcome.message
-    if status != "failed" and not math.isfinite(energy_error):
-        status, message = "failed", "non-finite energy balance"
-    return ImpactResult(
-        success=status != "failed", status=status, message=message,
-        scheme=f"fem1d-{options.element}-newmark", dt_s=float(setup.h),
-        time=time, contact_force=force, approach=alpha,
-        impactor_displacement=np.asarray(hist.x), impactor_velocity=velocity,
-        rod_end_displacement=np.asarray(hist.u_end),
-        contact_start_s=starts, contact_end_s=ends, peak_time_s=peak_t, peak_force_N=peak_p,
-        rebound_velocity_m_s=float(velocity[-1]), rod_energy_J=float(rod_kin[-1] + rod_str[-1]),
-        energy_error=energy_error, n_steps=len(time) - 1, n_newton_iterations=int(hist.n_newton),
-        n_events=len(ends) + len(starts) - 1, wall_time_s=outcome.wall_time_s,
-        extra=extra, extra_series=series, field=field,
-    )
+    # every located start and end, less the run's first start (t = 0) and a start left open
+    events = len(hist.ends) + min(len(hist.starts), len(hist.ends)) - 1
+    return hist.result(nodes, outcome, scheme=f"fem1d-{options.element}-newmark", dt_s=float(setup.h),
+                       energy_error=energy_error(kinetic, contact, rod_kin, rod_str),
+                       rod_energy_J=float(rod_kin[-1] + rod_str[-1]), n_events=events,
+                       extra=extra, extra_series=series, field=field)

@@ -28,7 +28,6 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 from skfem import Basis, ElementTriP1, ElementTriP2, ElementVector
 
-from rodimpact.analysis.signals import local_maxima
 from rodimpact.solvers.fem_axi.axibody import AxiBody, dofs_of
 from rodimpact.solvers.fem_axi.axisym import axis_dofs, axisym_mass, axisym_stiffness
 from rodimpact.solvers.fem_axi.contact import ContactOperator
@@ -41,7 +40,7 @@ from rodimpact.solvers.fem_axi.problem import AxiImpact, AxiScales
 from rodimpact.solvers.fem_axi.separation import Flight, SeparationBound
 from rodimpact.solvers.options import OptionError
 from rodimpact.solvers.result import ImpactResult
-from rodimpact.solvers.stepping import Outcome, limit_reached
+from rodimpact.solvers.stepping import Outcome, StepHistory, energy_error, limit_reached
 
 __all__ = ["AxiModel", "build_model", "solve_fem_axi"]
 
@@ -49,6 +48,10 @@ log = logging.getLogger(__name__)
 
 #: Force maxima must stand out by this fraction of the largest force (see _result).
 PEAK_PROMINENCE = 0.02
+#: Half the span of a station's strain, as a fraction of the rod's length: the strain is the
+#: difference of the cross-section mean displacement between the sections this far either
+#: side of the station, over twice this (a section beyond the rod's end is taken at the end).
+STATION_HALF_SPAN = 1e-4
 #: Elements across the largest (estimated) contact radius below which a run warns.
 RECOMMENDED_ELEMENTS_ACROSS = 10
 
@@ -75,23 +78,17 @@ class AxiModel:
     film: FilmRodMesh | None = None
 
 
-@dataclass
-class _History:
-    """Histories recorded at every step (lists; :func:`_result` turns them into arrays)."""
+@dataclass(eq=False)
+class _History(StepHistory):
+    """The histories every run records, and fem_axi's own: the contact radius, both bodies'
+    kinetic and strain energies, the stations' probes and the LCP solves."""
 
-    t: list[float] = field(default_factory=list)
-    force: list[float] = field(default_factory=list)
     radius: list[float] = field(default_factory=list)
-    x: list[float] = field(default_factory=list)
-    w: list[float] = field(default_factory=list)
-    u_face: list[float] = field(default_factory=list)
     kin_i: list[float] = field(default_factory=list)
     str_i: list[float] = field(default_factory=list)
     kin_r: list[float] = field(default_factory=list)
     str_r: list[float] = field(default_factory=list)
     stations: list[NDArray[np.float64]] = field(default_factory=list)
-    starts: list[float] = field(default_factory=lambda: [0.0])
-    ends: list[float] = field(default_factory=list)
     n_lcp: int = 0
 
 
@@ -244,7 +241,7 @@ def solve_fem_axi(problem: AxiImpact, options: FEMAxiOptions | None = None,
     imp.start(problem.velocity_m_s)
     length = problem.rod_length_m
     face = rod.section_mean_uz_row(0.0, problem.rod_radius_m)
-    delta = 1e-4 * length
+    delta = STATION_HALF_SPAN * length
     rows = [rod.section_mean_uz_row(z, problem.rod_radius_m)
             for s in stations for z in (s * length, max(s * length - delta, 0.0), min(s * length + delta, length))]
     probes = sp.vstack(rows).tocsr() if rows else None
@@ -257,12 +254,14 @@ def solve_fem_axi(problem: AxiImpact, options: FEMAxiOptions | None = None,
     hist = _History()
 
     def record(t: float, force: float, radius: float) -> None:
+        x, u_face = float(mean_weights @ imp.q), float((face @ rod.q)[0])
         hist.t.append(t)
         hist.force.append(force)
         hist.radius.append(radius)
-        hist.x.append(float(mean_weights @ imp.q))
+        hist.x.append(x)
         hist.w.append(float(mean_weights @ imp.v))
-        hist.u_face.append(float((face @ rod.q)[0]))
+        hist.u_end.append(u_face)
+        hist.alpha.append(x - u_face)
         hist.kin_i.append(imp.kinetic_energy())
         hist.str_i.append(imp.strain_energy())
         hist.kin_r.append(rod.kinetic_energy())
@@ -312,22 +311,15 @@ def solve_fem_axi(problem: AxiImpact, options: FEMAxiOptions | None = None,
             status, message = limit
             break
     return _result(problem, model, hist, tuple(float(s) for s in stations),
-                   Outcome(status, message, _time.perf_counter() - started), h)
+                   Outcome(status, message, _time.perf_counter() - started), h, delta)
 
 
 def _result(problem: AxiImpact, model: AxiModel, hist: _History, stations: tuple[float, ...],
-            outcome: Outcome, h: float) -> ImpactResult:
+            outcome: Outcome, h: float, delta: float) -> ImpactResult:
     rod, imp, length = model.rod, model.impactor, problem.rod_length_m
-    time = np.asarray(hist.t)
-    force = np.asarray(hist.force)
-    x, u_face = np.asarray(hist.x), np.asarray(hist.u_face)
+    nodes = hist.nodes()
     kin_i, str_i = np.asarray(hist.kin_i), np.asarray(hist.str_i)
     kin_r, str_r = np.asarray(hist.kin_r), np.asarray(hist.str_r)
-    total = kin_i + str_i + kin_r + str_r
-    energy_error = float((total[0] - total[-1]) / total[0])
-    ends_a = np.asarray(hist.ends)
-    # nodes enter the contact one at a time: ripples far smaller than the physical maxima
-    peak_t, peak_p = local_maxima(time, force, min_prominence=PEAK_PROMINENCE * force.max())
     radius = np.asarray(hist.radius)
     if len(model.r_c) and radius.max() >= model.r_c.max():
         log.warning("the contact reached the edge of the candidate zone (r = %.3g m): raise contact_extent",
@@ -356,20 +348,13 @@ def _result(problem: AxiImpact, model: AxiModel, hist: _History, stations: tuple
                      film_elements=int(film.film_elements.size),
                      film_elements_through_thickness=layers_within(film, film.body.contact_extent_m))
     if stations:
-        values = np.asarray(hist.stations).reshape(len(time), len(stations), 3)
+        values = np.asarray(hist.stations).reshape(len(nodes.time), len(stations), 3)
         series["station_displacement"] = (values[:, :, 0], "m", "cross-section mean axial displacement at station_x_m")
-        series["station_strain"] = ((values[:, :, 2] - values[:, :, 1]) / (2e-4 * length), "1",
+        series["station_strain"] = ((values[:, :, 2] - values[:, :, 1]) / (2.0 * delta), "1",
                                     "cross-section mean axial strain at station_x_m (negative in compression)")
         extra["station_x_m"] = np.asarray([s * length for s in stations])
-    status, message = outcome.status, outcome.message
-    if status != "failed" and not math.isfinite(energy_error):
-        status, message = "failed", "non-finite energy balance"
-    return ImpactResult(
-        success=status != "failed", status=status, message=message, scheme="fem_axi-newmark-lcp", dt_s=h,
-        time=time, contact_force=force, approach=x - u_face, impactor_displacement=x,
-        impactor_velocity=np.asarray(hist.w), rod_end_displacement=u_face,
-        contact_start_s=np.asarray(hist.starts[: len(ends_a)]), contact_end_s=ends_a,
-        peak_time_s=peak_t, peak_force_N=peak_p, rebound_velocity_m_s=float(hist.w[-1]),
-        rod_energy_J=float(kin_r[-1] + str_r[-1]), energy_error=energy_error, n_steps=len(time) - 1,
-        n_newton_iterations=0, n_events=len(ends_a), wall_time_s=outcome.wall_time_s, extra=extra, extra_series=series,
-    )
+    # nodes enter the contact one at a time: ripples far smaller than the physical maxima
+    return hist.result(nodes, outcome, scheme="fem_axi-newmark-lcp", dt_s=h,
+                       energy_error=energy_error(kin_i, str_i, kin_r, str_r),
+                       rod_energy_J=float(kin_r[-1] + str_r[-1]), n_events=len(hist.ends),
+                       extra=extra, extra_series=series, min_prominence=PEAK_PROMINENCE * nodes.force.max())

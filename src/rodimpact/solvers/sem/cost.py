@@ -8,7 +8,7 @@ import math
 from typing import Any, Mapping
 
 from rodimpact.model.problem import ImpactProblem
-from rodimpact.solvers.cost import MIB, SOLVE_S, Cost, contact_duration, horizon
+from rodimpact.solvers.cost import MIB, SOLVE_S, STATION_STEP_BYTES, Cost, contact_duration, horizon
 from rodimpact.solvers.sem.grid import CommensurateGrid
 from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
 from rodimpact.solvers.sem.stability import tolerance_step
@@ -49,5 +49,5 @@ def sem_cost(case: Mapping[str, Any], options: SEMOptions | PaperSEMOptions) -> 
     stations = len(case.get("stations", ()))
     return Cost(time_step_s=step, steps=stored,
                 solve_s=SOLVE_S + work * stored * (SEM_STEP_S + SEM_REFLECTION_S * rounds),
-                mem_mib=stored * (SEM_STEP_BYTES + 64.0 * stations) / MIB,
+                mem_mib=stored * (SEM_STEP_BYTES + STATION_STEP_BYTES * stations) / MIB,
                 steps_needed=needed, step_limit=float(options.max_steps))

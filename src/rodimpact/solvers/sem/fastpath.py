@@ -53,7 +53,7 @@ def contact_steps(st: Any, t_max: float, force_bound: float, max_nodes: int) -> 
     b = h * h / (6.0 * m) + coef
     solve, force = st.law.solve_step, st.law.force
     T, P, Q, W = hist.t, hist.P, hist.Q, hist.W
-    X, V, U, A = st.x, st.v, st.u, st.alpha
+    X, V, U, A = st.x, st.w, st.u_end, st.alpha
     t_app, p_app, q_app, w_app = T.append, P.append, Q.append, W.append
     x_app, v_app, u_app, a_app = X.append, V.append, U.append, A.append
     newton = 0

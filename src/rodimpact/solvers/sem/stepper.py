@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from rodimpact.analysis.signals import ZIGZAG_UNSTABLE, local_maxima, sawtooth_amplitude, zigzag_steps
+from rodimpact.analysis.signals import ZIGZAG_UNSTABLE, sawtooth_amplitude, zigzag_steps
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.result import ImpactResult
 from rodimpact.solvers.sem.fastpath import contact_steps, extrapolated
@@ -18,7 +18,7 @@ from rodimpact.solvers.sem.grid import CommensurateGrid
 from rodimpact.solvers.sem.history import ForceHistory
 from rodimpact.solvers.sem.roots import brent_root
 from rodimpact.solvers.sem.stability import paper_step_limit
-from rodimpact.solvers.stepping import Outcome, limit_reached
+from rodimpact.solvers.stepping import SEPARATION_ROUND_TRIPS, Nodes, Outcome, StepHistory, limit_reached
 
 __all__ = ["SEMRun", "run_fixed_step"]
 
@@ -30,8 +30,9 @@ _MAX_WINDOW_SAMPLES = 400_000
 _FAST = True
 
 
-class _Stepper:
-    """State of one run; the scheme-specific part is ``step``."""
+class _Stepper(StepHistory):
+    """State of one run: the histories every run records (its times and forces are the force
+    history's nodes) and the scheme's step, ``step``."""
 
     def __init__(self, problem: ImpactProblem, options: Any, h: float) -> None:
         self.problem = problem
@@ -43,16 +44,14 @@ class _Stepper:
         rod = problem.rod
         grid = CommensurateGrid.of(h, rod.reflection_period, rod.reflection_sign, self.implicit)
         self.hist = ForceHistory(rod, linear=self.implicit, grid=grid)
-        self.x, self.v, self.u, self.alpha = [0.0], [problem.velocity_m_s], [0.0], [0.0]
-        self.starts: list[float] = [0.0]
-        self.ends: list[float] = []
+        super().__init__(t=self.hist.t, force=self.hist.P, x=[0.0], w=[problem.velocity_m_s], u_end=[0.0],
+                         alpha=[0.0])
         self.in_contact = True
-        self.n_newton = 0
         self.n_events = 0
 
     # -- kinematics over a step with the scheme's force representation -------------------
     def _impactor(self, h: float, p_new: float) -> tuple[float, float]:
-        x, v, p = self.x[-1], self.v[-1], self.hist.P[-1]
+        x, v, p = self.x[-1], self.w[-1], self.hist.P[-1]
         if self.implicit:
             return (x + v * h - h * h * (p / 3.0 + p_new / 6.0) / self.m,
                     v - 0.5 * h * (p + p_new) / self.m)
@@ -67,8 +66,8 @@ class _Stepper:
     def _accept(self, t_new: float, p_new: float, u_new: float, x_new: float, v_new: float) -> None:
         self.hist.append(t_new, p_new, u_new)
         self.x.append(x_new)
-        self.v.append(v_new)
-        self.u.append(u_new)
+        self.w.append(v_new)
+        self.u_end.append(u_new)
         self.alpha.append(x_new - u_new)
 
     # -- one step ------------------------------------------------------------------------
@@ -159,18 +158,19 @@ class _Stepper:
 
         After the force stops the fixed rod's end motion is periodic (period 4T) from 4T
         on, the free rod's is a drift plus a 2T-periodic motion. If the impactor moves away
-        at least as fast as that mean motion and stays clear over a window of 8T, it stays
+        at least as fast as that mean motion and stays clear over the window of
+        :data:`~rodimpact.solvers.stepping.SEPARATION_ROUND_TRIPS` round trips (8T), it stays
         clear for ever.
         """
-        if self.v[-1] > self.rod_mean_velocity():
+        if self.w[-1] > self.rod_mean_velocity():
             return False
         period = self.problem.rod.reflection_period
         if not math.isfinite(period):
             return True
-        window = 4.0 * period
+        window = SEPARATION_ROUND_TRIPS * period
         t0 = self.hist.t[-1]
         times = self._window_samples(t0, window, period)
-        x = self.x[-1] + self.v[-1] * (times - t0)
+        x = self.x[-1] + self.w[-1] * (times - t0)
         return bool(np.all(x - self.hist.rod_displacement(times) < 0.0))
 
     def _window_samples(self, t0: float, window: float, period: float) -> np.ndarray:
@@ -281,12 +281,11 @@ def run_fixed_step(problem: ImpactProblem, options: Any, h: float, stations: tup
     return SEMRun(problem, options, h).finish(stations, started, extra)
 
 
-def _histories(st: _Stepper, stations: tuple[float, ...], rod_energy: np.ndarray) -> tuple[dict, dict]:
+def _histories(st: _Stepper, nodes: Nodes, stations: tuple[float, ...], rod_energy: np.ndarray) -> tuple[dict, dict]:
     """Station histories (d'Alembert) and energies as extra series; station positions."""
-    t = np.asarray(st.hist.t)
-    alpha = np.asarray(st.alpha)
+    t, alpha = nodes.time, nodes.alpha
     series = {
-        "impactor_kinetic_energy": (0.5 * st.m * np.asarray(st.v) ** 2, "J", "kinetic energy of the impactor"),
+        "impactor_kinetic_energy": (0.5 * st.m * nodes.w ** 2, "J", "kinetic energy of the impactor"),
         "contact_energy": (st.law.energy(alpha), "J", "energy stored in the contact, int_0^alpha P (the contact law)"),
         "rod_energy": (rod_energy, "J", "energy in the rod: work done on it by the contact force"),
     }
@@ -317,22 +316,21 @@ def _scales(problem: ImpactProblem) -> dict[str, float]:
 
 def _result(st: _Stepper, outcome: Outcome, stations: tuple[float, ...] = (),
             extra_summary: dict | None = None) -> ImpactResult:
+    """The run's result. Its energy balance is the work done on the rod, with the scheme's own
+    force representation, against the impactor's loss; a run fails on a force or balance that
+    is not finite and, beyond ``energy_tolerance``, on the balance itself."""
     status, message = outcome.status, outcome.message
-    t = np.asarray(st.hist.t)
-    p = np.asarray(st.hist.P)
-    u = np.asarray(st.u)
-    alpha = np.asarray(st.alpha)
-    # work done on the rod, with the scheme's own force representation
+    nodes = st.nodes()
+    p, u = nodes.force, nodes.u_end
     mean_force = 0.5 * (p[1:] + p[:-1]) if st.implicit else p[:-1]
     rod_work = np.concatenate([[0.0], np.cumsum(mean_force * np.diff(u))])
     rod_energy = float(rod_work[-1])
-    series, extra = _histories(st, stations, rod_work)
+    series, extra = _histories(st, nodes, stations, rod_work)
     problem = st.problem
     ke_in = problem.kinetic_energy_J
-    ke_out = 0.5 * problem.mass_kg * st.v[-1] ** 2
-    contact_left = float(problem.contact.energy(alpha[-1]))
+    ke_out = 0.5 * problem.mass_kg * st.w[-1] ** 2
+    contact_left = float(problem.contact.energy(nodes.alpha[-1]))
     energy_error = (ke_in - ke_out - rod_energy - contact_left) / ke_in
-    peak_t, peak_p = local_maxima(t, p)
     sawtooth = sawtooth_amplitude(p)
     zigzag = zigzag_steps(p)
     if not (np.all(np.isfinite(p)) and math.isfinite(energy_error)):
@@ -345,31 +343,9 @@ def _result(st: _Stepper, outcome: Outcome, stations: tuple[float, ...] = (),
             + (f"; the force zig-zags step to step over {zigzag} steps (amplitude {sawtooth:.2f}): "
                "unstable step" if zigzag >= ZIGZAG_UNSTABLE else ""))
     log.info("SEM %s: %s (%s), %d steps, contact time %.6g s", st.options.scheme, status, message,
-             len(t) - 1, (st.ends[0] - st.starts[0]) if st.ends else math.nan)
-    return ImpactResult(
-        success=status != "failed",
-        status=status,
-        message=message,
-        scheme=st.options.scheme,
-        dt_s=st.h,
-        time=t,
-        contact_force=p,
-        approach=alpha,
-        impactor_displacement=np.asarray(st.x),
-        impactor_velocity=np.asarray(st.v),
-        rod_end_displacement=u,
-        contact_start_s=np.asarray(st.starts[: len(st.ends)]),
-        contact_end_s=np.asarray(st.ends),
-        peak_time_s=peak_t,
-        peak_force_N=peak_p,
-        rebound_velocity_m_s=float(st.v[-1]),
-        rod_energy_J=rod_energy,
-        energy_error=float(energy_error),
-        n_steps=len(t) - 1,
-        n_newton_iterations=st.n_newton,
-        n_events=st.n_events,
-        wall_time_s=outcome.wall_time_s,
-        extra={**extra, "sawtooth_amplitude": sawtooth, "zigzag_steps": zigzag, **_scales(problem),
-               **(extra_summary or {})},
-        extra_series=series,
-    )
+             len(nodes.time) - 1, (st.ends[0] - st.starts[0]) if st.ends else math.nan)
+    return st.result(nodes, Outcome(status, message, outcome.wall_time_s), scheme=st.options.scheme, dt_s=st.h,
+                     energy_error=float(energy_error), rod_energy_J=rod_energy, n_events=st.n_events,
+                     extra={**extra, "sawtooth_amplitude": sawtooth, "zigzag_steps": zigzag, **_scales(problem),
+                            **(extra_summary or {})},
+                     extra_series=series)
