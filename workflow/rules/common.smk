@@ -13,12 +13,12 @@ from rodimpact.analysis.studies import level_case, map_point_case, map_point_nam
 from rodimpact.analysis.sweeps import sweep_frame, sweep_point_case, sweep_points
 from rodimpact.solvers.field import FIELD_OUTPUT
 from rodimpact.solvers.registry import METHODS as METHOD_REGISTRY
-from rodimpact.workflow.locks import register_run
-from rodimpact.workflow.plan_cache import CACHE_FILE, PlanCache, code_fingerprint
-from rodimpact.workflow.sources import module_sources
+from rodimpact.plumbing.locks import register_run
+from rodimpact.plumbing.plan_cache import CACHE_FILE, PlanCache, code_fingerprint
+from rodimpact.plumbing.sources import module_sources
 
 # What planning computes (the checked project, each job's estimate) is kept in
-# .snakemake/rodimpact/, keyed on the digests of all it reads (rodimpact.workflow.plan_cache).
+# .snakemake/rodimpact/, keyed on the digests of all it reads (rodimpact.plumbing.plan_cache).
 # Written when the jobs start (a cluster job parses this file again and finds it) and at exit.
 PLAN = PlanCache(CACHE_FILE, code_fingerprint(SRC_DIR))
 atexit.register(PLAN.save)
@@ -34,8 +34,8 @@ SCHEMA_DIR = os.path.join(workflow.basedir, "workflow", "schemas")
 
 def checked_project():
     """The whole configuration, checked against the schemas and the method registry."""
-    from rodimpact.io.config import load_project  # the checker's imports, only when it runs
-    from rodimpact.io.project import ConfigError
+    from rodimpact.config.load import load_project  # the checker's imports, only when it runs
+    from rodimpact.config.project import ConfigError
 
     try:
         return load_project(config, root=WORKDIR, schema_dir=SCHEMA_DIR)
@@ -77,7 +77,7 @@ def per_job(function):
 
 
 # A solver rule depends on the runner and on its own method's solver (the registry names it).
-SRC_RUN = ("rodimpact.workflow.runner", "rodimpact.workflow.logs")
+SRC_RUN = ("rodimpact.jobs.runner", "rodimpact.jobs.logs")
 SOLVER_SOURCES = {name: sources(*SRC_RUN, spec.solver_module) for name, spec in METHOD_REGISTRY.items()}
 
 
@@ -87,7 +87,7 @@ def solver_sources(method=None):
 
 
 # A batch rule (several runs in one job, scripts/solve_batch.py) runs them through the batch module.
-SRC_BATCH = ("rodimpact.workflow.batch", "rodimpact.workflow.logs")
+SRC_BATCH = ("rodimpact.jobs.batch", "rodimpact.jobs.logs")
 BATCH_SOURCES = {name: sources(*SRC_BATCH, spec.solver_module) for name, spec in METHOD_REGISTRY.items()}
 
 
@@ -98,13 +98,13 @@ def batch_sources(method=None):
 
 
 # The case file's code: its module, and each method's cost model (named by the registry).
-SRC_CASES = sources("rodimpact.workflow.cases", "rodimpact.workflow.logs",
+SRC_CASES = sources("rodimpact.jobs.cases", "rodimpact.jobs.logs",
                     *(spec.cost.partition(":")[0] for spec in METHOD_REGISTRY.values()))
-SRC_PRESENT = sources("rodimpact.present.artifacts", "rodimpact.workflow.logs")
-SRC_BENCH = sources("rodimpact.workflow.bench", "rodimpact.workflow.bench_scaling", "rodimpact.io.atomic",
-                    "rodimpact.workflow.logs")
-SRC_INDENTATION = sources("rodimpact.workflow.indentation", "rodimpact.workflow.logs")
-SRC_BAND = sources("rodimpact.workflow.band", "rodimpact.workflow.logs")
+SRC_PRESENT = sources("rodimpact.present.artifacts", "rodimpact.jobs.logs")
+SRC_BENCH = sources("rodimpact.tools.bench", "rodimpact.tools.bench_scaling", "rodimpact.storage.atomic",
+                    "rodimpact.jobs.logs")
+SRC_INDENTATION = sources("rodimpact.jobs.indentation", "rodimpact.jobs.logs")
+SRC_BAND = sources("rodimpact.jobs.band", "rodimpact.jobs.logs")
 TABLE2_VARIANTS = list(PROJECT.variants.get("table2", {}))
 # The readings whose cases carry the thin-layer film law: each gets its prediction band.
 FILM_VARIANTS = [v for v in TABLE2_VARIANTS

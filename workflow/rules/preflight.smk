@@ -1,6 +1,6 @@
 # Before snakemake reads config/config.yaml: the workflow's own code on the path, the file read
 # by rodimpact's YAML reader (a syntax error is one line with its line and column), and the
-# lock of a killed run released (rodimpact.workflow.locks).
+# lock of a killed run released (rodimpact.plumbing.locks).
 import os
 import sys
 from pathlib import Path
@@ -13,8 +13,8 @@ sys.path.insert(0, SRC_DIR)
 # remote jobs set it too.
 os.environ.update(PYTHONPATH=os.pathsep.join(filter(None, [SRC_DIR, os.environ.get("PYTHONPATH")])))
 
-from rodimpact.io.yamlfile import YamlError, read_yaml
-from rodimpact.workflow.locks import release_stale_lock
+from rodimpact.config.yamlfile import YamlError, read_yaml
+from rodimpact.plumbing.locks import release_stale_lock
 
 # The working directory: the project itself, or another directory with its own config/ (and
 # results/) given by --directory, such as .test. config.yaml's paths are relative to it.

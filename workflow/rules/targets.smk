@@ -1,8 +1,8 @@
 # Targets given on the command line that no rule makes are refused here, in one line listing
-# what the nearest folder holds (rodimpact.workflow.targets), before any job is planned. At
+# what the nearest folder holds (rodimpact.plumbing.targets), before any job is planned. At
 # parse time snakemake has not yet set its targets, so they are read from the command line
 # with snakemake's own parser (a snakemake started otherwise, e.g. by its API, is not checked).
-from rodimpact.workflow.targets import unknown_target_message
+from rodimpact.plumbing.targets import unknown_target_message
 
 
 def command_line_targets():
