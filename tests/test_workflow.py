@@ -785,7 +785,7 @@ def test_figure_code_change_reruns_no_solver(built: Path, tmp_path: Path) -> Non
 def test_jobs_run_the_checkouts_own_code(tmp_path: Path) -> None:
     """A job imports the copy's src/, not the repository's installed package."""
     project = copy_project(tmp_path / "project")
-    runner = project / "src" / "rodimpact" / "workflow" / "runner.py"
+    runner = project / "src" / "rodimpact" / "jobs" / "runner.py"
     runner.write_text(runner.read_text() + '\nraise ImportError("runner.py of the copy")\n')
     run = snakemake(project, "-j1", run_path("model", "sem"), timeout=BUILD_TIMEOUT_S)
     assert run.returncode != 0, run.describe()

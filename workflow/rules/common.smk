@@ -1,3 +1,34 @@
+# Two parse-time mechanisms of this file, each against what snakemake does on its own:
+#
+# refuse(): sys.exit from input functions (and from checked_project at parse time).
+#   What snakemake does: an Exception raised in an input function is caught by
+#   snakemake.rules.Rule.apply_input_function and re-raised as InputFunctionException, printed
+#   over several lines (Error, Wildcards, Traceback); an Exception while this file is parsed is
+#   printed with its file and line. SystemExit is not an Exception: it passes both and the
+#   CLI's `except Exception` (snakemake.cli.main), and Python prints its message as the last
+#   line of the run, exit status 1, before any job.
+#   Why not enough: a target or wildcard the configuration does not define must stop planning
+#   in one line naming the case, method or level (docs/faults.md). An input function may refuse,
+#   a resource function may not: Rule.expand_resources catches BaseException and wraps it; the
+#   rules' resources call the same per_job functions, after their inputs have been evaluated.
+#   If snakemake changes (catches BaseException in input functions or around the parse): the
+#   refusals get several lines and a traceback; tests/test_faults.py::
+#   test_a_target_the_configuration_does_not_define_is_one_line and tests/test_workflow.py::
+#   test_bad_input_stops_before_any_job fail.
+#
+# PLAN: the pickled plan cache (rodimpact.plumbing.plan_cache), saved at exit.
+#   What snakemake does: every run (dry run, --summary, --lint, report, build, and a cluster
+#   job's own snakemake) parses this file anew and keeps nothing of it; its onstart hook runs
+#   only when jobs are scheduled (not for a dry run, "nothing to be done" or --no-hooks:
+#   snakemake.workflow.Workflow.execute).
+#   Why not enough: checking the whole configuration and estimating every job's resources are
+#   slow and their results depend only on files the cache digests. They are saved by onstart
+#   (before any job: a cluster job's snakemake finds them) and by atexit (after any run that
+#   plans, dry runs included).
+#   If snakemake changes (skips atexit handlers, e.g. leaves by os._exit): the cache is not
+#   written, planning is only slower, never different; tests/test_plumbing.py::
+#   test_a_dry_run_leaves_the_plan_cache fails.
+
 # Validation of the configuration (before any job), and the helpers the rules share.
 # (SRC_DIR is on the path: preflight.smk, included before the config file is read.)
 import atexit

@@ -1,15 +1,38 @@
 """Snakemake's lock of the project directory after a killed run: released when no run holds it.
 
-Snakemake locks a directory while it runs in it (``.snakemake/locks``). A run killed by
-SIGKILL, an out-of-memory kill or a power cut leaves the lock behind, and the next run stops
-on it until ``snakemake --unlock``. The workflow calls :func:`release_stale_lock` when it is
-parsed: the lock is released, with a one-line notice, only when
+What snakemake does on its own
+    With its default (file) persistence, a run writes the files it reads and writes into
+    ``.snakemake/locks/<n>.input.lock`` and ``<n>.output.lock``
+    (``snakemake.persistence.file.FilePersistence._write_locks``) and removes that folder when it
+    ends, also on an error (``PersistenceBase.lock``). A second run whose files overlap a lock
+    stops with ``LockException`` (a dry run only warns). A run killed by SIGKILL, an
+    out-of-memory kill or a power cut removes nothing, and every later run stops on the lock
+    until someone runs ``snakemake --unlock``, which deletes it without looking whether a run
+    still holds it.
 
-* no snakemake process other than the caller runs in this directory on this machine (read
-  from ``/proc``; without ``/proc`` nothing is released), and
-* no run on another machine registered itself here (:func:`register_run`, called when a run
-  starts: ``.snakemake/rodimpact/runs/<host>-<pid>``, removed when it ends; a shared file
-  system may hold a live run of another node, which this machine cannot see).
+Why that is not enough here
+    A build killed on this 2-core machine (or by the cluster's scheduler) should be redone by
+    the same command, as the docs promise, and ``--unlock`` run by hand (or by make) would also
+    release the lock of a live run. The workflow calls :func:`release_stale_lock` when it is
+    parsed: the lock is released, with a one-line notice, only when
+
+    * no snakemake process other than the caller runs in this directory on this machine (read
+      from ``/proc``: command line and working directory; without ``/proc`` nothing is
+      released), and
+    * no run on another machine registered itself here (:func:`register_run`, called when a run
+      starts: ``.snakemake/rodimpact/runs/<host>-<pid>``, removed when it ends; a shared file
+      system may hold a live run of another node, which this machine cannot see).
+
+    Snakemake's database persistence (``--persistence-backend db``) keeps its locks in the
+    database: none is found here and nothing is released.
+
+If snakemake's internals change
+    Should the locks move or be renamed, no lock is found and a killed run's lock stays until
+    ``snakemake --unlock`` (snakemake's own behaviour: nothing is released wrongly).
+    ``tests/test_plumbing.py::test_snakemakes_own_lock_files_are_found_and_released`` writes
+    the locks with snakemake's own persistence class and releases them;
+    ``tests/test_faults.py::test_a_killed_build_leaves_a_lock_that_the_next_run_releases`` and
+    ``test_a_second_build_under_a_live_one_is_refused_and_the_lock_kept`` check it end to end.
 """
 
 from __future__ import annotations

@@ -16,7 +16,27 @@ keyed on SHA-256 digests of everything they read:
 
 A change of any of those misses the cache and redoes the work, so a bad input still gets its one
 error before any job; only a project that passed the check is kept. The file is written whole or
-not at all (:func:`rodimpact.storage.atomic.atomic_output`); an unreadable file is ignored.
+not at all (:func:`rodimpact.storage.atomic.atomic_output`); an unreadable file is ignored. It is
+a pickle because the checked project is a tree of frozen dataclasses, not plain data; it is
+read only from the workflow's own ``.snakemake/`` and only with the same sources and Python.
+
+What snakemake does on its own
+    Each run parses the Snakefile anew and evaluates its input and resource functions again;
+    nothing of that is kept between runs (``--cache`` keeps rules' outputs, not the parse). Its
+    ``onstart`` hook runs only when jobs are about to be scheduled: not for a dry run, a run
+    with nothing to do or ``--no-hooks`` (``snakemake.workflow.Workflow.execute``).
+
+Why that is not enough here
+    Without the cache every dry run and every cluster job's snakemake checks the whole
+    configuration and estimates every job again. ``workflow/rules/common.smk`` saves the cache
+    from ``onstart`` (before the first job, so that a cluster job finds it) and from an
+    :mod:`atexit` handler (after every run that planned, dry runs included).
+
+If snakemake's internals change
+    Should snakemake leave without running :mod:`atexit` handlers, or stop calling ``onstart``,
+    the cache is not written: planning is slower, never different (the key covers every input).
+    ``tests/test_plumbing.py::test_a_dry_run_leaves_the_plan_cache`` checks that a dry run
+    writes it; ``tests/test_plan_cache.py`` checks the keys.
 """
 
 from __future__ import annotations
@@ -97,13 +117,15 @@ class PlanCache:
     Parameters
     ----------
     path : path
-        The cache file (:data:`CACHE_FILE` under the workflow's directory).
+        The cache file (:data:`CACHE_FILE` under the workflow's directory); a relative path is
+        taken from the working directory when the cache is made (snakemake changes back to the
+        directory it was started in before the :mod:`atexit` handlers run, under ``--directory``).
     fingerprint : str
         :func:`code_fingerprint` of the sources the cached results were computed with.
     """
 
     def __init__(self, path: str | Path, fingerprint: str) -> None:
-        self.path, self.fingerprint = Path(path), fingerprint
+        self.path, self.fingerprint = Path(path).absolute(), fingerprint
         self._projects: dict[str, Any] = {}
         self._estimates: dict[str, Any] = {}
         self._changed = False

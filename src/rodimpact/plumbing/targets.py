@@ -4,16 +4,71 @@ The workflow checks each target given on the command line before it plans any jo
 (``workflow/rules/targets.smk``): a rule name or a file some rule's output pattern makes
 passes (what that rule's inputs then ask of the configuration is checked by them), anything
 else is refused in one line that lists the patterns of the nearest folder that has any.
+
+What snakemake does on its own
+    It parses the Snakefile first and is told its targets afterwards: the command-line
+    interface (``snakemake.cli.args_to_api``) builds the workflow, whose first use parses the
+    Snakefile (``snakemake.api.WorkflowApi._workflow``), and only then hands the targets over
+    (``DAGApi.__post_init__`` sets ``workflow.dag_settings``, ``None`` while the Snakefile is
+    parsed). A target no rule makes stops the DAG's construction with a ``MissingRuleException``
+    (``No rule to produce <target> (if you use input functions ...)``), which names neither
+    the rules nor the files a folder holds.
+
+Why that is not enough here
+    The targets are checked while the Snakefile is parsed, to refuse a missing file in one line
+    that lists what the nearest folder holds. :func:`command_line_targets` reads them from the
+    command line with snakemake's own argument parser (``snakemake.cli.get_argument_parser``),
+    as the ``snakemake`` command reads them; a snakemake started otherwise (its API, a job's
+    own snakemake) is not checked.
+
+If snakemake's internals change
+    Should the parser move, or its positional ``targets`` be renamed, :func:`command_line_targets`
+    finds no target and nothing is checked before planning (snakemake's own error remains).
+    ``tests/test_plumbing.py::test_snakemakes_parser_reads_the_targets_of_a_command_line``
+    calls the parser with known command lines and checks the targets read;
+    ``tests/test_faults.py::test_a_target_the_configuration_does_not_define_is_one_line`` checks
+    the refusal end to end.
 """
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Iterable, Sequence
 
-__all__ = ["MAX_LISTED", "plain_pattern", "unknown_target_message"]
+__all__ = ["MAX_LISTED", "command_line_targets", "plain_pattern", "unknown_target_message"]
 
 #: Most patterns a message lists (then "and N more").
 MAX_LISTED = 12
+
+
+def command_line_targets(argv: Sequence[str]) -> list[str]:
+    """The targets of the ``snakemake`` command line ``argv`` (``sys.argv``), [] when unknown.
+
+    Parameters
+    ----------
+    argv : sequence of str
+        The program (``snakemake``, or ``.../snakemake/__main__.py`` for ``python -m
+        snakemake``) and its arguments. Another program (snakemake's API, a test runner)
+        gives [].
+
+    Returns
+    -------
+    list of str
+        The positional targets as snakemake's own argument parser reads them; [] when the
+        command line does not parse.
+    """
+    if not argv:
+        return []
+    program = Path(argv[0])
+    if program.name != "snakemake" and program.parts[-2:] != ("snakemake", "__main__.py"):
+        return []
+    from snakemake.cli import get_argument_parser  # only when snakemake itself runs
+
+    try:
+        known, _ = get_argument_parser().parse_known_args(list(argv[1:]))
+    except (Exception, SystemExit):
+        return []
+    return list(known.targets or [])
 
 
 def plain_pattern(pattern: str) -> str:
