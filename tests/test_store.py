@@ -12,7 +12,7 @@ import h5py
 import numpy as np
 import pytest
 
-from rodimpact.storage import atomic, provenance, store
+from rodimpact.storage import atomic, provenance, runs
 from rodimpact.storage.runs import StoreError, read_run, read_summary, write_run
 
 RTOL = 0.0  # float64 is stored losslessly: exact round trip expected
@@ -196,7 +196,7 @@ def test_not_a_run_file(tmp_path: Path) -> None:
         read_run(path)
 
 
-@pytest.mark.parametrize("module, where", [(store, "_write_summary"), (atomic, "_fsync_file")])
+@pytest.mark.parametrize("module, where", [(runs, "_write_summary"), (atomic, "_fsync_file")])
 def test_failed_write_leaves_nothing(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, module: Any, where: str
 ) -> None:
@@ -211,7 +211,7 @@ def test_failed_write_leaves_nothing(
     assert leftovers(target.parent) == []
 
 
-@pytest.mark.parametrize("module, where", [(store, "_write_summary"), (atomic, "_fsync_file")])
+@pytest.mark.parametrize("module, where", [(runs, "_write_summary"), (atomic, "_fsync_file")])
 def test_failed_rewrite_keeps_existing_file(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, module: Any, where: str
 ) -> None:
