@@ -46,8 +46,8 @@ test: $(STAMP)
 bench: $(STAMP)
 	$(BIN)/snakemake -j1 --forcerun bench_sem bench_sem_scaling bench_fem -- results/benchmarks/sem.csv \
 		results/benchmarks/sem_scaling.csv results/benchmarks/fem.csv
-	$(BIN)/python -m rodimpact.workflow.bench results/benchmarks/fem.csv
-	$(BIN)/python -m rodimpact.workflow.build_stats --csv results/benchmarks/build.csv
+	$(BIN)/python -m rodimpact.tools.bench results/benchmarks/fem.csv
+	$(BIN)/python -m rodimpact.tools.build_stats --csv results/benchmarks/build.csv
 
 convergence: $(STAMP)
 	$(BIN)/snakemake -j$(CORES) results/tables/work_precision.csv results/tables/work_precision_orders.md
@@ -66,7 +66,7 @@ report-check: $(STAMP)
 		apt-get install -y chromium chromium-driver || \
 		{ apt-get update && apt-get install -y chromium chromium-driver; }; \
 	fi
-	$(BIN)/python -m rodimpact.workflow.report_check results/report.html --screenshot results/report_screenshot.png
+	$(BIN)/python -m rodimpact.tools.report_check results/report.html --screenshot results/report_screenshot.png
 
 # The figures README.md embeds: copies of the build's PNGs, committed with the README.
 README_IMAGES := fig2_contact_force table2_contact_time wave_map_model
@@ -76,7 +76,7 @@ readme-images: $(STAMP)
 	cp $(README_IMAGES:%=results/figures/%.png) docs/images/
 
 provenance: $(STAMP)
-	$(BIN)/python -m rodimpact.workflow.audit --json logs/provenance_audit.json
+	$(BIN)/python -m rodimpact.tools.audit --json logs/provenance_audit.json
 
 clean:
 	rm -rf results logs .snakemake

@@ -19,8 +19,8 @@ from pathlib import Path
 import pytest
 
 from rodimpact.contact.hertz import HertzLaw, hertz_constant
-from rodimpact.io.config import load_global_config, load_project
-from rodimpact.io.project import Project
+from rodimpact.config.load import load_global_config, load_project
+from rodimpact.config.project import Project
 from rodimpact.model.materials import Material
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.model.responses import Rod

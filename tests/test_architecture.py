@@ -2,7 +2,8 @@
 configuration check that loads no solver.
 
 The layers, lowest first (a package may import its own modules and the layers below it):
-settings < contact < model < analysis < solvers < io < present < workflow. Every import counts,
+settings < contact < model < analysis < solvers < (config, storage) < present < jobs < plumbing < tools.
+config and storage share a rank: siblings, neither imports the other. Every import counts,
 inside functions too, read from the source with :mod:`ast`.
 """
 
@@ -18,7 +19,12 @@ import pytest
 
 SRC = Path(__file__).resolve().parents[1] / "src"
 PACKAGE = SRC / "rodimpact"
-LAYERS = ("settings", "contact", "model", "analysis", "solvers", "io", "present", "workflow")
+#: The layers, lowest first; the packages of one set share a rank and import none of each other.
+LAYERS: tuple[frozenset[str], ...] = tuple(frozenset(rank) for rank in (
+    {"settings"}, {"contact"}, {"model"}, {"analysis"}, {"solvers"}, {"config", "storage"}, {"present"}, {"jobs"},
+    {"plumbing"}, {"tools"}))
+#: Each top-level package's rank (its index in :data:`LAYERS`).
+RANK = {package: rank for rank, packages in enumerate(LAYERS) for package in packages}
 #: Lines a module may have before it must be split (the project's rule: small modules).
 MAX_LINES = 450
 
@@ -53,9 +59,9 @@ def _is_module(name: str) -> bool:
     return base.with_suffix(".py").is_file() or (base / "__init__.py").is_file()
 
 
-def _layer(module: str) -> int | None:
+def _package(module: str) -> str | None:
     parts = module.split(".")
-    return LAYERS.index(parts[1]) if len(parts) > 1 and parts[1] in LAYERS else None
+    return parts[1] if len(parts) > 1 and parts[1] in RANK else None
 
 
 def _modules() -> list[Path]:
@@ -70,7 +76,7 @@ def test_every_module_lives_in_a_package_of_a_concern():
                        if isinstance(n, ast.ImportFrom)} | {a.name for n in ast.walk(ast.parse(
                            (PACKAGE / "_version.py").read_text())) if isinstance(n, ast.Import) for a in n.names}
     assert not any(m.startswith("rodimpact") for m in version_imports if m), version_imports
-    assert sorted(p.name for p in PACKAGE.iterdir() if p.is_dir() and p.name != "__pycache__") == sorted(LAYERS)
+    assert sorted(p.name for p in PACKAGE.iterdir() if p.is_dir() and p.name != "__pycache__") == sorted(RANK)
 
 
 def test_every_package_says_what_lives_there_and_what_it_may_import():
@@ -81,15 +87,43 @@ def test_every_package_says_what_lives_there_and_what_it_may_import():
         assert "What lives here" in doc and "may import" in doc, init
 
 
+def test_the_layers_hold_every_package_once():
+    assert sum(len(rank) for rank in LAYERS) == len(RANK)
+
+
+def _named_modules(init: Path) -> set[str]:
+    """The module names ``init``'s docstring names as ``:mod:`.name```."""
+    doc = ast.get_docstring(ast.parse(init.read_text(encoding="utf-8"))) or ""
+    return set(re.findall(r":mod:`\.(\w+)`", doc))
+
+
+def test_every_package_docstring_names_every_module_in_it():
+    """Each package's ``__init__.py`` names each of its modules and subpackages as ``:mod:`.name```."""
+    missing = {}
+    for init in sorted(PACKAGE.rglob("__init__.py")):
+        if init.parent == PACKAGE:
+            continue
+        members = {p.stem for p in init.parent.glob("*.py") if p.name != "__init__.py"}
+        members |= {p.name for p in init.parent.iterdir() if (p / "__init__.py").is_file()}
+        if absent := sorted(members - _named_modules(init)):
+            missing[str(init.relative_to(SRC))] = absent
+    assert missing == {}
+
+
 def test_imports_run_only_downwards():
+    """A package imports its own modules and the ranks below its own: never a higher rank, nor a
+    sibling of the same rank (config and storage)."""
     wrong = []
     for path in _modules():
-        own = _layer(_module_name(path))
+        own = _package(_module_name(path))
         for name, line in _imports(path):
-            target = _layer(name)
-            if own is not None and target is not None and target > own:
-                wrong.append(f"{path.relative_to(SRC)}:{line} imports {name} (layer {LAYERS[target]} above "
-                             f"{LAYERS[own]})")
+            target = _package(name)
+            if own is None or target is None or target == own:
+                continue
+            if RANK[target] > RANK[own]:
+                wrong.append(f"{path.relative_to(SRC)}:{line} imports {name} ({target} is above {own})")
+            elif RANK[target] == RANK[own]:
+                wrong.append(f"{path.relative_to(SRC)}:{line} imports {name} ({target} is a sibling of {own})")
     assert wrong == []
 
 
@@ -123,7 +157,7 @@ def test_modules_are_small():
 def test_the_configuration_check_loads_no_solver_no_mesh_and_no_plotting():
     """What snakemake imports to check the configuration before any job: the registry and the
     options, never a solver, scikit-fem or matplotlib."""
-    code = ("import sys, rodimpact.io.config, rodimpact.workflow.resources, rodimpact.workflow.bench_plan; "
+    code = ("import sys, rodimpact.config.load, rodimpact.jobs.resources, rodimpact.tools.bench_plan; "
             "print('\\n'.join(sorted(sys.modules)))")
     loaded = set(subprocess.run([sys.executable, "-c", code], check=True, capture_output=True,
                                 text=True).stdout.split())

@@ -10,12 +10,12 @@ import h5py
 import numpy as np
 import pytest
 
-from rodimpact.workflow import audit as audit_module
-from rodimpact.workflow.audit import audit, audit_run, audit_sidecar, code_problems
-from rodimpact.io.faults import REBUILD_HINT
-from rodimpact.io.provenance import library_versions
-from rodimpact.io.store import read_summary, write_run
-from rodimpact.io.sidecar import write_provenance
+from rodimpact.tools import audit as audit_module
+from rodimpact.tools.audit import audit, audit_run, audit_sidecar, code_problems
+from rodimpact.storage.faults import REBUILD_HINT
+from rodimpact.storage.provenance import library_versions
+from rodimpact.storage.runs import read_summary, write_run
+from rodimpact.storage.sidecar import write_provenance
 
 from conftest import ROOT
 HEAD = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
@@ -99,7 +99,7 @@ def _by_path(findings) -> dict:
 
 def test_a_table_resolves_through_its_sidecar(tmp_path: Path, run: Path, monkeypatch) -> None:
     monkeypatch.chdir(tmp_path)
-    monkeypatch.setattr("rodimpact.io.sidecar.code_version", lambda: VERSION)
+    monkeypatch.setattr("rodimpact.storage.sidecar.code_version", lambda: VERSION)
     _table(tmp_path, [run])
     found = _by_path(audit_sidecar("results/tables/t.provenance.json", {}, ROOT))
     assert found["results/tables/t.csv"].ok and found["results/tables/t.provenance.json"].ok
@@ -108,7 +108,7 @@ def test_a_table_resolves_through_its_sidecar(tmp_path: Path, run: Path, monkeyp
 
 def test_a_hand_edited_table_and_a_table_older_than_its_run(tmp_path: Path, run: Path, monkeypatch) -> None:
     monkeypatch.chdir(tmp_path)
-    monkeypatch.setattr("rodimpact.io.sidecar.code_version", lambda: VERSION)
+    monkeypatch.setattr("rodimpact.storage.sidecar.code_version", lambda: VERSION)
     csv, _ = _table(tmp_path, [run])
     csv.write_text("a,b\n1,3\n")
     found = _by_path(audit_sidecar("results/tables/t.provenance.json", {}, ROOT))
@@ -121,7 +121,7 @@ def test_a_hand_edited_table_and_a_table_older_than_its_run(tmp_path: Path, run:
 
 def test_audit_covers_every_file_and_flags_strays(tmp_path: Path, run: Path, monkeypatch) -> None:
     monkeypatch.chdir(tmp_path)
-    monkeypatch.setattr("rodimpact.io.sidecar.code_version", lambda: VERSION)
+    monkeypatch.setattr("rodimpact.storage.sidecar.code_version", lambda: VERSION)
     monkeypatch.setattr(audit_module, "find_repo_root", lambda start=None: ROOT)
     _table(tmp_path, [run])
     (tmp_path / "results/report.html").write_text("<html></html>")  # exempt: a view of the artifacts
@@ -152,10 +152,10 @@ def test_cli_writes_every_finding(tmp_path: Path, run: Path, monkeypatch) -> Non
 def test_a_benchmark_table_resolves_without_input_runs(tmp_path: Path, monkeypatch) -> None:
     import pandas as pd
 
-    from rodimpact.workflow.bench import write_benchmark
+    from rodimpact.tools.bench import write_benchmark
 
     monkeypatch.chdir(tmp_path)
-    monkeypatch.setattr("rodimpact.io.sidecar.code_version", lambda: VERSION)
+    monkeypatch.setattr("rodimpact.storage.sidecar.code_version", lambda: VERSION)
     write_benchmark(pd.DataFrame({"steps": [1, 2], "wall_time_s": [0.1, 0.2]}),
                     csv="results/benchmarks/b.csv", provenance="results/benchmarks/b.provenance.json")
     found = _by_path(audit_sidecar("results/benchmarks/b.provenance.json", {}, ROOT))

@@ -8,10 +8,10 @@ from pathlib import Path
 import pytest
 
 from rodimpact.analysis.sweeps import sweep_point_case, sweep_points
-from rodimpact.io.store import read_run
-from rodimpact.workflow.batch import run_batch
-from rodimpact.workflow.cases import write_case_file
-from rodimpact.workflow.runner import run_to_file
+from rodimpact.storage.runs import read_run
+from rodimpact.jobs.batch import run_batch
+from rodimpact.jobs.cases import write_case_file
+from rodimpact.jobs.runner import run_to_file
 
 
 @pytest.fixture(scope="module")

@@ -11,7 +11,7 @@ from pathlib import Path
 import h5py
 import pytest
 
-from rodimpact.workflow.build_stats import COLUMNS, build_stats, main, read_jobs, write_build_stats
+from rodimpact.tools.build_stats import COLUMNS, build_stats, main, read_jobs, write_build_stats
 
 
 def _record(root: Path, output: str, rule: str, start: float, end: float, job_hash: int) -> None:

@@ -20,11 +20,12 @@ import numpy as np
 import pytest
 
 from rodimpact.contact.hertz import HertzLaw, hertz_constant
-from rodimpact.io.curves import CurveFileError, read_contact_curve, write_contact_curve
-from rodimpact.io.store import read_summary
+from rodimpact.storage.curves import read_contact_curve, write_contact_curve
+from rodimpact.storage.faults import StoredFileError
+from rodimpact.storage.runs import read_summary
 from rodimpact.model.materials import Material
-from rodimpact.workflow.indentation import indentation_curve
-from rodimpact.workflow.runner import run_case, run_to_file
+from rodimpact.jobs.indentation import indentation_curve
+from rodimpact.jobs.runner import run_case, run_to_file
 
 
 @pytest.fixture(scope="module")
@@ -66,7 +67,7 @@ def test_curve_file_round_trip_and_tamper(tmp_path, curves):
         np.testing.assert_array_equal(back.data[name], array)
     with h5py.File(path, "r+") as h5:
         h5["force_N"][3] *= 1.01
-    with pytest.raises(CurveFileError, match="do not match their data_sha256"):
+    with pytest.raises(StoredFileError, match="do not match their data_sha256"):
         read_contact_curve(path)
 
 

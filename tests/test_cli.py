@@ -1,4 +1,4 @@
-"""The ``rodimpact`` console command (rodimpact.workflow.cli): ``run`` and its one-line errors."""
+"""The ``rodimpact`` console command (rodimpact.tools.cli): ``run`` and its one-line errors."""
 
 from __future__ import annotations
 
@@ -11,8 +11,8 @@ import pytest
 import yaml
 
 import rodimpact
-from rodimpact.workflow.cli import main, run_file
-from rodimpact.workflow.runner import run_case
+from rodimpact.tools.cli import main, run_file
+from rodimpact.jobs.runner import run_case
 
 from conftest import ROOT
 
@@ -69,4 +69,4 @@ def test_pyproject_declares_the_direct_dependencies_and_the_command() -> None:
     tools = {"pytest", "setuptools", "wheel", "setuptools-scm"}  # tests and the build backend, not runtime
     runtime = [p for p in pinned if p and re.split(r"[=<>]", p)[0] not in tools]
     assert project["dependencies"] == runtime
-    assert project["scripts"]["rodimpact"] == "rodimpact.workflow.cli:main"
+    assert project["scripts"]["rodimpact"] == "rodimpact.tools.cli:main"

@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 from test_workflow import copy_project, project_cases, snakemake
 
-from rodimpact.workflow.resources import PRESENTATION, estimate_resources
+from rodimpact.jobs.resources import PRESENTATION, estimate_resources
 
 pytestmark = pytest.mark.workflow
 

@@ -1,4 +1,4 @@
-"""Tests of the configuration layer (rodimpact.io.config): shipped config, schemas, error messages.
+"""Tests of the configuration layer (rodimpact.config.load): shipped config, schemas, error messages.
 
 Every test that changes a file works on a copy of config/ and workflow/schemas/ in tmp_path.
 """
@@ -16,9 +16,9 @@ import pytest
 import yaml
 from jsonschema import Draft202012Validator
 
-from rodimpact.io.config import METHODS, OUTPUTS, Project, load_global_config, load_project, registry_schema
+from rodimpact.config.load import METHODS, OUTPUTS, Project, load_global_config, load_project, registry_schema
 from rodimpact.solvers.registry import METHODS as REGISTRY
-from rodimpact.io.project import ConfigError
+from rodimpact.config.project import ConfigError
 
 from conftest import ROOT
 SCHEMAS = ROOT / "workflow" / "schemas"
@@ -673,7 +673,7 @@ def test_implausible_case_is_refused_naming_its_cause(project_dir: Path, change,
 
 
 def test_plausibility_fallbacks_and_budget_of_machine() -> None:
-    from rodimpact.io.plausible import Budget, machine_memory_mib
+    from rodimpact.config.plausible import Budget, machine_memory_mib
 
     budget = Budget.of({"run_time_s": 10, "memory_mib": None})
     assert budget.memory_mib == machine_memory_mib() > 100.0

@@ -29,8 +29,8 @@ import yaml
 
 from rodimpact.contact import laws
 from rodimpact.contact.law import ContactLaw, LawSettings
-from rodimpact.io.config import load_global_config, load_project
-from rodimpact.io.project import ConfigError
+from rodimpact.config.load import load_global_config, load_project
+from rodimpact.config.project import ConfigError
 from rodimpact.settings.declare import REQUIRED, setting
 from rodimpact.solvers.registry import METHODS
 

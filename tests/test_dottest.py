@@ -7,7 +7,7 @@ from pathlib import Path
 
 import yaml
 
-from rodimpact.io.config import load_project
+from rodimpact.config.load import load_project
 
 ROOT = Path(__file__).resolve().parents[1]
 TEST = ROOT / ".test"

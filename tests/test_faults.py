@@ -19,8 +19,8 @@ from pathlib import Path
 import h5py
 import pytest
 
-from rodimpact.io.faults import REBUILD_HINT
-from rodimpact.io.store import read_run
+from rodimpact.storage.faults import REBUILD_HINT
+from rodimpact.storage.runs import read_run
 from test_workflow import Run, clone_built, copy_project, snakemake
 
 SOLVE = "results/runs/model/sem.h5"  # one case file and one SEM solve (about 2 s)

@@ -7,7 +7,7 @@ import pytest
 from rodimpact.solvers.fem1d.bar import bar_model
 from rodimpact.solvers.fem1d.options import FEM1DOptions
 from rodimpact.solvers.fem1d.solver import solve_fem1d
-from rodimpact.workflow.runner import run_case
+from rodimpact.jobs.runner import run_case
 from rodimpact.solvers.sem.options import SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
 from rodimpact.solvers.sem.history import ForceHistory

@@ -5,9 +5,9 @@ internal ids, no version strings, Greek letters set in mathtext), and curves tha
 other told apart by their markers.
 
 Every figure the workflow draws is rendered here by the artifact function its rule calls, from
-small runs made with the workflow's own writer (:func:`rodimpact.workflow.runner.run_to_file`),
+small runs made with the workflow's own writer (:func:`rodimpact.jobs.runner.run_to_file`),
 read back from their HDF5 files; a band file is written with synthetic numbers by
-:func:`rodimpact.io.bands.write_band`."""
+:func:`rodimpact.storage.bands.write_band`."""
 
 from __future__ import annotations
 
@@ -24,8 +24,8 @@ import pytest  # noqa: E402
 import rodimpact.present.figures as figures  # noqa: E402
 from rodimpact.analysis.studies import level_case, map_point_case, map_point_names  # noqa: E402
 from rodimpact.analysis.sweeps import sweep_point_case, sweep_points  # noqa: E402
-from rodimpact.io.bands import BAND_PARAMETERS, CaseBand, write_band  # noqa: E402
-from rodimpact.io.store import read_run, read_summary  # noqa: E402
+from rodimpact.storage.bands import BAND_PARAMETERS, CaseBand, write_band  # noqa: E402
+from rodimpact.storage.runs import read_run, read_summary  # noqa: E402
 from rodimpact.present.artifacts import (  # noqa: E402
     make_fig2, make_fig4, make_fig_film_force, make_fig_force_fit, make_fig_table2, make_stability_map,
     make_work_precision_figure
@@ -34,7 +34,7 @@ from rodimpact.present.forces import export_forces  # noqa: E402
 from rodimpact.present.study_figures import quantity_words  # noqa: E402
 from rodimpact.present.table2_figures import SECOND_CONTACT_LABEL, short_source  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
-from rodimpact.workflow.runner import run_to_file  # noqa: E402
+from rodimpact.jobs.runner import run_to_file  # noqa: E402
 
 #: A unit in parentheses at the end of an axis label.
 UNIT = re.compile(r"\((?:µs|ms|s|kN|N|m|mm|µm|g|kg|kg/s|Pa|GPa|J|%|[^()]*% of[^()]*)\)\s*$")

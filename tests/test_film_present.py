@@ -1,5 +1,5 @@
 """The sensor film's tables and figures, from small synthetic runs, bands and curves written
-with the project's own writers (rodimpact.io): the numbers of each frame, and the renders."""
+with the project's own writers (rodimpact.storage): the numbers of each frame, and the renders."""
 
 from __future__ import annotations
 
@@ -11,9 +11,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from rodimpact.io.bands import BAND_PARAMETERS, CaseBand, read_band, write_band
-from rodimpact.io.curves import ContactCurve, read_contact_curve, write_contact_curve
-from rodimpact.io.store import read_run, read_summary, write_run
+from rodimpact.storage.bands import BAND_PARAMETERS, CaseBand, read_band, write_band
+from rodimpact.storage.curves import ContactCurve, read_contact_curve, write_contact_curve
+from rodimpact.storage.runs import read_run, read_summary, write_run
 from rodimpact.present.artifacts import make_fig_film_force, make_table2_film
 from rodimpact.present.film_figures import plot_film_force
 from rodimpact.present.columns import headers_with_units

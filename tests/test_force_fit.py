@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from rodimpact.analysis.force_fit import MAX_DEGREE, fit_force
-from rodimpact.io.store import read_run, write_run
+from rodimpact.storage.runs import read_run, write_run
 from rodimpact.present.forces import export_forces, read_force_json
 
 from conftest import model_problem

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from rodimpact.workflow.plan_cache import PlanCache, code_fingerprint, project_key
-from rodimpact.workflow.resources import estimate_resources
+from rodimpact.plumbing.plan_cache import PlanCache, code_fingerprint, project_key
+from rodimpact.jobs.resources import estimate_resources
 
 from conftest import ROOT
 

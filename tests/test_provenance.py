@@ -1,4 +1,4 @@
-"""Tests of rodimpact.io.provenance: canonical JSON, hashing, code and library versions."""
+"""Tests of rodimpact.storage.provenance: canonical JSON, hashing, code and library versions."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import rodimpact
-from rodimpact.io import provenance
+from rodimpact.storage import provenance
 
 from conftest import ROOT as REPO_ROOT
 VERSION_RE = re.compile(

@@ -22,7 +22,7 @@ import pytest
 from PIL import Image
 
 from conftest import ROOT as REPO_ROOT
-from rodimpact.workflow.report_check import CHROMEDRIVER, CHROMIUM, TitleBox, check_report, main
+from rodimpact.tools.report_check import CHROMEDRIVER, CHROMIUM, TitleBox, check_report, main
 
 needs_chromium = pytest.mark.skipif(
     not (CHROMIUM.is_file() and CHROMEDRIVER.is_file()),

@@ -1,4 +1,4 @@
-"""Job resources estimated from the case (rodimpact.workflow.resources): what they follow, that they
+"""Job resources estimated from the case (rodimpact.jobs.resources): what they follow, that they
 cover what a real run takes, and that bad input is refused by name."""
 
 from __future__ import annotations
@@ -13,13 +13,13 @@ import pytest
 
 from rodimpact.model.problem import ImpactProblem
 
-from rodimpact.workflow.bench_plan import fem_bench_runs, sem_bench_runs
-from rodimpact.workflow.bench import resource_margins
-from rodimpact.workflow.resources import (
+from rodimpact.tools.bench_plan import fem_bench_runs, sem_bench_runs
+from rodimpact.tools.bench import resource_margins
+from rodimpact.jobs.resources import (
     MIN_MEM_MB, MIN_RUNTIME_MIN, PRESENTATION, SAFETY, JobResources, estimate_resources, estimate_sequence
 )
 from rodimpact.solvers.fem_axi.cost import fem_axi_dofs
-from rodimpact.workflow.sources import module_sources
+from rodimpact.plumbing.sources import module_sources
 from rodimpact.analysis.studies import level_case
 
 from conftest import ROOT as REPO
@@ -141,9 +141,9 @@ def test_presentation_is_constant_and_small():
 
 def test_resources_are_not_solver_code():
     """The solvers' rerun trigger lists their sources: a new calibration reruns no solver."""
-    solver = {Path(f).name for f in module_sources(SRC, ["rodimpact.workflow.runner"])}
+    solver = {Path(f).name for f in module_sources(SRC, ["rodimpact.jobs.runner"])}
     assert "resources.py" not in solver
-    assert "resources.py" in {Path(f).name for f in module_sources(SRC, ["rodimpact.workflow.bench"])}
+    assert "resources.py" in {Path(f).name for f in module_sources(SRC, ["rodimpact.tools.bench"])}
 
 
 def test_dof_bound_covers_the_meshes(model):
@@ -162,7 +162,7 @@ def test_dof_bound_covers_the_meshes(model):
 
 _MEASURE = r"""
 import json, resource, sys, time
-from rodimpact.workflow.runner import run_case
+from rodimpact.jobs.runner import run_case
 case, method = json.loads(sys.argv[1]), sys.argv[2]
 started = time.perf_counter()
 result = run_case(case, method)

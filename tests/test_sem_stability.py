@@ -6,8 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from rodimpact.io.project import ConfigError
-from rodimpact.io.config import load_global_config, load_project
+from rodimpact.config.project import ConfigError
+from rodimpact.config.load import load_global_config, load_project
 from rodimpact.contact.hertz import HertzLaw, hertz_constant
 from rodimpact.model.responses import Rod
 from rodimpact.model.problem import ImpactProblem

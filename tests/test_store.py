@@ -1,4 +1,4 @@
-"""Tests of rodimpact.io.store: HDF5 run files with provenance, written atomically."""
+"""Tests of rodimpact.storage.runs: HDF5 run files with provenance, written atomically."""
 
 from __future__ import annotations
 
@@ -12,8 +12,8 @@ import h5py
 import numpy as np
 import pytest
 
-from rodimpact.io import atomic, provenance, store
-from rodimpact.io.store import StoreError, read_run, read_summary, write_run
+from rodimpact.storage import atomic, provenance, runs
+from rodimpact.storage.runs import StoreError, read_run, read_summary, write_run
 
 RTOL = 0.0  # float64 is stored losslessly: exact round trip expected
 N = 6001  # > 4096 elements: exercises compression
@@ -196,7 +196,7 @@ def test_not_a_run_file(tmp_path: Path) -> None:
         read_run(path)
 
 
-@pytest.mark.parametrize("module, where", [(store, "_write_summary"), (atomic, "_fsync_file")])
+@pytest.mark.parametrize("module, where", [(runs, "_write_summary"), (atomic, "_fsync_file")])
 def test_failed_write_leaves_nothing(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, module: Any, where: str
 ) -> None:
@@ -211,7 +211,7 @@ def test_failed_write_leaves_nothing(
     assert leftovers(target.parent) == []
 
 
-@pytest.mark.parametrize("module, where", [(store, "_write_summary"), (atomic, "_fsync_file")])
+@pytest.mark.parametrize("module, where", [(runs, "_write_summary"), (atomic, "_fsync_file")])
 def test_failed_rewrite_keeps_existing_file(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, module: Any, where: str
 ) -> None:

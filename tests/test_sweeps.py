@@ -124,7 +124,7 @@ def test_every_parameter_sets_its_field(project) -> None:
 def test_contact_time_along_the_sweep_follows_hertz_for_a_rigid_rod(project) -> None:
     """On a stiff short rod the contact is Hertzian: t ~ m^(2/5) R^(-1/5), i.e. t ~ d for a
     solid ball. The sweep's SEM runs show it: fitted log-log slope 1 within 0.05."""
-    from rodimpact.workflow.runner import run_case
+    from rodimpact.jobs.runner import run_case
 
     case = project.sweeps["ball_sweep-r10_l30"]
     diameters = [1e-3, 2e-3, 4e-3]
@@ -135,8 +135,8 @@ def test_contact_time_along_the_sweep_follows_hertz_for_a_rigid_rod(project) -> 
 
 
 def test_sweep_table_reads_the_points(tmp_path: Path, project) -> None:
-    from rodimpact.workflow.runner import run_to_file
-    from rodimpact.io.store import read_summary
+    from rodimpact.jobs.runner import run_to_file
+    from rodimpact.storage.runs import read_summary
 
     case = project.sweeps["ball_sweep-r1_l30"]
     paths = [run_to_file(sweep_point_case(case, {"ball_diameter_m": d}, f"d{d}"), "sem", tmp_path / f"{d}.h5")

@@ -19,7 +19,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from rodimpact.io.store import RunRecord
+from rodimpact.storage.runs import RunRecord
 from rodimpact.present import table_views
 from rodimpact.present.columns import Column, column, headers_with_units, method_header
 from rodimpact.present.table_formats import (

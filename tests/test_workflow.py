@@ -33,11 +33,11 @@ import pytest
 import yaml
 from PIL import Image
 
-from rodimpact.workflow.audit import audit
-from rodimpact.io.config import load_global_config, load_project
+from rodimpact.tools.audit import audit
+from rodimpact.config.load import load_global_config, load_project
 from rodimpact.solvers.registry import METHODS as REGISTRY
-from rodimpact.io.casefile import read_case_file
-from rodimpact.io.store import REQUIRED_SUMMARY, read_run, read_summary
+from rodimpact.storage.casefile import read_case_file
+from rodimpact.storage.runs import REQUIRED_SUMMARY, read_run, read_summary
 
 pytestmark = pytest.mark.workflow
 
@@ -564,7 +564,7 @@ def test_provenance_audit_fails_on_hand_edits_and_stale_artifacts(built: Path, t
     model_yaml = project / "config/cases/model.yaml"
     model_yaml.write_text(model_yaml.read_text().replace("velocity_m_s: 1.0\n", "velocity_m_s: 1.1\n"))
 
-    proc = subprocess.run([sys.executable, "-m", "rodimpact.workflow.audit", "--root", str(project)],
+    proc = subprocess.run([sys.executable, "-m", "rodimpact.tools.audit", "--root", str(project)],
                           capture_output=True, text=True, check=False)
     assert proc.returncode == 1, proc.stdout + proc.stderr
     failed = {}
@@ -785,7 +785,7 @@ def test_figure_code_change_reruns_no_solver(built: Path, tmp_path: Path) -> Non
 def test_jobs_run_the_checkouts_own_code(tmp_path: Path) -> None:
     """A job imports the copy's src/, not the repository's installed package."""
     project = copy_project(tmp_path / "project")
-    runner = project / "src" / "rodimpact" / "workflow" / "runner.py"
+    runner = project / "src" / "rodimpact" / "jobs" / "runner.py"
     runner.write_text(runner.read_text() + '\nraise ImportError("runner.py of the copy")\n')
     run = snakemake(project, "-j1", run_path("model", "sem"), timeout=BUILD_TIMEOUT_S)
     assert run.returncode != 0, run.describe()

@@ -10,7 +10,7 @@ This is setuptools-scm's ``post-release`` scheme without a local part, which ``p
 (``[tool.setuptools_scm]``) gives the installed distribution; ``tests/test_version.py`` checks
 that both agree. In a git checkout the version is read from git at run time, so it never goes
 stale between installs; elsewhere (a wheel) it is the installed distribution's. The commit
-itself is not part of the version: :func:`rodimpact.io.provenance.code_version` appends it.
+itself is not part of the version: :func:`rodimpact.storage.provenance.code_version` appends it.
 
 Imports only the standard library.
 """

@@ -14,8 +14,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from rodimpact.io.config import load_global_config, load_project
-from rodimpact.workflow.runner import run_case
+from rodimpact.config.load import load_global_config, load_project
+from rodimpact.jobs.runner import run_case
 
 ROOT = Path(__file__).resolve().parents[2]
 GOLDEN = Path(__file__).with_name("runs.csv")

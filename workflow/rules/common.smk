@@ -1,3 +1,34 @@
+# Two parse-time mechanisms of this file, each against what snakemake does on its own:
+#
+# refuse(): sys.exit from input functions (and from checked_project at parse time).
+#   What snakemake does: an Exception raised in an input function is caught by
+#   snakemake.rules.Rule.apply_input_function and re-raised as InputFunctionException, printed
+#   over several lines (Error, Wildcards, Traceback); an Exception while this file is parsed is
+#   printed with its file and line. SystemExit is not an Exception: it passes both and the
+#   CLI's `except Exception` (snakemake.cli.main), and Python prints its message as the last
+#   line of the run, exit status 1, before any job.
+#   Why not enough: a target or wildcard the configuration does not define must stop planning
+#   in one line naming the case, method or level (docs/faults.md). An input function may refuse,
+#   a resource function may not: Rule.expand_resources catches BaseException and wraps it; the
+#   rules' resources call the same per_job functions, after their inputs have been evaluated.
+#   If snakemake changes (catches BaseException in input functions or around the parse): the
+#   refusals get several lines and a traceback; tests/test_faults.py::
+#   test_a_target_the_configuration_does_not_define_is_one_line and tests/test_workflow.py::
+#   test_bad_input_stops_before_any_job fail.
+#
+# PLAN: the pickled plan cache (rodimpact.plumbing.plan_cache), saved at exit.
+#   What snakemake does: every run (dry run, --summary, --lint, report, build, and a cluster
+#   job's own snakemake) parses this file anew and keeps nothing of it; its onstart hook runs
+#   only when jobs are scheduled (not for a dry run, "nothing to be done" or --no-hooks:
+#   snakemake.workflow.Workflow.execute).
+#   Why not enough: checking the whole configuration and estimating every job's resources are
+#   slow and their results depend only on files the cache digests. They are saved by onstart
+#   (before any job: a cluster job's snakemake finds them) and by atexit (after any run that
+#   plans, dry runs included).
+#   If snakemake changes (skips atexit handlers, e.g. leaves by os._exit): the cache is not
+#   written, planning is only slower, never different; tests/test_plumbing.py::
+#   test_a_dry_run_leaves_the_plan_cache fails.
+
 # Validation of the configuration (before any job), and the helpers the rules share.
 # (SRC_DIR is on the path: preflight.smk, included before the config file is read.)
 import atexit
@@ -14,12 +45,12 @@ from rodimpact.analysis.sweeps import sweep_frame, sweep_point_case, sweep_point
 from rodimpact.contact.laws import LAWS, law_of
 from rodimpact.solvers.field import FIELD_OUTPUT
 from rodimpact.solvers.registry import METHODS as METHOD_REGISTRY
-from rodimpact.workflow.locks import register_run
-from rodimpact.workflow.plan_cache import CACHE_FILE, PlanCache, code_fingerprint
-from rodimpact.workflow.sources import module_sources
+from rodimpact.plumbing.locks import register_run
+from rodimpact.plumbing.plan_cache import CACHE_FILE, PlanCache, code_fingerprint
+from rodimpact.plumbing.sources import module_sources
 
 # What planning computes (the checked project, each job's estimate) is kept in
-# .snakemake/rodimpact/, keyed on the digests of all it reads (rodimpact.workflow.plan_cache).
+# .snakemake/rodimpact/, keyed on the digests of all it reads (rodimpact.plumbing.plan_cache).
 # Written when the jobs start (a cluster job parses this file again and finds it) and at exit.
 PLAN = PlanCache(CACHE_FILE, code_fingerprint(SRC_DIR))
 atexit.register(PLAN.save)
@@ -35,8 +66,8 @@ SCHEMA_DIR = os.path.join(workflow.basedir, "workflow", "schemas")
 
 def checked_project():
     """The whole configuration, checked against the schemas and the method registry."""
-    from rodimpact.io.config import load_project  # the checker's imports, only when it runs
-    from rodimpact.io.project import ConfigError
+    from rodimpact.config.load import load_project  # the checker's imports, only when it runs
+    from rodimpact.config.project import ConfigError
 
     try:
         return load_project(config, root=WORKDIR, schema_dir=SCHEMA_DIR)
@@ -78,7 +109,7 @@ def per_job(function):
 
 
 # A solver rule depends on the runner and on its own method's solver (the registry names it).
-SRC_RUN = ("rodimpact.workflow.runner", "rodimpact.workflow.logs")
+SRC_RUN = ("rodimpact.jobs.runner", "rodimpact.jobs.logs")
 SOLVER_SOURCES = {name: sources(*SRC_RUN, spec.solver_module) for name, spec in METHOD_REGISTRY.items()}
 
 
@@ -88,7 +119,7 @@ def solver_sources(method=None):
 
 
 # A batch rule (several runs in one job, scripts/solve_batch.py) runs them through the batch module.
-SRC_BATCH = ("rodimpact.workflow.batch", "rodimpact.workflow.logs")
+SRC_BATCH = ("rodimpact.jobs.batch", "rodimpact.jobs.logs")
 BATCH_SOURCES = {name: sources(*SRC_BATCH, spec.solver_module) for name, spec in METHOD_REGISTRY.items()}
 
 
@@ -99,13 +130,13 @@ def batch_sources(method=None):
 
 
 # The case file's code: its module, and each method's cost model (named by the registry).
-SRC_CASES = sources("rodimpact.workflow.cases", "rodimpact.workflow.logs",
+SRC_CASES = sources("rodimpact.jobs.cases", "rodimpact.jobs.logs",
                     *(spec.cost.partition(":")[0] for spec in METHOD_REGISTRY.values()))
-SRC_PRESENT = sources("rodimpact.present.artifacts", "rodimpact.workflow.logs")
-SRC_BENCH = sources("rodimpact.workflow.bench", "rodimpact.workflow.bench_scaling", "rodimpact.io.atomic",
-                    "rodimpact.workflow.logs")
-SRC_INDENTATION = sources("rodimpact.workflow.indentation", "rodimpact.workflow.logs")
-SRC_BAND = sources("rodimpact.workflow.band", "rodimpact.workflow.logs")
+SRC_PRESENT = sources("rodimpact.present.artifacts", "rodimpact.jobs.logs")
+SRC_BENCH = sources("rodimpact.tools.bench", "rodimpact.tools.bench_scaling", "rodimpact.storage.atomic",
+                    "rodimpact.jobs.logs")
+SRC_INDENTATION = sources("rodimpact.jobs.indentation", "rodimpact.jobs.logs")
+SRC_BAND = sources("rodimpact.jobs.band", "rodimpact.jobs.logs")
 TABLE2_VARIANTS = list(PROJECT.variants.get("table2", {}))
 # The readings whose cases' law needs a film (the law declares it: needs.film): each gets its
 # prediction band over the film's ranges.

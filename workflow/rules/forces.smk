@@ -3,7 +3,7 @@
 # in results/forces/{case}/{method}.{csv,json}. Reading a run and fitting it takes a fraction of
 # a second, so one job exports a whole case set (rule forces_<set>), with one provenance
 # sidecar. The closed form drawn over the force: results/figures/force_fit_model.{pdf,png}.
-SRC_FORCES = sources("rodimpact.present.forces", "rodimpact.workflow.logs")
+SRC_FORCES = sources("rodimpact.present.forces", "rodimpact.jobs.logs")
 
 
 for set_name in config["targets"]["sets"]:

@@ -1,10 +1,10 @@
 # Resources of the jobs (threads, mem_mb in MB, runtime in minutes), and the case each solver
 # job runs (its params and its resources call the same function). Solver jobs are estimated
-# from that case by rodimpact.workflow.resources (twice the cost model, calibrated on measured runs),
+# from that case by rodimpact.jobs.resources (twice the cost model, calibrated on measured runs),
 # tables and figures get constants. A retry (--retries, the slurm profile) gets `attempt`
 # times the memory and the run time.
-from rodimpact.workflow.bench_plan import fem_bench_runs, sem_bench_runs, sem_scaling_runs
-from rodimpact.workflow.resources import PRESENTATION, estimate_resources, estimate_sequence
+from rodimpact.tools.bench_plan import fem_bench_runs, sem_bench_runs, sem_scaling_runs
+from rodimpact.jobs.resources import PRESENTATION, estimate_resources, estimate_sequence
 
 
 def level_runs(method):

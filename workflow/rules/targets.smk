@@ -1,22 +1,9 @@
 # Targets given on the command line that no rule makes are refused here, in one line listing
-# what the nearest folder holds (rodimpact.workflow.targets), before any job is planned. At
-# parse time snakemake has not yet set its targets, so they are read from the command line
-# with snakemake's own parser (a snakemake started otherwise, e.g. by its API, is not checked).
-from rodimpact.workflow.targets import unknown_target_message
-
-
-def command_line_targets():
-    """The targets of the ``snakemake`` command that parses this file ([] when unknown)."""
-    program = Path(sys.argv[0])
-    if program.name != "snakemake" and program.parts[-2:] != ("snakemake", "__main__.py"):
-        return []
-    from snakemake.cli import get_argument_parser
-
-    try:
-        known, _ = get_argument_parser().parse_known_args(sys.argv[1:])
-    except (Exception, SystemExit):
-        return []
-    return list(known.targets or [])
+# what the nearest folder holds, before any job is planned. At parse time snakemake has not yet
+# set its targets, so they are read from the command line with snakemake's own parser: what
+# snakemake does on its own, why that is not enough and which test notices a change of its
+# internals are in rodimpact.plumbing.targets.
+from rodimpact.plumbing.targets import command_line_targets, unknown_target_message
 
 
 def check_targets(targets):
@@ -28,4 +15,4 @@ def check_targets(targets):
         refuse(unknown_target_message(target, [str(p) for r in rules for p in r.output], names))
 
 
-check_targets(command_line_targets())
+check_targets(command_line_targets(sys.argv))

@@ -3,7 +3,7 @@
 # records_field), on one colour scale, with the wave fronts' paths and the contacts marked
 # (rodimpact.present.wave_figures). No other case pays for it: the rule's {case} takes only
 # the cases asking for the field (WAVE_CASES, common.smk).
-SRC_WAVES = sources("rodimpact.present.wave_figures", "rodimpact.workflow.logs")
+SRC_WAVES = sources("rodimpact.present.wave_figures", "rodimpact.jobs.logs")
 
 
 rule wave_map:

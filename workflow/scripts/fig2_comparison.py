@@ -1,7 +1,7 @@
 """Snakemake adapter: the numbers of Fig. 2 per method, against the SEM and the paper."""
 
 from rodimpact.present.artifacts import make_comparison
-from rodimpact.workflow.logs import script_logging
+from rodimpact.jobs.logs import script_logging
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821

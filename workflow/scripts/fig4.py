@@ -1,7 +1,7 @@
 """Snakemake adapter: Fig. 4 (displacement of a cross-section of the rod, case 'model')."""
 
 from rodimpact.present.artifacts import make_fig4
-from rodimpact.workflow.logs import script_logging
+from rodimpact.jobs.logs import script_logging
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     make_fig4(snakemake.input.runs, snakemake.params.fraction,  # noqa: F821

@@ -1,7 +1,7 @@
 """Snakemake adapter: contact time against ball mass, per rod, with and without the film."""
 
 from rodimpact.present.artifacts import make_fig_table2
-from rodimpact.workflow.logs import script_logging
+from rodimpact.jobs.logs import script_logging
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     make_fig_table2(snakemake.input.runs, snakemake.params.variants,  # noqa: F821

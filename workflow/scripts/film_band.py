@@ -1,7 +1,7 @@
 """Snakemake adapter: the film's prediction band for one Table 2 reading."""
 
-from rodimpact.workflow.band import band_to_file
-from rodimpact.workflow.logs import script_logging
+from rodimpact.jobs.band import band_to_file
+from rodimpact.jobs.logs import script_logging
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     band_to_file(snakemake.params.cases, snakemake.params.variant, snakemake.output.h5)  # noqa: F821

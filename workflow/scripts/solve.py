@@ -1,7 +1,7 @@
 """Snakemake adapter: solve one case with one method, write its HDF5 file."""
 
-from rodimpact.workflow.logs import script_logging
-from rodimpact.workflow.runner import run_to_file
+from rodimpact.jobs.logs import script_logging
+from rodimpact.jobs.runner import run_to_file
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     curve = list(snakemake.input.curve)  # noqa: F821 (one file for a tabulated law, else none)

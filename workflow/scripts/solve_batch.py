@@ -1,8 +1,8 @@
 """Snakemake adapter: a batch of runs of one case file (sweep points, a stability-map row,
 work-precision levels), each written to its own HDF5 file."""
 
-from rodimpact.workflow.batch import run_batch
-from rodimpact.workflow.logs import script_logging
+from rodimpact.jobs.batch import run_batch
+from rodimpact.jobs.logs import script_logging
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     params = snakemake.params  # noqa: F821

@@ -1,7 +1,7 @@
 """Snakemake adapter: one run of the stability study; a failure is written as data."""
 
-from rodimpact.workflow.logs import script_logging
-from rodimpact.workflow.runner import run_to_file
+from rodimpact.jobs.logs import script_logging
+from rodimpact.jobs.runner import run_to_file
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     params = snakemake.params  # noqa: F821

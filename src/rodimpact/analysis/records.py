@@ -1,4 +1,4 @@
-"""What the analyses read of a stored run (``rodimpact.io.store.RunRecord`` has it)."""
+"""What the analyses read of a stored run (``rodimpact.storage.runs.RunRecord`` has it)."""
 
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
 """The cases of the numerical studies: work-precision levels, stress references, map points.
 
-Every study run is an ordinary resolved case (see :mod:`rodimpact.io.config`) with its
+Every study run is an ordinary resolved case (see :mod:`rodimpact.config.load`) with its
 numerics changed, so that it is stored, hashed and traced like any other run; the study
 and its sweep parameters go into the run's config (``run.study``).
 """

@@ -92,7 +92,7 @@ def work_precision_frame(records: Sequence[RunRecord], methods: Mapping[str, Map
     Parameters
     ----------
     records : sequence of RunRecord
-        The sweep's runs (``config.run.level`` set; timed, see :class:`rodimpact.workflow.runner.Timing`).
+        The sweep's runs (``config.run.level`` set; timed, see :class:`rodimpact.jobs.runner.Timing`).
     methods : mapping
         config.yaml's ``work_precision.methods``: per method ``order``, ``reference`` and
         ``resolution``.

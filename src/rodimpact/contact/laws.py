@@ -63,7 +63,7 @@ def contact_schema(material_ref: str = "#/$defs/material") -> dict[str, Any]:
     ``law`` is one of :data:`LAWS`; the other keys are the union of every law's settings
     (each with its full schema; two laws that declare the same key declare it alike). Which
     keys a given law takes, and which it requires, the configuration checks per law
-    (``rodimpact.io.bodies.resolve_contact``), as it checks each method's numerics.
+    (``rodimpact.config.bodies.resolve_contact``), as it checks each method's numerics.
 
     Parameters
     ----------

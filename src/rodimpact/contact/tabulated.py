@@ -1,7 +1,7 @@
 """A contact law given as a measured or computed curve P(alpha): the ``tabulated`` law.
 
 The curve comes from the continuum's static indentation of the case's own ball, film and
-rod (the workflow's ``indentation`` rule, written by :mod:`rodimpact.io.curves`); the 1-D
+rod (the workflow's ``indentation`` rule, written by :mod:`rodimpact.storage.curves`); the 1-D
 methods then use it as their contact law, so the quasi-static contact is the continuum's
 and not the thin-layer or half-space idealisation.
 

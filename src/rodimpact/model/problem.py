@@ -52,7 +52,7 @@ class ImpactProblem:
 
     @classmethod
     def from_case(cls, case: Mapping[str, Any], *, estimate: bool = False) -> "ImpactProblem":
-        """Build from a resolved case mapping (see :mod:`rodimpact.io.config`).
+        """Build from a resolved case mapping (see :mod:`rodimpact.config.load`).
 
         ``estimate=True``: for checks and cost estimates before any job, a law whose data
         a job computes is replaced by the law it calibrates (:func:`~rodimpact.contact.laws.build_law`).

@@ -8,10 +8,11 @@ panels of chosen columns), :mod:`.table_views` (which columns each table shows),
 time against ball mass per reading of the rod), :mod:`.film_tables` and :mod:`.film_figures` (the sensor
 film: Table 2 with and without it, its prediction bands, the indentation curves, the contact
 force), :mod:`.study_figures` (error against run time, the stability map), :mod:`.wave_figures`
-(the strain over the rod against time: its figure and its artifact) and
+(the strain over the rod against time: its figure and its artifact), :mod:`.forces` (each
+run's contact force as CSV, and its closed form as JSON) and
 :mod:`.artifacts` (one function per artifact of the workflow).
 
-What it may import: :mod:`rodimpact.io` (to read runs, bands, curves and case files, and write
+What it may import: :mod:`rodimpact.storage` (to read runs, bands, curves and case files, and write
 files), :mod:`rodimpact.analysis`, :mod:`rodimpact.solvers.registry` (labels, styles, order of the
 methods), :mod:`rodimpact.contact.laws` (the law of a case, its words), pandas
 and matplotlib (headless). Never a solver.

@@ -12,11 +12,11 @@ from typing import Any, Mapping, Sequence
 
 from rodimpact.analysis.stability_study import StudyViolation, map_frame, stability_frame, violations
 from rodimpact.analysis.work_precision import observed_orders, work_precision_frame
-from rodimpact.io.bands import read_band
-from rodimpact.io.casefile import read_case_file
-from rodimpact.io.curves import read_contact_curve
-from rodimpact.io.sidecar import provenance_record, write_provenance
-from rodimpact.io.store import read_run
+from rodimpact.storage.bands import read_band
+from rodimpact.storage.casefile import read_case_file
+from rodimpact.storage.curves import read_contact_curve
+from rodimpact.storage.sidecar import provenance_record, write_provenance
+from rodimpact.storage.runs import read_run
 from rodimpact.present.film_tables import (
     film_band_frame, film_indentation_frame, film_table_frame, readings_frame, table2_panels,
     write_provenance_with_files

@@ -13,8 +13,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from rodimpact.io.atomic import atomic_output  # noqa: E402
-from rodimpact.io.store import RunRecord  # noqa: E402
+from rodimpact.storage.atomic import atomic_output  # noqa: E402
+from rodimpact.storage.runs import RunRecord  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
 
 __all__ = ["METHOD_LABELS", "METHOD_ORDER", "plot_contact_force", "plot_force_fits", "plot_station_displacement",

@@ -11,7 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from rodimpact.io.store import RunRecord  # noqa: E402
+from rodimpact.storage.runs import RunRecord  # noqa: E402
 from rodimpact.present.figures import METHOD_LABELS, METHOD_ORDER  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
 

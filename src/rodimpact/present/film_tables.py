@@ -22,12 +22,12 @@ import numpy as np
 import pandas as pd
 
 from rodimpact.contact.laws import DEFAULT_LAW
-from rodimpact.io.atomic import atomic_output
-from rodimpact.io.bands import CaseBand
-from rodimpact.io.curves import ContactCurve
-from rodimpact.io.provenance import file_sha256
-from rodimpact.io.sidecar import provenance_record
-from rodimpact.io.store import RunRecord
+from rodimpact.storage.atomic import atomic_output
+from rodimpact.storage.bands import CaseBand
+from rodimpact.storage.curves import ContactCurve
+from rodimpact.storage.provenance import file_sha256
+from rodimpact.storage.sidecar import provenance_record
+from rodimpact.storage.runs import RunRecord
 from rodimpact.present.tables import METHOD_ORDER, table2_frame
 
 __all__ = ["FILM_ROLES", "film_band_frame", "film_indentation_frame", "film_table_frame", "reading_of",
@@ -269,7 +269,7 @@ def film_indentation_frame(curves: Sequence[ContactCurve]) -> pd.DataFrame:
 
 def write_provenance_with_files(path: str | Path, records: Sequence[RunRecord], artifacts: Iterable[str | Path],
                                 files: Mapping[str, Iterable[str | Path]]) -> None:
-    """A provenance sidecar (as :func:`rodimpact.io.sidecar.write_provenance`) that also names
+    """A provenance sidecar (as :func:`rodimpact.storage.sidecar.write_provenance`) that also names
     the inputs that are not runs (band files, curve files, case files) with their SHA-256:
     ``input_files``, a list of ``{path, kind, sha256}`` (``files``: kind -> paths)."""
     artifacts = [str(a) for a in artifacts]

@@ -22,10 +22,10 @@ from typing import Any, Sequence
 import numpy as np
 
 from rodimpact.analysis.force_fit import DEFAULT_REL_TOL, ForceFit, fit_force
-from rodimpact.io.atomic import atomic_output
-from rodimpact.io.provenance import code_version
-from rodimpact.io.sidecar import write_provenance
-from rodimpact.io.store import RunRecord, read_run
+from rodimpact.storage.atomic import atomic_output
+from rodimpact.storage.provenance import code_version
+from rodimpact.storage.sidecar import write_provenance
+from rodimpact.storage.runs import RunRecord, read_run
 
 __all__ = ["export_forces", "force_fit_of", "read_force_json"]
 

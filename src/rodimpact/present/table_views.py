@@ -13,7 +13,7 @@ from typing import Any, Mapping, Sequence
 import pandas as pd
 
 from rodimpact.contact.laws import UnknownLaw, law_of
-from rodimpact.io.store import RunRecord
+from rodimpact.storage.runs import RunRecord
 from rodimpact.present.columns import method_header
 from rodimpact.present.table_formats import Panel, latex_escape, panels
 from rodimpact.solvers.registry import METHODS

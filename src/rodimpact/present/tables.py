@@ -14,8 +14,8 @@ import numpy as np
 import pandas as pd
 
 from rodimpact.analysis.signals import first_contact_maxima
-from rodimpact.io.atomic import atomic_output
-from rodimpact.io.store import RunRecord, read_summary
+from rodimpact.storage.atomic import atomic_output
+from rodimpact.storage.runs import RunRecord, read_summary
 from rodimpact.present.table_formats import Panel, html_tables, latex_tables, markdown_table
 from rodimpact.solvers.registry import METHODS
 

@@ -25,8 +25,8 @@ import numpy as np  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
 from rodimpact.analysis.waves import characteristic  # noqa: E402
-from rodimpact.io.sidecar import provenance_record, write_provenance  # noqa: E402
-from rodimpact.io.store import RunRecord, read_run  # noqa: E402
+from rodimpact.storage.sidecar import provenance_record, write_provenance  # noqa: E402
+from rodimpact.storage.runs import RunRecord, read_run  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
 
 __all__ = ["make_wave_map", "plot_wave_map"]

@@ -1,7 +1,7 @@
 """The cost model every solver's estimate is built from: its steps, time and memory.
 
 Closed forms only (no solve, no mesh): the workflow evaluates them for every job when it
-plans the build (:mod:`rodimpact.workflow.resources`). Each method's own model lives in its
+plans the build (:mod:`rodimpact.jobs.resources`). Each method's own model lives in its
 package (``cost.py``) and is named by its registry entry. The per-unit costs are calibrated
 on the development machine (one core of a 2-core x86_64 VM) against the stored runs
 (docs/cluster.md, "Resources").

@@ -16,7 +16,7 @@ does not: its field would be the same construction from its own, first-order, fo
 does not hold. Those methods skip the output (their runs store no field).
 
 The settings are declared once here (:func:`~rodimpact.solvers.options.setting`); the case
-schema's ``field_grid`` is generated from them (:func:`rodimpact.io.config.registry_schema`).
+schema's ``field_grid`` is generated from them (:func:`rodimpact.config.load.registry_schema`).
 """
 
 from __future__ import annotations

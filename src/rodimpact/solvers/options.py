@@ -7,7 +7,7 @@ uses (the contact laws' too). Everything else is read from those declarations
 
 - the check of every value (``__post_init__``, :class:`OptionError` naming the setting);
 - the JSON schema of the method's block in ``config.yaml``'s ``numerics`` and in a case's
-  overrides (:meth:`Options.json_schema`; :mod:`rodimpact.io.config` injects it), with the
+  overrides (:meth:`Options.json_schema`; :mod:`rodimpact.config.load` injects it), with the
   defaults the configuration is filled with;
 - the list of a method's settings (:meth:`Options.names`) and the conversion of a resolved
   mapping into options (:meth:`Options.from_settings`).

@@ -10,7 +10,7 @@ table; adding a method is its own package under :mod:`rodimpact.solvers` and one
 The solver and the cost model are named by their dotted paths and imported only when a run
 is solved or estimated, so that reading the registry (the configuration check of every
 workflow job) loads no solver and no scikit-fem, and so that a rule's source inputs
-(:mod:`rodimpact.workflow.sources`) can name exactly the modules of its method
+(:mod:`rodimpact.plumbing.sources`) can name exactly the modules of its method
 (:attr:`Method.solver_module`): a change to one method reruns that method's runs only, and
 a new calibration of a cost model reruns none.
 """

@@ -1,0 +1,107 @@
+"""Checks of a run before any job: its method's options can be built and fit the case.
+
+The configuration layer (:mod:`.config`) calls these for every run of every case, sweep
+point and study level; the errors carry the setting at fault as data
+(:class:`~rodimpact.solvers.options.OptionError`), never in the message alone.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Callable, Mapping
+
+from rodimpact.analysis.studies import level_case
+from rodimpact.solvers.field import FIELD_OUTPUT
+from rodimpact.solvers.options import OptionError
+from rodimpact.solvers.registry import METHODS
+
+__all__ = ["check_outputs", "check_run", "check_stability", "check_work_precision"]
+
+
+def check_run(case: Mapping[str, Any], method: str) -> None:
+    """Check, without solving, that ``method`` can run ``case`` with its numerics.
+
+    Builds the method's options and runs its checks that need the case (the paper scheme's
+    stability limit).
+
+    Raises
+    ------
+    OptionError
+        The setting at fault is ``error.field``.
+    """
+    spec = METHODS[method]
+    options = spec.options_of(case["numerics"][method])
+    options.check(spec.estimate_problem(case))
+
+
+def check_outputs(case: Mapping[str, Any], variant: str | None, error: Callable[..., Exception]) -> list[str]:
+    """The outputs of a case (checked by the schema, defaults filled) for its ``variant``: its
+    ``outputs`` and those ``variant_outputs`` adds for the variant, checked against the case.
+
+    A station output needs stations; ``strain_field`` needs a method that records it (the
+    registry's ``records_field``); ``field_grid`` is given only with ``strain_field``.
+    ``error(message, field=)`` builds the exception raised.
+    """
+    outputs = list(case["outputs"])
+    outputs += [name for name in case.get("variant_outputs", {}).get(variant, []) if name not in outputs]
+    for index, output in enumerate(outputs):
+        where = f"outputs[{index}]" if index < len(case["outputs"]) else f"variant_outputs.{variant}"
+        if output.startswith("station_") and not case["stations"]:
+            raise error(f"output {output!r} needs stations (fractions of the rod length)", field=where)
+        if output == FIELD_OUTPUT and not any(METHODS[m].records_field for m in case["methods"]):
+            recording = [name for name, spec in METHODS.items() if spec.records_field]
+            raise error(f"output {output!r} is recorded by {', '.join(recording)} only; the case runs none of "
+                        f"them (methods: {', '.join(case['methods'])})", field=where)
+    if "field_grid" in case and FIELD_OUTPUT not in outputs:
+        raise error(f"is the grid of the output {FIELD_OUTPUT!r}, which the case does not list", field="field_grid")
+    return outputs
+
+
+def check_work_precision(study: Mapping[str, Any] | None, cases: Mapping[str, dict],
+                         numerics: Mapping[str, Any], error: Callable[..., Exception]) -> None:
+    """Check config.yaml's ``work_precision`` against the cases; ``error(message, field=)``
+    builds the exception raised (a :class:`~rodimpact.config.project.ConfigError` of config.yaml)."""
+    if not study:
+        return
+    for index, case_id in enumerate(study["cases"]):
+        if case_id not in cases:
+            raise error(f"unknown case {case_id!r}", field=f"work_precision.cases[{index}]")
+    for method, sweep in study["methods"].items():
+        where = f"work_precision.methods.{method}"
+        if sweep["reference"] not in study["methods"]:
+            raise error(f"reference method {sweep['reference']!r} is not swept", field=f"{where}.reference")
+        for index, level in enumerate(sweep["levels"]):
+            names = METHODS[method].options.names()
+            for name in level:
+                if name not in names:
+                    raise error(f"not a setting of method {method!r}; its settings: {', '.join(names)}",
+                                field=f"{where}.levels[{index}].{name}")
+            if sweep["resolution"] not in level:
+                raise error(f"every level must set the resolution {sweep['resolution']!r}",
+                            field=f"{where}.levels[{index}]")
+            for case_id in study["cases"]:
+                case = level_case(cases[case_id], method, numerics, level)
+                try:
+                    check_run(case, method)
+                except OptionError as problem:
+                    raise error(f"case {case_id!r}: {problem.field}: {problem.reason}",
+                                field=f"{where}.levels[{index}]") from None
+        resolutions = [level[sweep["resolution"]] for level in sweep["levels"]]
+        if any(b <= a for a, b in zip(resolutions, resolutions[1:])):
+            raise error(f"levels must refine: {sweep['resolution']} = {resolutions}", field=f"{where}.levels")
+
+def check_stability(study: Mapping[str, Any] | None, cases: Mapping[str, dict], sets: Mapping[str, list],
+                    error: Callable[..., Exception]) -> None:
+    """Check config.yaml's ``stability`` against the cases and sets (``error`` as above)."""
+    if not study:
+        return
+    for index, name in enumerate(study["sets"]):
+        if name not in sets:
+            raise error(f"unknown case set {name!r}; known: {', '.join(sets)}", field=f"stability.sets[{index}]")
+        for case_id in sets[name]:
+            for method in cases[case_id]["methods"]:
+                if method not in study["tolerances"]:
+                    raise error(f"no tolerances for method {method!r} (run by case {case_id!r})",
+                                field="stability.tolerances")
+    spec = study.get("map")
+    if spec and spec["base_case"] not in cases:
+        raise error(f"unknown case {spec['base_case']!r}", field="stability.map.base_case")

@@ -1,0 +1,15 @@
+"""The code that the workflow's rules run (through workflow/scripts/): one job's science and
+its bookkeeping.
+
+What lives here: :mod:`.runner` (solve one run and store it), :mod:`.batch` (several runs in
+one job), :mod:`.band` (the film's prediction band), :mod:`.indentation` (the continuum's
+indentation as a contact-law curve), :mod:`.cases` (the case files' contents),
+:mod:`.resources` (threads, memory and time of a job, estimated from its case), :mod:`.logs`
+(the scripts' logging), :mod:`.timing` (how a timed run is repeated) and :mod:`.machine` (the
+machine a timing ran on).
+
+What it may import: everything below it (:mod:`rodimpact.present`, :mod:`rodimpact.config`,
+:mod:`rodimpact.storage`, :mod:`rodimpact.solvers`, :mod:`rodimpact.analysis`,
+:mod:`rodimpact.model`, :mod:`rodimpact.contact`). Not :mod:`rodimpact.plumbing` or
+:mod:`rodimpact.tools`.
+"""

@@ -1,0 +1,128 @@
+"""Snakemake's lock of the project directory after a killed run: released when no run holds it.
+
+What snakemake does on its own
+    With its default (file) persistence, a run writes the files it reads and writes into
+    ``.snakemake/locks/<n>.input.lock`` and ``<n>.output.lock``
+    (``snakemake.persistence.file.FilePersistence._write_locks``) and removes that folder when it
+    ends, also on an error (``PersistenceBase.lock``). A second run whose files overlap a lock
+    stops with ``LockException`` (a dry run only warns). A run killed by SIGKILL, an
+    out-of-memory kill or a power cut removes nothing, and every later run stops on the lock
+    until someone runs ``snakemake --unlock``, which deletes it without looking whether a run
+    still holds it.
+
+Why that is not enough here
+    A build killed on this 2-core machine (or by the cluster's scheduler) should be redone by
+    the same command, as the docs promise, and ``--unlock`` run by hand (or by make) would also
+    release the lock of a live run. The workflow calls :func:`release_stale_lock` when it is
+    parsed: the lock is released, with a one-line notice, only when
+
+    * no snakemake process other than the caller runs in this directory on this machine (read
+      from ``/proc``: command line and working directory; without ``/proc`` nothing is
+      released), and
+    * no run on another machine registered itself here (:func:`register_run`, called when a run
+      starts: ``.snakemake/rodimpact/runs/<host>-<pid>``, removed when it ends; a shared file
+      system may hold a live run of another node, which this machine cannot see).
+
+    Snakemake's database persistence (``--persistence-backend db``) keeps its locks in the
+    database: none is found here and nothing is released.
+
+If snakemake's internals change
+    Should the locks move or be renamed, no lock is found and a killed run's lock stays until
+    ``snakemake --unlock`` (snakemake's own behaviour: nothing is released wrongly).
+    ``tests/test_plumbing.py::test_snakemakes_own_lock_files_are_found_and_released`` writes
+    the locks with snakemake's own persistence class and releases them;
+    ``tests/test_faults.py::test_a_killed_build_leaves_a_lock_that_the_next_run_releases`` and
+    ``test_a_second_build_under_a_live_one_is_refused_and_the_lock_kept`` check it end to end.
+"""
+
+from __future__ import annotations
+
+import atexit
+import contextlib
+import os
+import socket
+from pathlib import Path
+
+__all__ = ["live_snakemake_pids", "register_run", "release_stale_lock"]
+
+LOCK_DIR = Path(".snakemake") / "locks"
+RUNS_DIR = Path(".snakemake") / "rodimpact" / "runs"
+_PROC = Path("/proc")
+
+
+def live_snakemake_pids(root: str | Path, proc: Path = _PROC) -> list[int] | None:
+    """Other processes running snakemake in ``root`` on this machine; None without ``/proc``."""
+    if not proc.is_dir():
+        return None
+    here, me = Path(root).resolve(), os.getpid()
+    found = []
+    for entry in proc.iterdir():
+        if not entry.name.isdigit() or int(entry.name) == me:
+            continue
+        try:
+            command = (entry / "cmdline").read_bytes().split(b"\0")
+            if not any(b"snakemake" in part for part in command[:3]):
+                continue
+            if Path(os.readlink(entry / "cwd")).resolve() == here:
+                found.append(int(entry.name))
+        except OSError:  # gone, or not ours to read
+            continue
+    return found
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def register_run(root: str | Path) -> Path:
+    """Record this run (host and pid) until it ends; the record's path."""
+    runs = Path(root) / RUNS_DIR
+    runs.mkdir(parents=True, exist_ok=True)
+    record = runs / f"{socket.gethostname()}-{os.getpid()}"
+    record.write_text(f"{socket.gethostname()} {os.getpid()}\n", encoding="utf-8")
+
+    def remove() -> None:
+        with contextlib.suppress(OSError):
+            record.unlink()
+
+    atexit.register(remove)
+    return record
+
+
+def _other_hosts(root: Path) -> list[str]:
+    """Registered runs on other machines, and on this one whose process still lives."""
+    runs, host, held = root / RUNS_DIR, socket.gethostname(), []
+    for record in sorted(runs.glob("*")) if runs.is_dir() else []:
+        name, _, pid = record.name.rpartition("-")
+        if name != host:
+            held.append(f"{name} (pid {pid})")
+        elif pid.isdigit() and int(pid) != os.getpid() and _alive(int(pid)):
+            held.append(f"{name} (pid {pid})")
+        elif pid.isdigit() and int(pid) != os.getpid():
+            with contextlib.suppress(OSError):
+                record.unlink()  # a dead run's record
+    return held
+
+
+def release_stale_lock(root: str | Path, proc: Path = _PROC) -> str | None:
+    """Release a lock no live run holds; the notice to show (None when nothing was done)."""
+    root = Path(root)
+    locks = sorted((root / LOCK_DIR).glob("*.lock")) if (root / LOCK_DIR).is_dir() else []
+    if not locks:
+        return None
+    live = live_snakemake_pids(root, proc)
+    if live is None or live:
+        return None
+    if _other_hosts(root):
+        return None
+    for lock in locks:
+        with contextlib.suppress(FileNotFoundError):
+            lock.unlink()
+    return (f"rodimpact: released snakemake's lock of {root.resolve()}: no run holds it (one was killed); "
+            "its unfinished outputs are remade")

@@ -1,0 +1,186 @@
+"""What snakemake computes to plan the workflow, kept between its runs: the checked project and
+each job's resource estimate.
+
+Every snakemake run (a dry run, ``--summary``, a build, a report) parses the workflow: it checks
+the whole configuration (:func:`rodimpact.config.load.load_project`) and estimates the resources of
+every job it plans (:func:`rodimpact.jobs.resources.estimate_resources`). Both are functions
+of files and arguments only, and both are slow (the contact-time estimate of a film integrates
+its law). :class:`PlanCache` keeps their results in one file, ``.snakemake/rodimpact/plan.pickle``,
+keyed on SHA-256 digests of everything they read:
+
+* the project: snakemake's ``config`` (the config file and any ``--config``), the files under
+  ``config/``, the materials file and the case files it names, and the schemas;
+* an estimate: the resolved case, the method and the timing it is asked for;
+* both: the package's sources (``src/rodimpact``) and the Python version
+  (:func:`code_fingerprint`); another fingerprint discards the whole file.
+
+A change of any of those misses the cache and redoes the work, so a bad input still gets its one
+error before any job; only a project that passed the check is kept. The file is written whole or
+not at all (:func:`rodimpact.storage.atomic.atomic_output`); an unreadable file is ignored. It is
+a pickle because the checked project is a tree of frozen dataclasses, not plain data; it is
+read only from the workflow's own ``.snakemake/`` and only with the same sources and Python.
+
+What snakemake does on its own
+    Each run parses the Snakefile anew and evaluates its input and resource functions again;
+    nothing of that is kept between runs (``--cache`` keeps rules' outputs, not the parse). Its
+    ``onstart`` hook runs only when jobs are about to be scheduled: not for a dry run, a run
+    with nothing to do or ``--no-hooks`` (``snakemake.workflow.Workflow.execute``).
+
+Why that is not enough here
+    Without the cache every dry run and every cluster job's snakemake checks the whole
+    configuration and estimates every job again. ``workflow/rules/common.smk`` saves the cache
+    from ``onstart`` (before the first job, so that a cluster job finds it) and from an
+    :mod:`atexit` handler (after every run that planned, dry runs included).
+
+If snakemake's internals change
+    Should snakemake leave without running :mod:`atexit` handlers, or stop calling ``onstart``,
+    the cache is not written: planning is slower, never different (the key covers every input).
+    ``tests/test_plumbing.py::test_a_dry_run_leaves_the_plan_cache`` checks that a dry run
+    writes it; ``tests/test_plan_cache.py`` checks the keys.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import logging
+import pickle
+import sys
+from pathlib import Path
+from typing import Any, Callable, Mapping, TypeVar
+
+from rodimpact.storage.atomic import atomic_output
+
+__all__ = ["CACHE_FILE", "PlanCache", "code_fingerprint", "project_key"]
+
+log = logging.getLogger(__name__)
+
+#: The cache file, relative to the working directory of the workflow.
+CACHE_FILE = Path(".snakemake") / "rodimpact" / "plan.pickle"
+#: Checked projects kept (the newest ones): a few configurations in turn stay cached.
+MAX_PROJECTS = 4
+#: Estimates kept: the oldest go first past this number.
+MAX_ESTIMATES = 50_000
+_FORMAT = 2
+
+T = TypeVar("T")
+
+
+def _digest(*parts: bytes) -> str:
+    sha = hashlib.sha256()
+    for part in parts:
+        sha.update(len(part).to_bytes(8, "little"))
+        sha.update(part)
+    return sha.hexdigest()
+
+
+def _tree_bytes(path: Path, pattern: str = "*") -> list[bytes]:
+    """Names and contents of the files matching ``pattern`` under ``path`` (recursively), or of
+    ``path`` itself when it is a file; a marker when it does not exist."""
+    if path.is_file():
+        return [path.name.encode(), path.read_bytes()]
+    if not path.is_dir():
+        return [b"missing:" + str(path).encode()]
+    parts = []
+    for file in sorted(p for p in path.rglob(pattern) if p.is_file() and "__pycache__" not in p.parts):
+        parts += [file.relative_to(path).as_posix().encode(), file.read_bytes()]
+    return parts
+
+
+def code_fingerprint(src: str | Path) -> str:
+    """SHA-256 of every Python source of the package under ``src`` and of the Python version."""
+    return _digest(sys.version.encode(), *_tree_bytes(Path(src) / "rodimpact", "*.py"))
+
+
+def _json(value: Any) -> bytes:
+    """Deterministic JSON of plain data (keys sorted; other objects by their ``repr``)."""
+    return json.dumps(value, sort_keys=True, separators=(",", ":"), default=repr).encode()
+
+
+def project_key(config: Mapping[str, Any], root: str | Path, schema_dir: str | Path | None = None) -> str:
+    """SHA-256 of what :func:`rodimpact.config.load.load_project` reads: ``config``, the files under
+    ``<root>/config``, the materials file and the cases directory ``config`` names (when they
+    are paths) and the schemas under ``schema_dir`` (default ``<root>/workflow/schemas``)."""
+    root = Path(root)
+    schemas = root / "workflow" / "schemas" if schema_dir is None else Path(schema_dir)
+    parts = [_json(config), *_tree_bytes(root / "config"), *_tree_bytes(schemas)]
+    for name in ("materials", "cases_dir"):
+        value = config.get(name) if isinstance(config, Mapping) else None
+        if isinstance(value, str):
+            parts += [name.encode(), *_tree_bytes(root / value)]
+    return _digest(*parts)
+
+
+class PlanCache:
+    """The planning results of one workflow directory (see the module docstring).
+
+    Parameters
+    ----------
+    path : path
+        The cache file (:data:`CACHE_FILE` under the workflow's directory); a relative path is
+        taken from the working directory when the cache is made (snakemake changes back to the
+        directory it was started in before the :mod:`atexit` handlers run, under ``--directory``).
+    fingerprint : str
+        :func:`code_fingerprint` of the sources the cached results were computed with.
+    """
+
+    def __init__(self, path: str | Path, fingerprint: str) -> None:
+        self.path, self.fingerprint = Path(path).absolute(), fingerprint
+        self._projects: dict[str, Any] = {}
+        self._estimates: dict[str, Any] = {}
+        self._changed = False
+        self._read()
+
+    def _read(self) -> None:
+        try:
+            with open(self.path, "rb") as handle:
+                stored = pickle.load(handle)
+        except FileNotFoundError:
+            return
+        except Exception as error:  # noqa: BLE001 (a damaged or foreign file is only a miss)
+            log.warning("ignoring the plan cache %s: %s", self.path, error)
+            return
+        if isinstance(stored, dict) and stored.get("format") == _FORMAT and stored.get("fingerprint") == self.fingerprint:
+            self._projects, self._estimates = dict(stored["projects"]), dict(stored["estimates"])
+
+    def project(self, config: Mapping[str, Any], root: str | Path, load: Callable[[], T],
+                schema_dir: str | Path | None = None) -> T:
+        """The checked project of ``config`` under ``root`` (schemas in ``schema_dir``, default
+        ``<root>/workflow/schemas``): cached, or ``load()`` (which raises for a bad input; nothing
+        is cached then)."""
+        key = project_key(config, root, schema_dir)
+        if key in self._projects:
+            self._projects[key] = self._projects.pop(key)  # the newest last
+            return pickle.loads(self._projects[key])
+        project = load()
+        # kept as it was checked: a later change to the object returned is not cached
+        self._projects[key] = pickle.dumps(project, protocol=pickle.HIGHEST_PROTOCOL)
+        while len(self._projects) > MAX_PROJECTS:
+            del self._projects[next(iter(self._projects))]
+        self._changed = True
+        return project
+
+    def remember(self, args: tuple[Any, ...], compute: Callable[..., T]) -> T:
+        """``compute(*args)``, cached on the JSON of ``args`` (plain data: a case, a method...):
+        for a pure function of ``args`` and of the package's sources only."""
+        key = _digest(_json(args))
+        if key not in self._estimates:
+            self._estimates[key] = compute(*args)
+            self._changed = True
+        return self._estimates[key]
+
+    def save(self) -> None:
+        """Write the cache file if anything was added (atomically; a failure is only logged)."""
+        if not self._changed:
+            return
+        while len(self._estimates) > MAX_ESTIMATES:
+            del self._estimates[next(iter(self._estimates))]
+        stored = {"format": _FORMAT, "fingerprint": self.fingerprint, "projects": self._projects,
+                  "estimates": self._estimates}
+        try:
+            with atomic_output(self.path) as tmp:
+                tmp.write_bytes(pickle.dumps(stored, protocol=pickle.HIGHEST_PROTOCOL))
+        except OSError as error:
+            log.warning("could not write the plan cache %s: %s", self.path, error)
+            return
+        self._changed = False

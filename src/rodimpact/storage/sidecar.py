@@ -1,0 +1,37 @@
+"""Provenance sidecars: what a table, figure or benchmark was made from (``*.provenance.json``)."""
+
+from __future__ import annotations
+
+import datetime as _dt
+import json
+from pathlib import Path
+from typing import Any, Iterable, Sequence
+
+from rodimpact.storage.atomic import atomic_output
+from rodimpact.storage.provenance import code_version, file_sha256
+from rodimpact.storage.runs import RunRecord
+
+__all__ = ["provenance_record", "write_provenance"]
+
+
+def provenance_record(records: Sequence[RunRecord], artifacts: Iterable[str | Path]) -> dict[str, Any]:
+    """What an artifact was made from: every input run with its config hash and code."""
+    return {
+        "artifacts": [str(a) for a in artifacts],
+        "created_utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        "code_version": code_version(),
+        "inputs": [
+            {"path": str(r.path), "case_id": r.case_id, "method": r.method,
+             "config_sha256": r.config_sha256, "data_sha256": r.data_sha256, "code_version": r.code_version}
+            for r in records
+        ],
+    }
+
+
+def write_provenance(path: str | Path, records: Sequence[RunRecord], artifacts: Iterable[str | Path]) -> None:
+    """Write :func:`provenance_record` as JSON, with the SHA-256 of each artifact as written
+    (``sha256``: path -> hex digest; ``make provenance`` checks them)."""
+    artifacts = [str(a) for a in artifacts]
+    record = {**provenance_record(records, artifacts), "sha256": {a: file_sha256(a) for a in artifacts}}
+    with atomic_output(path) as tmp:
+        tmp.write_text(json.dumps(record, indent=2) + "\n", encoding="utf-8")

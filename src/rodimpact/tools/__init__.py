@@ -1,0 +1,11 @@
+"""What people run by hand or from make, outside the rules.
+
+What lives here: :mod:`.cli` (the ``rodimpact`` command), :mod:`.audit` (``make provenance``:
+every artifact resolves to the config and code that made it), :mod:`.report_check` (``make
+report-check``: the HTML report's first screen in headless Chromium), :mod:`.bench`,
+:mod:`.bench_plan` and :mod:`.bench_scaling` (``make bench``: the benchmarks and what they run)
+and :mod:`.build_stats` (``make bench``: the build's own timing).
+
+What it may import: everything below it (:mod:`rodimpact.plumbing`, :mod:`rodimpact.jobs` and
+the layers under them). Nothing imports it but the workflow's scripts and .smk files, and the tests.
+"""

@@ -1,0 +1,100 @@
+"""The plumbing around snakemake (rodimpact.plumbing) against snakemake's own internals.
+
+Each mechanism relies on something snakemake does not promise as an interface: the argument
+parser of its command line, the place and names of its lock files, and a process that runs
+its :mod:`atexit` handlers after a dry run. These tests use snakemake itself, so that a new
+snakemake that changes any of them fails here, by name, instead of quietly disabling the check.
+"""
+
+from __future__ import annotations
+
+import os
+import pickle
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from rodimpact.plumbing.locks import LOCK_DIR, release_stale_lock
+from rodimpact.plumbing.plan_cache import CACHE_FILE, code_fingerprint
+from rodimpact.plumbing.targets import command_line_targets
+
+REPO = Path(__file__).resolve().parents[1]
+DRY_RUN_TIMEOUT_S = 300
+
+
+@pytest.mark.parametrize("argv, targets", [
+    (["snakemake", "-j2", "--directory", ".test", "results/a.csv", "all"], ["results/a.csv", "all"]),
+    (["/env/lib/python3.11/site-packages/snakemake/__main__.py", "--nocolor", "-n", "results/runs/model/sem.h5"],
+     ["results/runs/model/sem.h5"]),
+    (["snakemake", "-n", "--quiet", "rules"], []),
+    (["snakemake", "-j1", "--forcerun", "bench_sem", "bench_fem", "--", "results/benchmarks/sem.csv"],
+     ["results/benchmarks/sem.csv"]),
+    (["snakemake", "--config", "targets={sets: [model]}", "--", "results/tables/table2_r1_l30.csv"],
+     ["results/tables/table2_r1_l30.csv"]),
+    (["pytest", "results/a.csv"], []),
+    ([], []),
+], ids=["targets after options", "python -m snakemake", "a list option's value", "after --", "after --config",
+        "not snakemake", "no command line"])
+def test_snakemakes_parser_reads_the_targets_of_a_command_line(argv: list[str], targets: list[str]) -> None:
+    """snakemake.cli.get_argument_parser still exists and names its positionals ``targets``."""
+    assert command_line_targets(argv) == targets
+
+
+def _fake_proc(root: Path, processes: dict[int, tuple[list[str], Path]]) -> Path:
+    """A /proc with the given processes: pid -> (command line, working directory)."""
+    proc = root / "proc"
+    proc.mkdir()
+    for pid, (command, cwd) in processes.items():
+        (proc / str(pid)).mkdir()
+        (proc / str(pid) / "cmdline").write_bytes(b"\0".join(part.encode() for part in command) + b"\0")
+        os.symlink(cwd, proc / str(pid) / "cwd")
+    return proc
+
+
+def _snakemakes_locks(project: Path) -> list[Path]:
+    """Locks written by snakemake's own (default, file) persistence, as a running build holds them."""
+    from snakemake.persistence.file import FilePersistence
+
+    persistence = FilePersistence(path=project / ".snakemake")
+    persistence._write_locks("input", ["config/config.yaml"])
+    persistence._write_locks("output", ["results/runs/model/sem.h5"])
+    return sorted((project / LOCK_DIR).glob("*.lock"))
+
+
+def test_snakemakes_own_lock_files_are_found_and_released(tmp_path: Path) -> None:
+    project = tmp_path / "project"
+    project.mkdir()
+    locks = _snakemakes_locks(project)
+    assert len(locks) == 2
+    notice = release_stale_lock(project, proc=_fake_proc(tmp_path, {}))
+    assert notice is not None and notice.startswith("rodimpact: released snakemake's lock of ")
+    assert not any(lock.exists() for lock in locks)
+
+
+def test_the_lock_of_a_live_snakemake_is_kept(tmp_path: Path) -> None:
+    project = tmp_path / "project"
+    project.mkdir()
+    locks = _snakemakes_locks(project)
+    proc = _fake_proc(tmp_path, {4242: ([sys.executable, "-m", "snakemake", "-j2"], project)})
+    assert release_stale_lock(project, proc=proc) is None
+    assert all(lock.exists() for lock in locks)
+
+
+@pytest.mark.workflow
+def test_a_dry_run_leaves_the_plan_cache(tmp_path: Path) -> None:
+    """A dry run runs no ``onstart`` hook: the cache is written by the atexit handler alone."""
+    project = tmp_path / "project"  # .test beside a copy of config/ (its materials are ../config's)
+    shutil.copytree(REPO / ".test" / "config", project / "config")
+    shutil.copytree(REPO / "config", tmp_path / "config")
+    env = {key: value for key, value in os.environ.items() if not key.startswith("SNAKEMAKE") and key != "PYTHONPATH"}
+    run = subprocess.run([sys.executable, "-m", "snakemake", "--nocolor", "-n", "--quiet", "rules",
+                          "--snakefile", str(REPO / "Snakefile"), "--directory", str(project)],
+                         cwd=tmp_path, env=env, capture_output=True, text=True, timeout=DRY_RUN_TIMEOUT_S, check=False)
+    assert run.returncode == 0, run.stdout + run.stderr
+    with open(project / CACHE_FILE, "rb") as handle:
+        stored = pickle.load(handle)
+    assert stored["fingerprint"] == code_fingerprint(REPO / "src")
+    assert len(stored["projects"]) == 1 and stored["estimates"]
