@@ -14,7 +14,7 @@ import rodimpact
 from rodimpact.workflow.cli import main, run_file
 from rodimpact.workflow.runner import run_case
 
-from conftest import ROOT
+from helpers.repo import ROOT
 
 
 @pytest.fixture

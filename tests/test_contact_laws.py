@@ -25,7 +25,7 @@ from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
 from rodimpact.solvers.sem.stability import paper_step_limit
 
-from conftest import STEEL
+from helpers.paper import STEEL
 
 
 @dataclass(frozen=True)

@@ -10,7 +10,7 @@ import pytest
 from rodimpact.workflow.plan_cache import PlanCache, code_fingerprint, project_key
 from rodimpact.workflow.resources import estimate_resources
 
-from conftest import ROOT
+from helpers.repo import ROOT
 
 
 @pytest.fixture
