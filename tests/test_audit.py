@@ -17,7 +17,7 @@ from rodimpact.storage.provenance import library_versions
 from rodimpact.storage.runs import read_summary, write_run
 from rodimpact.storage.sidecar import write_provenance
 
-from conftest import ROOT
+from helpers.repo import ROOT
 HEAD = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
                       check=True).stdout.strip()
 VERSION = f"0.1.0+g{HEAD}"

@@ -15,7 +15,7 @@ from rodimpact.solvers.fem_axi.axisym import (
     axis_dofs, axisym_load, axisym_mass, axisym_stiffness, component_dofs, cross_section_mean_uz, strain
 )
 
-from conftest import STEEL
+from helpers.paper import STEEL
 
 E, NU, RHO = STEEL.youngs_modulus_pa, STEEL.poisson_ratio, STEEL.density_kg_m3  # 2.1e11, 0.30, 7800.0
 LAM = E * NU / ((1 + NU) * (1 - 2 * NU))

@@ -14,7 +14,7 @@ import rodimpact
 from rodimpact.tools.cli import main, run_file
 from rodimpact.jobs.runner import run_case
 
-from conftest import ROOT
+from helpers.repo import ROOT
 
 
 @pytest.fixture

@@ -16,9 +16,11 @@ import sys
 from pathlib import Path
 
 import pytest
-from test_workflow import copy_project, project_cases, snakemake
 
 from rodimpact.jobs.resources import PRESENTATION, estimate_resources
+
+from helpers.copies import copy_project, project_cases
+from helpers.snakemake_cli import snakemake
 
 pytestmark = pytest.mark.workflow
 

@@ -23,16 +23,17 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Mapping
 
-import numpy as np
 import pytest
 import yaml
 
 from rodimpact.contact import laws
-from rodimpact.contact.law import ContactLaw, LawSettings
+from rodimpact.contact.law import LawSettings
 from rodimpact.config.load import load_global_config, load_project
 from rodimpact.config.project import ConfigError
 from rodimpact.settings.declare import REQUIRED, setting
 from rodimpact.solvers.registry import METHODS
+
+from helpers.laws import LinearSpring
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -45,31 +46,15 @@ class SpringSettings(LawSettings):
 
 
 @dataclass(frozen=True)
-class LinearSpringLaw(ContactLaw):
-    """A linear spring P = c alpha between impactor and rod."""
+class LinearSpringLaw(LinearSpring):
+    """The linear spring, declared as a case file selects it: its stiffness is a setting."""
 
-    c: float
-    name = "linear_spring"
-    label = "linear spring"
-    reading = "a linear spring"
     settings = SpringSettings
 
     @classmethod
     def from_bodies(cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: Any,
                     rod: Any) -> "LinearSpringLaw":
         return cls(float(spec["stiffness_n_per_m"]))
-
-    def force(self, approach_m: float) -> float:
-        return self.c * approach_m if approach_m > 0.0 else 0.0
-
-    def stiffness(self, approach_m: float) -> float:
-        return self.c if approach_m > 0.0 else 0.0
-
-    def energy(self, approach_m):
-        return 0.5 * self.c * np.maximum(approach_m, 0.0) ** 2
-
-    def approach(self, force_N: float) -> float:
-        return max(force_N, 0.0) / self.c
 
 
 MASS, VELOCITY, SPRING = 0.01, 1.0, 1.0e7  # kg, m/s, N/m

@@ -10,7 +10,6 @@ they would miss these closed forms.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 import pytest
@@ -25,28 +24,8 @@ from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
 from rodimpact.solvers.sem.stability import paper_step_limit
 
-from conftest import STEEL
-
-
-@dataclass(frozen=True)
-class LinearSpring(ContactLaw):
-    """P = c alpha: implements only what the interface requires (the step and the rigid
-    impact come from the interface's generic parts)."""
-
-    c: float
-    name = "linear_spring"
-
-    def force(self, approach_m: float) -> float:
-        return self.c * approach_m if approach_m > 0.0 else 0.0
-
-    def stiffness(self, approach_m: float) -> float:
-        return self.c if approach_m > 0.0 else 0.0
-
-    def energy(self, approach_m):
-        return 0.5 * self.c * np.maximum(approach_m, 0.0) ** 2
-
-    def approach(self, force_N: float) -> float:
-        return max(force_N, 0.0) / self.c
+from helpers.laws import LinearSpring
+from helpers.paper import STEEL
 
 
 MASS, VELOCITY, SPRING = 0.5, 1.0, 1.0e7  # kg, m/s, N/m

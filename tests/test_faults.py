@@ -2,8 +2,8 @@
 
 Each fault stops with one line (no traceback) that names what is wrong, leaves nothing
 readable half-written, and one documented command recovers: the same snakemake command (or
-``make paper``) run again. The copies are tests/test_workflow.py's (coarse fem_axi, small
-studies); the configuration's own refusals are tested in tests/test_config.py.
+``make paper``) run again. The copies are ``helpers.copies.copy_project``'s (coarse fem_axi,
+small studies); the configuration's own refusals are tested in tests/test_config.py.
 """
 
 from __future__ import annotations
@@ -12,7 +12,6 @@ import os
 import shutil
 import signal
 import subprocess
-import sys
 import time
 from pathlib import Path
 
@@ -21,7 +20,11 @@ import pytest
 
 from rodimpact.storage.faults import REBUILD_HINT
 from rodimpact.storage.runs import read_run
-from test_workflow import Run, clone_built, copy_project, snakemake
+
+from helpers.copies import clone_built, copy_project
+from helpers.snakemake_cli import Run, snakemake, start
+
+pytestmark = pytest.mark.workflow
 
 SOLVE = "results/runs/model/sem.h5"  # one case file and one SEM solve (about 2 s)
 TABLE = "results/tables/fig2_comparison.csv"  # reads the four runs of 'model'
@@ -43,13 +46,6 @@ def assert_one_line_refusal(run: Run, expected_start: str) -> None:
 def locks(project: Path) -> list[Path]:
     directory = project / ".snakemake" / "locks"
     return sorted(directory.glob("*.lock")) if directory.is_dir() else []
-
-
-def start(project: Path, *args: str) -> subprocess.Popen:
-    """snakemake in the background, in its own process group (to kill it with its jobs)."""
-    env = {key: value for key, value in os.environ.items() if not key.startswith("SNAKEMAKE") and key != "PYTHONPATH"}
-    return subprocess.Popen([sys.executable, "-m", "snakemake", "--nocolor", *args], cwd=project, env=env,
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True)
 
 
 def wait_for(condition, timeout: float, what: str) -> None:

@@ -12,7 +12,7 @@ from rodimpact.solvers.sem.options import SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
 from rodimpact.solvers.sem.history import ForceHistory
 
-from conftest import model_problem, two_contact_problem
+from helpers.paper import model_problem, two_contact_problem
 
 
 def fem(problem, **options):

@@ -22,7 +22,7 @@ from rodimpact.contact.hertz import effective_modulus, hertz_constant
 from rodimpact.solvers.sem.options import SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
 
-from conftest import STEEL, end_pulse_response, model_problem
+from helpers.paper import STEEL, end_pulse_response, model_problem
 
 
 def test_static_indentation_is_hertzian():

@@ -18,7 +18,7 @@ from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact
 from rodimpact.solvers.fem_axi.solver import solve_fem_axi
 
-from conftest import STEEL, end_pulse_response
+from helpers.paper import STEEL, end_pulse_response
 
 RADIUS = 1e-3
 

@@ -18,7 +18,7 @@ from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact
 from rodimpact.solvers.fem_axi.solver import build_model, solve_fem_axi
 
-from conftest import ALUMINIUM, STEEL
+from helpers.paper import ALUMINIUM, STEEL
 
 #: The experiment's sensor film: 28 um of PVDF, a 7 x 3 mm patch (a disc of 2.585 mm radius).
 PVDF = FilmLayer(2.8e-5, 3.0e9, 0.35, 1780.0, area_m2=2.1e-5, name="pvdf")

@@ -23,7 +23,7 @@ from rodimpact.solvers.fem_axi.problem import AxiImpact
 from rodimpact.solvers.fem_axi.separation import BodyBound, Flight
 from rodimpact.solvers.fem_axi.solver import solve_fem_axi
 
-from conftest import ALUMINIUM, STEEL
+from helpers.paper import ALUMINIUM, STEEL
 
 STEP = 2e-7  # s: a few element transit times of the small bodies below, as in a run
 

@@ -26,7 +26,7 @@ from rodimpact.solvers.fem1d.solver import solve_fem1d
 from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
 
-from conftest import ALUMINIUM, STEEL
+from helpers.paper import ALUMINIUM, STEEL
 
 # Table 2, row 1 on the text's rod with the text's film (pvdf, nominal constants)
 RADIUS, MASS, VELOCITY = 1.58e-3, 1.30e-4, 0.3225

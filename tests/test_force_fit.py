@@ -13,7 +13,7 @@ from rodimpact.analysis.force_fit import MAX_DEGREE, fit_force
 from rodimpact.storage.runs import read_run, write_run
 from rodimpact.present.forces import export_forces, read_force_json
 
-from conftest import model_problem
+from helpers.paper import model_problem
 
 
 def test_a_polynomial_force_is_reproduced_at_its_own_degree() -> None:

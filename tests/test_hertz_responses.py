@@ -13,7 +13,7 @@ from rodimpact.model.responses import (
     rod_ramp_response, rod_step_response
 )
 
-from conftest import ALUMINIUM as ALU, STEEL, model_problem
+from helpers.paper import ALUMINIUM as ALU, STEEL, model_problem
 
 
 def test_hertz_constant_one_material_is_the_papers_formula():

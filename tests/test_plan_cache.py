@@ -10,7 +10,7 @@ import pytest
 from rodimpact.plumbing.plan_cache import PlanCache, code_fingerprint, project_key
 from rodimpact.jobs.resources import estimate_resources
 
-from conftest import ROOT
+from helpers.repo import ROOT
 
 
 @pytest.fixture

@@ -15,7 +15,7 @@ import pytest
 import rodimpact
 from rodimpact.storage import provenance
 
-from conftest import ROOT as REPO_ROOT
+from helpers.repo import ROOT as REPO_ROOT
 VERSION_RE = re.compile(
     rf"^{re.escape(rodimpact.__version__)}\+(unknown|g[0-9a-f]{{4,40}}(\.dirty)?)$"
 )

@@ -21,7 +21,7 @@ from pathlib import Path
 import pytest
 from PIL import Image
 
-from conftest import ROOT as REPO_ROOT
+from helpers.repo import ROOT as REPO_ROOT
 from rodimpact.tools.report_check import CHROMEDRIVER, CHROMIUM, TitleBox, check_report, main
 
 needs_chromium = pytest.mark.skipif(
@@ -87,6 +87,7 @@ def _snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess:
                           capture_output=True, text=True, timeout=300, check=False)
 
 
+@pytest.mark.workflow
 @needs_chromium
 def test_the_report_description_fits_the_first_screen(tmp_path: Path) -> None:
     """The description of workflow/report/workflow.rst, with the shipped configuration and every

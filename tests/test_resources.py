@@ -22,7 +22,7 @@ from rodimpact.solvers.fem_axi.cost import fem_axi_dofs
 from rodimpact.plumbing.sources import module_sources
 from rodimpact.analysis.studies import level_case
 
-from conftest import ROOT as REPO
+from helpers.repo import ROOT as REPO
 SRC = REPO / "src"
 #: A coarse fem_axi run (the level the workflow tests use): a few seconds.
 COARSE_AXI = {"elements_across": 4, "steps_per_contact": 80}

@@ -14,7 +14,7 @@ from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
 from rodimpact.analysis.signals import local_maxima, peak_prominences
 from rodimpact.solvers.sem.solver import solve_sem
 
-from conftest import STEEL, model_problem, two_contact_problem
+from helpers.paper import STEEL, model_problem, two_contact_problem
 
 
 def solve(problem, n, scheme="implicit", **kw):

@@ -15,7 +15,7 @@ from rodimpact.solvers.sem.history import ForceHistory
 from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
 
-from conftest import STEEL, model_problem, two_contact_problem
+from helpers.paper import STEEL, model_problem, two_contact_problem
 
 
 def _direct_terms(history: ForceHistory, h: float) -> tuple[float, float]:

@@ -16,7 +16,7 @@ from rodimpact.solvers.sem.stability import UnstableStepError, paper_step_limit
 from rodimpact.solvers.sem.solver import solve_sem
 from rodimpact.analysis.signals import sawtooth_amplitude
 
-from conftest import STEEL, model_problem
+from helpers.paper import STEEL, model_problem
 
 
 def _jury_stable(h, kc, z, m):

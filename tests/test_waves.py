@@ -34,8 +34,9 @@ from rodimpact.solvers.registry import METHODS  # noqa: E402
 from rodimpact.solvers.sem.solver import solve_sem  # noqa: E402
 from rodimpact.jobs.runner import run_to_file  # noqa: E402
 
-from conftest import ROOT, model_problem, two_contact_problem  # noqa: E402
-from test_figures import assert_journal_ready  # noqa: E402
+from helpers.figures import assert_journal_ready  # noqa: E402
+from helpers.paper import model_problem, two_contact_problem  # noqa: E402
+from helpers.repo import ROOT  # noqa: E402
 
 GRID = FieldGrid()
 #: Round-off of d'Alembert's sums, relative to the largest strain.

@@ -13,7 +13,7 @@
 #   rules' resources call the same per_job functions, after their inputs have been evaluated.
 #   If snakemake changes (catches BaseException in input functions or around the parse): the
 #   refusals get several lines and a traceback; tests/test_faults.py::
-#   test_a_target_the_configuration_does_not_define_is_one_line and tests/test_workflow.py::
+#   test_a_target_the_configuration_does_not_define_is_one_line and tests/test_workflow_errors.py::
 #   test_bad_input_stops_before_any_job fail.
 #
 # PLAN: the pickled plan cache (rodimpact.plumbing.plan_cache), saved at exit.

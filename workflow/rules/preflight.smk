@@ -21,7 +21,7 @@ from pathlib import Path
 #   since reading config.yaml below already imports rodimpact. PYTHONPATH is set, not read
 #   from the user, for the jobs; a cluster job's snakemake parses this file again and sets it.
 #   If snakemake changes (cleans its jobs' environment, runs scripts another way): the jobs
-#   import another copy or none; tests/test_workflow.py::test_jobs_run_the_checkouts_own_code
+#   import another copy or none; tests/test_workflow_errors.py::test_jobs_run_the_checkouts_own_code
 #   fails (a copy's runner raises on import, an installed one would not).
 SRC_DIR = str(Path(workflow.basedir, "src"))
 sys.path.insert(0, SRC_DIR)

@@ -1,0 +1,250 @@
+"""What a target, a new case and a change plan: only the jobs a target needs, a new row or case
+file picked up, and a change to a case, the code of the solvers, of one method or of a figure
+rerunning exactly what depends on it, file by file.
+
+The tests of a change work on a copy of the session's ``.test/`` build (the ``dottest``
+fixture, tests/conftest.py); the dry runs of targets and new cases on a fresh, shrunk copy of
+the shipped configuration (``helpers.copies.copy_project``).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import pandas as pd
+import pytest
+import yaml
+
+from rodimpact.storage.runs import read_run
+
+from helpers.copies import DOTTEST, DotTestBuild, clone_build, copy_project, project_cases, run_path
+from helpers.snakemake_cli import BUILD_TIMEOUT_S, job_stats, pending, snakemake, summary
+
+pytestmark = pytest.mark.workflow
+
+#: The cases of a shrunk copy of the shipped configuration that list the output strain_field.
+WAVE_CASES = ("model", "ball_3.16mm-r10_l30")
+
+
+@pytest.fixture
+def changed(dottest: DotTestBuild, tmp_path: Path) -> DotTestBuild:
+    """A copy of the session's .test/ build, for one test to change."""
+    return clone_build(dottest, tmp_path / "project")
+
+
+# --------------------------------------------------------------------------------------------
+# only what a target needs
+# --------------------------------------------------------------------------------------------
+
+
+def test_target_plans_only_its_jobs(tmp_path: Path) -> None:
+    project = copy_project(tmp_path / "project")
+    target = "results/tables/table2_r1_l30.csv"
+    run = snakemake(project, "-n", "-j2", target)
+    assert run.returncode == 0, run.describe()
+    assert job_stats(run.output) == {"case_file": 6, "solve": 18, "table2": 1}, run.describe()
+    # Which files: the six r1_l30 balls' case files, their runs by the three methods and the
+    # five outputs of the table2 job.
+    rows = summary(project, target)
+    balls = [c["id"] for c in project_cases(project).cases_in("table2", "r1_l30")]
+    assert pending(rows, "solve") == {run_path(ball, m) for ball in balls for m in ("sem", "fem1d", "fem_axi")}
+    assert pending(rows, "table2") == {
+        f"results/tables/table2_r1_l30.{ext}" for ext in ("csv", "md", "html", "tex", "provenance.json")
+    }
+    assert pending(rows, "case_file") == {f"results/cases/{ball}.yaml" for ball in balls}
+    assert pending(rows) == pending(rows, "case_file") | pending(rows, "solve") | pending(rows, "table2")
+    assert not (project / "results").exists(), "a dry run must not write results"
+
+
+def test_only_the_cases_asking_for_the_field_have_a_wave_map(tmp_path: Path) -> None:
+    """The wave map of a case plans the runs of the methods that record the field; a case that
+    does not list strain_field has none, and none of its runs pays for it."""
+    project = copy_project(tmp_path / "project")
+    assert [c for c, case in project_cases(project).cases.items() if "strain_field" in case["outputs"]] == list(
+        WAVE_CASES)
+    target = "results/figures/wave_map_model.png"
+    run = snakemake(project, "-n", "-j2", target)
+    assert run.returncode == 0, run.describe()
+    assert job_stats(run.output) == {"case_file": 1, "solve": 2, "wave_map": 1}, run.describe()
+    assert pending(summary(project, target), "solve") == {run_path("model", m) for m in ("sem", "fem1d")}
+    run = snakemake(project, "-n", "-j2", "results/figures/wave_map_ball_4.75mm-r10_l30.png")
+    assert run.returncode != 0 and "no rule makes 'results/figures/wave_map_ball_4.75mm-r10_l30.png'" in run.output
+
+
+# --------------------------------------------------------------------------------------------
+# adding a case is adding YAML
+# --------------------------------------------------------------------------------------------
+
+#: A new row of Table 2, for every reading of the rod (a case with no ``variants``).
+NEW_TABLE2_ROW = {
+    "id": "ball_8.00mm",
+    "description": "Added by a test: steel ball, diameter 8.00 mm, mass 2.09 g",
+    "impactor": {"mass_kg": 2.09e-3, "radius_m": 4.0e-3},
+    "measured": {"contact_time_us": 75.0},
+}
+
+NEW_CASE_FILE = """\
+set: my_experiment
+description: A new experiment, added by a test as one more YAML file.
+cases:
+  - id: my_ball
+    description: A steel ball on a short aluminium rod given by its cross-section area
+    impactor: {mass_kg: 1.0e-3, radius_m: 3.0e-3, velocity_m_s: 0.5, material: steel}
+    rod: {length_m: 0.2, area_m2: 1.0e-4, material: aluminium_table1}
+    measured: {contact_time_us: 50.0, source: "lab notebook, page 1"}
+"""
+
+
+def test_new_row_in_table2_yaml_is_computed(changed: DotTestBuild) -> None:
+    table2_yaml = changed.workdir / "config/cases/table2.yaml"
+    document = yaml.safe_load(table2_yaml.read_text(encoding="utf-8"))
+    document["cases"].append(NEW_TABLE2_ROW)
+    table2_yaml.write_text(yaml.safe_dump(document, sort_keys=False), encoding="utf-8")
+    new_case = "ball_8.00mm-r10_l30"
+    before = pd.read_csv(changed.workdir / "results/tables/table2_r10_l30.csv")
+
+    run = snakemake(changed.project, "-j2", "results/tables/table2_r10_l30.csv", timeout=BUILD_TIMEOUT_S,
+                    workdir=DOTTEST)
+    assert run.returncode == 0, run.describe()
+    # The existing runs are reused: the new ball's case file, its three runs, then the table.
+    assert job_stats(run.output) == {"case_file": 1, "solve": 3, "table2": 1}, run.describe()
+
+    record = read_run(changed.workdir / run_path(new_case, "sem"))
+    assert record.config["measured"]["contact_time_us"] == 75.0
+    assert record.config["impactor"]["mass_kg"] == pytest.approx(2.09e-3)
+    assert record.config["rod"]["radius_m"] == pytest.approx(0.010)  # from the variant
+
+    table = pd.read_csv(changed.workdir / "results/tables/table2_r10_l30.csv")
+    assert len(table) == len(before) + 1
+    new = table[table["case_id"] == new_case]
+    assert len(new) == 1, table["case_id"].tolist()
+    row = new.iloc[0]
+    assert row["measured_us"] == 75.0
+    assert row["mass_g"] == pytest.approx(2.09) and row["diameter_mm"] == pytest.approx(8.0)
+    assert math.isfinite(row["sem_us"]) and row["sem_us"] > 0
+    assert row["sem_us"] == pytest.approx(1e6 * record.summary["contact_time_s"], rel=1e-9)
+    assert math.isnan(row["published_sem_us"]) and math.isnan(row["published_fem_us"])
+    # Rows are sorted by mass (the new ball between the lighter and the heavier ones), and the
+    # contact time grows with the mass.
+    lighter = int((before["mass_g"] < 2.09).sum())
+    assert 0 < lighter < len(before), before["mass_g"].tolist()
+    assert table["case_id"].tolist().index(new_case) == lighter
+    assert table["case_id"].drop(lighter).tolist() == before["case_id"].tolist()
+    assert table["sem_us"].is_monotonic_increasing
+    provenance = json.loads((changed.workdir / "results/tables/table2_r10_l30.provenance.json").read_text())
+    assert run_path(new_case, "sem") in [entry["path"] for entry in provenance["inputs"]]
+
+
+def test_new_case_file_is_picked_up(tmp_path: Path) -> None:
+    project = copy_project(tmp_path / "project")
+    (project / "config/cases/my_experiment.yaml").write_text(NEW_CASE_FILE, encoding="utf-8")
+    target = run_path("my_ball", "sem")
+    run = snakemake(project, "-n", "-j2", target)
+    assert run.returncode == 0, run.describe()
+    assert job_stats(run.output) == {"case_file": 1, "solve": 1}, run.describe()
+    assert pending(summary(project, target)) == {target, "results/cases/my_ball.yaml"}
+    resolved = project_cases(project)
+    assert resolved.sets["my_experiment"] == ["my_ball"]
+    assert resolved.cases["my_ball"]["rod"]["area_m2"] == pytest.approx(1.0e-4)
+
+
+
+
+# --------------------------------------------------------------------------------------------
+# a change reruns what depends on it
+# --------------------------------------------------------------------------------------------
+
+
+def test_changed_case_value_reruns_only_that_case(changed: DotTestBuild) -> None:
+    model_yaml = changed.workdir / "config/cases/model.yaml"
+    text = model_yaml.read_text(encoding="utf-8")
+    assert text.count("velocity_m_s: 1.0\n") == 1
+    model_yaml.write_text(text.replace("velocity_m_s: 1.0\n", "velocity_m_s: 1.1\n"), encoding="utf-8")
+
+    run = snakemake(changed.project, "-n", "-j2", workdir=DOTTEST)
+    assert run.returncode == 0, run.describe()
+    # model's runs and what shows them (its forces handed on too), and the studies built on model: its work-precision
+    # levels (3 methods x 3 levels in .test, a job per method) and the stability map, whose
+    # base case it is (2 masses x 3 methods in .test, a job per mass and method)
+    assert job_stats(run.output) == {"case_file": 1, "solve": 4, "fig2": 1, "fig4": 1, "fig2_comparison": 1,
+                                     "all": 1, "solve_levels_sem": 1, "solve_levels_sem_paper": 1,
+                                     "solve_levels_fem1d": 1, "work_precision_table": 1,
+                                     "work_precision_figure": 1, "solve_map_row": 6,
+                                     "stability_map": 1, "forces_model": 1, "fig_force_fit": 1,
+                                     "wave_map": 1}, run.describe()
+    assert pending(rows := summary(changed.project, workdir=DOTTEST), "case_file") == {"results/cases/model.yaml"}
+    assert pending(rows, "solve") == {run_path("model", m) for m in ("sem", "sem_paper", "fem1d", "fem_axi")}
+    assert pending(rows, "fig2") == {
+        "results/figures/fig2_contact_force.pdf", "results/figures/fig2_contact_force.png",
+        "results/figures/fig2_contact_force.provenance.json",
+    }  # fmt: skip
+    assert not {p for p in pending(rows) if "table2" in p or "ball_" in p}
+
+
+def test_code_change_reruns_the_solvers(changed: DotTestBuild) -> None:
+    with open(changed.project / "src/rodimpact/contact/hertz.py", "a", encoding="utf-8") as handle:
+        handle.write("# touched\n")  # content changes, so the checksum changes too
+
+    run = snakemake(changed.project, "-n", "-j2", workdir=DOTTEST)
+    assert run.returncode == 0, run.describe()
+    stats = job_stats(run.output)
+    project = project_cases(changed.workdir)
+    runs = [c for name in ("model", "table2") for c in project.cases_in(name) for _ in c["methods"]]
+    assert stats.get("solve") == len(runs), run.describe()  # every run of 'model' and Table 2
+    # the sources are inputs relative to the working directory .test/
+    assert "Updated input files: ../src/rodimpact/contact/hertz.py" in run.output, run.describe()
+    rows = summary(changed.project, workdir=DOTTEST)
+    assert pending(rows, "solve") == {row["output_file"] for row in rows if row["rule"] == "solve"}
+
+
+def test_a_methods_code_change_reruns_only_its_runs(changed: DotTestBuild) -> None:
+    """A rule depends on its own method's solver (the registry names it): a change to fem_axi
+    reruns fem_axi's runs and what shows them, and no run of another method."""
+    with open(changed.project / "src/rodimpact/solvers/fem_axi/solver.py", "a", encoding="utf-8") as handle:
+        handle.write("# touched\n")
+    rows = summary(changed.project, workdir=DOTTEST)  # what a run would rebuild, file by file
+    reruns = {row["output_file"] for row in rows if row["plan"] == "update pending" and row["output_file"].endswith(".h5")}
+    cases = project_cases(changed.workdir).cases.values()
+    # and the runs of the law calibrated by fem_axi's indentation, which reads fem_axi's code
+    # (.test calibrates none: test_a_methods_code_change_reruns_the_law_it_calibrates)
+    calibrated = {c["id"] for c in cases if (c.get("contact") or {}).get("law") == "tabulated"}
+    assert pending(rows, "solve") == {run_path(c["id"], "fem_axi") for c in cases
+                                      if "fem_axi" in c["methods"] and c["set"] in ("model", "table2")} | {
+        run_path(case, "sem") for case in calibrated}
+    assert pending(rows, "indentation") == {f"results/indentation/{case}.h5" for case in calibrated}
+    assert reruns and all("fem_axi" in path or Path(path).parent.name in calibrated
+                          or path.startswith("results/indentation/") for path in reruns), sorted(reruns)
+
+
+#: A run of the law calibrated by fem_axi's indentation (the text's rod without the film).
+CALIBRATED_RUN = run_path("ball_3.16mm-r10_l30_cal", "sem")
+
+
+def test_a_methods_code_change_reruns_the_law_it_calibrates(tmp_path: Path) -> None:
+    """The calibrated law's runs read fem_axi's indentation curve: a change to fem_axi reruns
+    the curve and the run (a shrunk copy of the shipped configuration: .test calibrates none)."""
+    project = copy_project(tmp_path / "project")
+    case = project_cases(project).cases["ball_3.16mm-r10_l30_cal"]
+    assert case["contact"]["law"] == "tabulated" and case["methods"] == ["sem"]
+    run = snakemake(project, "-j2", CALIBRATED_RUN, timeout=BUILD_TIMEOUT_S)
+    assert run.returncode == 0, run.describe()
+    assert job_stats(run.output) == {"case_file": 1, "indentation": 1, "solve": 1}, run.describe()
+    with open(project / "src/rodimpact/solvers/fem_axi/solver.py", "a", encoding="utf-8") as handle:
+        handle.write("# touched\n")
+    rows = summary(project, CALIBRATED_RUN)
+    assert pending(rows, "indentation") == {"results/indentation/ball_3.16mm-r10_l30_cal.h5"}
+    assert {p for p in pending(rows) if p.endswith(".h5")} == {
+        CALIBRATED_RUN, "results/indentation/ball_3.16mm-r10_l30_cal.h5"}
+
+
+def test_figure_code_change_reruns_no_solver(changed: DotTestBuild) -> None:
+    """Each rule depends on the modules its script imports, not on the whole package."""
+    with open(changed.project / "src/rodimpact/present/figures.py", "a", encoding="utf-8") as handle:
+        handle.write("# touched\n")
+    run = snakemake(changed.project, "-n", "-j2", workdir=DOTTEST)
+    assert run.returncode == 0, run.describe()
+    stats = job_stats(run.output)
+    assert "solve" not in stats, run.describe()
+    assert stats.get("fig2") == 1 and stats.get("fig_table2") == 1, run.describe()

@@ -1,0 +1,107 @@
+"""Input and code that must not get through the workflow: a job runs its own checkout's code,
+bad input stops everything before any job with one line, and a failing solver leaves no file.
+
+Each test works in a fresh, shrunk copy of the project (``helpers.copies.copy_project``).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from helpers.copies import copy_project, run_path
+from helpers.snakemake_cli import BUILD_TIMEOUT_S, snakemake
+
+pytestmark = pytest.mark.workflow
+
+
+def test_jobs_run_the_checkouts_own_code(tmp_path: Path) -> None:
+    """A job imports the copy's src/, not the repository's installed package."""
+    project = copy_project(tmp_path / "project")
+    runner = project / "src" / "rodimpact" / "jobs" / "runner.py"
+    runner.write_text(runner.read_text() + '\nraise ImportError("runner.py of the copy")\n')
+    run = snakemake(project, "-j1", run_path("model", "sem"), timeout=BUILD_TIMEOUT_S)
+    assert run.returncode != 0, run.describe()
+    log = (project / "logs" / "runs" / "model" / "sem.log")
+    assert "runner.py of the copy" in run.output + (log.read_text() if log.exists() else ""), run.describe()
+
+
+def _negative_mass(project: Path) -> None:
+    path = project / "config/cases/model.yaml"
+    text = path.read_text(encoding="utf-8")
+    assert text.count("mass_kg: 0.5\n") == 1
+    path.write_text(text.replace("mass_kg: 0.5\n", "mass_kg: -0.5\n"), encoding="utf-8")
+
+
+def _unknown_method(project: Path) -> None:
+    path = project / "config/cases/model.yaml"
+    text = path.read_text(encoding="utf-8")
+    assert text.count("methods: [sem, sem_paper, fem1d, fem_axi]") == 1
+    path.write_text(text.replace("methods: [sem, sem_paper, fem1d, fem_axi]", "methods: [sem, fem2d]"),
+                    encoding="utf-8")
+
+
+def _unknown_variant(project: Path) -> None:
+    path = project / "config/cases/table2.yaml"
+    text = path.read_text(encoding="utf-8")
+    anchor = "  - id: ball_4.75mm\n"
+    assert text.count(anchor) == 1
+    path.write_text(text.replace(anchor, anchor + "    variants: [r10_l30, r2_l30]\n"), encoding="utf-8")
+
+
+@pytest.mark.parametrize(
+    ("break_config", "file", "case", "field"),
+    [
+        pytest.param(_negative_mass, "config/cases/model.yaml", "model", "impactor.mass_kg", id="negative-mass"),
+        pytest.param(_unknown_method, "config/cases/model.yaml", "model", "methods[1]", id="unknown-method"),
+        pytest.param(_unknown_variant, "config/cases/table2.yaml", "ball_4.75mm", "variants[1]", id="unknown-variant"),
+    ],
+)  # fmt: skip
+def test_bad_input_stops_before_any_job(
+    tmp_path: Path, break_config, file: str, case: str, field: str
+) -> None:
+    project = copy_project(tmp_path / "project")
+    break_config(project)
+    run = snakemake(project, "-n", "-j2")
+    assert run.returncode != 0, run.describe()
+    lines = [line for line in run.output.splitlines() if line.strip()]
+    assert len(lines) == 1, f"expected one line, got:\n{run.output}"
+    message = lines[0]
+    assert message.startswith("rodimpact: invalid configuration: ")
+    assert file in message and f"case '{case}'" in message and f"field '{field}'" in message, message
+    assert "Traceback" not in run.output
+    assert not (project / "results").exists()
+    assert not (project / "logs").exists()
+
+
+# --------------------------------------------------------------------------------------------
+# atomic outputs
+# --------------------------------------------------------------------------------------------
+
+# A 1 ms step is longer than the whole horizon (1.0001 x the ~0.88 ms contact-time estimate of
+# 'model'): the first step ends past the horizon with the first contact not over, so the
+# solver reports failure and runner.run_case raises SolverFailed (checked with the library).
+FAILING_NUMERICS = """\
+    numerics:
+      sem: {dt_s: 1.0e-3, max_time_factor: 1.0001}
+"""
+
+
+def test_failing_solver_leaves_no_file(tmp_path: Path) -> None:
+    project = copy_project(tmp_path / "project")
+    with open(project / "config/cases/model.yaml", "a", encoding="utf-8") as handle:
+        handle.write(FAILING_NUMERICS)
+    target = run_path("model", "sem")
+    # --keep-incomplete: snakemake must not be the one that cleans up; the rule itself must
+    # never leave a (half-)file behind.
+    run = snakemake(project, "-j1", "--keep-incomplete", target, timeout=BUILD_TIMEOUT_S)
+    assert run.returncode != 0, run.describe()
+    assert "Error in rule solve" in run.output, run.describe()
+    log = (project / "logs/runs/model/sem.log").read_text(encoding="utf-8")
+    assert "SolverFailed" in log and "before the first contact ended" in log, log
+    assert not (project / target).exists()
+    run_dir = project / "results/runs/model"
+    leftovers = [p.name for p in run_dir.iterdir()] if run_dir.exists() else []
+    assert not [name for name in leftovers if ".tmp" in name], leftovers
+    assert leftovers == [], leftovers
