@@ -141,7 +141,7 @@ def test_defaults_are_filled(shipped: Project) -> None:
                   "element": "P2", "elements": None, "points_per_wavelength": 200.0},
         "fem_axi": {"dt_s": None, "steps_per_contact": 300, "max_time_factor": 100.0, "max_contacts": 50,
                     "element": "P2", "elements_across": 10, "contact_extent": 1.5,
-                    "continuum_diameters": 5.0, "cap_height": 1.0},
+                    "continuum_diameters": 5.0, "film_layers": 4, "cap_height": 1.0},
     }
     assert shipped.cases["model"]["numerics"]["sem_paper"]["steps_per_contact"] == 20000
     assert case["measured"]["source"].startswith("Table 2")
@@ -376,7 +376,7 @@ MALFORMED = {
     "unknown contact law": (
         _set(TABLE2, "variants", "r10_l30_film", "contact", "law", "hertz_flim"),
         f"{TABLE2}: field 'variants.r10_l30_film.contact.law': unknown contact law 'hertz_flim'; "
-        "known: hertz, hertz_film, tabulated",
+        "known: hertz, hertz_film, hertz_stack, tabulated",
     ),
     "negative film thickness": (
         _set(TABLE2, "variants", "r10_l30_film", "contact", "film", "thickness_m", -2.8e-5),
@@ -395,7 +395,7 @@ MALFORMED = {
     "tabulated law on fem_axi": (
         _set(TABLE2, "variants", "r10_l30_cal", "methods", ["sem", "fem_axi"]),
         f"{TABLE2}: case 'ball_3.16mm-r10_l30_cal': field 'methods[1]': method 'fem_axi' resolves the contact in "
-        "the continuum and cannot take the tabulated law; laws it can take: hertz, hertz_film",
+        "the continuum and cannot take the tabulated law; laws it can take: hertz, hertz_film, hertz_stack",
     ),
     "film range without its nominal": (
         _set(TABLE2, "variants", "r10_l30_film", "contact", "film", "thickness_range_m", [3e-5, 4e-5]),

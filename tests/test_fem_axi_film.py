@@ -11,6 +11,7 @@ import pytest
 from rodimpact.contact.film import FilmLayer, constrained_modulus, film_constant
 from rodimpact.contact.hertz import hertz_constant
 from rodimpact.contact.laws import build_law
+from rodimpact.contact.stack import Stack
 from rodimpact.model.materials import Material
 from rodimpact.solvers.fem_axi.film_mesh import FILM_LAYERS, film_rod_mesh
 from rodimpact.solvers.fem_axi.indentation import static_indentation
@@ -26,10 +27,15 @@ PVDF = FilmLayer(2.8e-5, 3.0e9, 0.35, 1780.0, area_m2=2.1e-5, name="pvdf")
 SAME = FilmLayer(2.8e-5, ALUMINIUM.youngs_modulus_pa, ALUMINIUM.poisson_ratio, ALUMINIUM.density_kg_m3)
 
 
+def one_layer(film):
+    """A film as the continuum takes it: a stack of one layer, with the film's area."""
+    return None if film is None else Stack((film,), film.area_m2)
+
+
 def table2_row1(film, rod_radius=0.01, rod_length=0.0301, contact=None):
     """Table 2, row 1: the 3.16 mm steel ball at 0.3225 m/s on the 30.1 mm aluminium rod."""
     return AxiImpact(1.30e-4, 0.3225, 1.58e-3, STEEL, "sphere", rod_radius, rod_length, ALUMINIUM, "fixed",
-                     contact=contact, film=film)
+                     contact=contact, stack=one_layer(film))
 
 
 # ----------------------------------------------------------------------------- the mesh
@@ -118,7 +124,7 @@ def test_film_of_the_rod_material_indents_as_hertz():
     covered with a film of aluminium follows d = (P/k)^(2/3) + C P with k within 1 % of
     Hertz's (measured 0.23 %; 0.04 % at elements_across=20)."""
     law = build_law(None, 1.58e-3, STEEL, ALUMINIUM)
-    problem = AxiImpact(1.0, 0.3225, 1.58e-3, STEEL, "cap", 2e-3, 4e-3, ALUMINIUM, "fixed", contact=law, film=SAME)
+    problem = AxiImpact(1.0, 0.3225, 1.58e-3, STEEL, "cap", 2e-3, 4e-3, ALUMINIUM, "fixed", contact=law, stack=one_layer(SAME))
     d = np.linspace(0.25, 1.0, 4) * law.rigid_impact(1.30e-4, 0.3225).max_approach_m
     result = static_indentation(problem, d, FEMAxiOptions(elements_across=10))
     design = np.column_stack([result.force_N ** (2 / 3), result.force_N])
@@ -146,7 +152,7 @@ def test_soft_thin_film_on_a_stiff_substrate_follows_the_thin_layer_law():
     film = FilmLayer(1e-5, 2.1e7, 0.3, 1000.0)
     R, h = 10e-3, film.thickness_m
     # the velocity sets the mesh's scale: the thin-layer law's contact radius is then 45 h
-    problem = AxiImpact(1.0, 0.0077, R, stiff, "cap", 1.5e-3, 2e-3, stiff, "fixed", film=film)
+    problem = AxiImpact(1.0, 0.0077, R, stiff, "cap", 1.5e-3, 2e-3, stiff, "fixed", stack=one_layer(film))
     ratios = np.array([10.0, 20.0, 30.0, 40.0])
     delta = (ratios * h) ** 2 / (2 * R)
     result = static_indentation(problem, delta, FEMAxiOptions(elements_across=10))

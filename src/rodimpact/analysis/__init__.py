@@ -5,8 +5,10 @@ What lives here: :mod:`.signals` (force maxima, the zig-zag of an unstable step)
 references, stability-map points), :mod:`.work_precision` (errors against run time and
 observed orders), :mod:`.stability_study` (the stress runs' verdicts and the stability
 map), :mod:`.sweeps` (parameter sweeps of a case), :mod:`.waves` (the paths of the wave fronts in the
-rod, for its strain map), :mod:`.force_fit` (a closed form of a computed contact force) and
-:mod:`.records` (what the analyses read of a stored run).
+rod, for its strain map), :mod:`.force_fit` (a closed form of a computed contact force),
+:mod:`.inverse` (the least-squares fit of one model parameter to measured contact times, from a
+grid of predictions, and its leave-one-out check) and :mod:`.records` (what the analyses read of a
+stored run).
 
 What it may import: :mod:`rodimpact.contact`, :mod:`rodimpact.model`, numpy, scipy,
 pandas. Stored runs are read by duck typing (any object with ``config``, ``summary``,

@@ -19,13 +19,14 @@ from typing import Any, Mapping
 from rodimpact.contact.film import HertzFilmLaw
 from rodimpact.contact.hertz import ElasticMaterial, HertzLaw
 from rodimpact.contact.law import ContactLaw
+from rodimpact.contact.stack import HertzStackLaw
 from rodimpact.contact.tabulated import TabulatedLaw
 from rodimpact.settings.declare import Setting
 
 __all__ = ["DEFAULT_LAW", "LAWS", "UnknownLaw", "bodies_contact", "build_law", "contact_schema", "law_of"]
 
 #: Law name -> law class, in the order messages and the schema list them.
-LAWS: dict[str, type[ContactLaw]] = {law.name: law for law in (HertzLaw, HertzFilmLaw, TabulatedLaw)}
+LAWS: dict[str, type[ContactLaw]] = {law.name: law for law in (HertzLaw, HertzFilmLaw, HertzStackLaw, TabulatedLaw)}
 #: The law of a case that names none.
 DEFAULT_LAW = HertzLaw.name
 
@@ -106,10 +107,13 @@ def _value_kind(meta: Setting) -> tuple[Any, ...]:
 
 
 def bodies_contact(contact: Mapping[str, Any] | None) -> dict[str, Any] | None:
-    """The ``contact`` block of the analytic law of a case's bodies: the thin-layer film law
-    with the case's film, or None (:data:`DEFAULT_LAW`) without one. It is the law a curve
-    calibrates, and stands in for a law whose curve does not exist yet."""
-    film = (contact or {}).get("film")
+    """The ``contact`` block of the analytic law of a case's bodies: the thin-layer law with
+    the case's film or stack, or None (:data:`DEFAULT_LAW`) with neither. It is the law a
+    curve calibrates, and stands in for a law whose curve does not exist yet."""
+    contact = contact or {}
+    if contact.get("stack") is not None:
+        return {"law": HertzStackLaw.name, "stack": contact["stack"]}
+    film = contact.get("film")
     return None if film is None else {"law": HertzFilmLaw.name, "film": film}
 
 

@@ -30,7 +30,8 @@ from numpy.typing import ArrayLike, NDArray
 from rodimpact.contact.film import FilmSettings
 from rodimpact.contact.hertz import ElasticMaterial
 from rodimpact.contact.law import ContactLaw, LawSettings, Needs
-from rodimpact.settings.declare import REQUIRED, setting
+from rodimpact.contact.stack import StackSettings
+from rodimpact.settings.declare import REQUIRED, OptionError, setting
 
 __all__ = ["CURVE_SOURCES", "CurveMissing", "TabulatedLaw", "TabulatedSettings", "pchip_slopes"]
 
@@ -47,7 +48,7 @@ CURVE_SOURCES = {"fem_axi_indentation": "indentation"}
 
 @dataclass(frozen=True, kw_only=True)
 class TabulatedSettings(LawSettings):
-    """The ``tabulated`` law's settings: where its curve comes from, and the case's film."""
+    """The ``tabulated`` law's settings: where its curve comes from, and the case's film or stack."""
 
     curve_from: str = setting(
         REQUIRED, "Where the curve comes from: fem_axi_indentation, the continuum's static indentation of the "
@@ -55,6 +56,14 @@ class TabulatedSettings(LawSettings):
     film: FilmSettings | None = setting(
         None, "The film bonded on the rod's struck end, when the case has one (the continuum indents it).",
         kind=FilmSettings, nullable=True)
+    stack: StackSettings | None = setting(
+        None, "The layers bonded on the rod's struck end, when the case has them (the continuum indents them).",
+        kind=StackSettings, nullable=True)
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if self.film is not None and self.stack is not None:
+            raise OptionError("stack", "cannot be given with a film: a film is a stack of one layer; give one of them")
 
 
 class CurveMissing(ValueError):

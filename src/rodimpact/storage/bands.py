@@ -1,15 +1,16 @@
-"""Prediction bands as HDF5 files: the output of the workflow's ``film_band`` rule.
+"""Prediction bands as HDF5 files: the outputs of the workflow's ``film_band`` and ``sensor_band`` rules.
 
-A band file holds, for the cases of one Table 2 reading with a film, the contact time at the
-film's nominal constants, at the corners of the box of their ranges, and along each
-constant's range with the others nominal (the evidence that the contact time is monotone in
-each, so that the corners bound it). Layout: one group per case (its id), with
+A band file holds, for one or more cases, the contact time at the nominal constants, at
+corners of the box of their ranges, and along each constant's range with the others nominal
+(the evidence that the contact time is monotone in each, so that the corners bound it).
+Layout: one group per case (its id), with
 
 - attributes ``measured_us`` (NaN when none), ``nominal_us``, ``band_min_us``,
-  ``band_max_us``, ``monotone`` (True when the contact time is monotone along every axis);
-- datasets ``corner_parameters`` (8, 3): (film_modulus_pa, film_poisson_ratio,
-  film_thickness_m) of each corner, ``corner_us`` (8,); ``axis_values_{name}`` (k,) and
-  ``axis_us_{name}`` (k,) for each of the three;
+  ``band_max_us``, ``monotone`` (True when the contact time is monotone along every axis),
+  ``parameters_json`` (the constants' names, in the order of ``corner_parameters``' columns);
+- datasets ``corner_parameters`` (k, p): the constants of each corner (the film band's eight
+  corners of (film_modulus_pa, film_poisson_ratio, film_thickness_m); the sensor band's two),
+  ``corner_us`` (k,); ``axis_values_{i}`` (j,) and ``axis_us_{i}`` (j,) for each constant i;
 
 and root attributes ``variant``, ``method``, ``code_version``, ``library_versions``,
 ``config_json`` (the cases), ``created_utc`` and ``data_sha256`` (checked on read).
@@ -18,7 +19,8 @@ and root attributes ``variant``, ``method``, ``code_version``, ``library_version
 from __future__ import annotations
 
 import hashlib
-from dataclasses import dataclass
+import json
+from dataclasses import dataclass, field
 from datetime import datetime, timezone
 from pathlib import Path
 from typing import Any
@@ -39,7 +41,8 @@ BAND_PARAMETERS = ("film_modulus_pa", "film_poisson_ratio", "film_thickness_m")
 
 @dataclass(frozen=True)
 class CaseBand:
-    """The band of one case (see the module docstring for the fields; times in microseconds)."""
+    """The band of one case (see the module docstring for the fields; times in microseconds).
+    ``parameters`` names the constants (the film band's :data:`BAND_PARAMETERS` by default)."""
 
     case_id: str
     measured_us: float
@@ -48,14 +51,17 @@ class CaseBand:
     corner_us: NDArray[np.float64]
     axis_values: dict[str, NDArray[np.float64]]
     axis_us: dict[str, NDArray[np.float64]]
+    parameters: tuple[str, ...] = field(default=BAND_PARAMETERS)
 
     @property
     def band_min_us(self) -> float:
-        return float(np.min(self.corner_us))
+        """The least corner's time, us (NaN with no corner: axes only)."""
+        return float(np.min(self.corner_us)) if np.size(self.corner_us) else float("nan")
 
     @property
     def band_max_us(self) -> float:
-        return float(np.max(self.corner_us))
+        """The greatest corner's time, us (NaN with no corner: axes only)."""
+        return float(np.max(self.corner_us)) if np.size(self.corner_us) else float("nan")
 
     @property
     def monotone(self) -> bool:
@@ -65,16 +71,16 @@ class CaseBand:
 
 def _arrays(band: CaseBand) -> dict[str, NDArray[np.float64]]:
     arrays = {"corner_parameters": np.asarray(band.corner_parameters, float), "corner_us": np.asarray(band.corner_us, float)}
-    for name in BAND_PARAMETERS:
-        arrays[f"axis_values_{name}"] = np.asarray(band.axis_values[name], float)
-        arrays[f"axis_us_{name}"] = np.asarray(band.axis_us[name], float)
+    for index, name in enumerate(band.parameters):
+        arrays[f"axis_values_{index}"] = np.asarray(band.axis_values[name], float)
+        arrays[f"axis_us_{index}"] = np.asarray(band.axis_us[name], float)
     return arrays
 
 
 def _sha256(bands: list[CaseBand]) -> str:
     digest = hashlib.sha256()
     for band in bands:
-        digest.update(band.case_id.encode() + b"\0")
+        digest.update(band.case_id.encode() + b"\0" + json.dumps(list(band.parameters)).encode())
         digest.update(np.asarray([band.measured_us, band.nominal_us], "<f8").tobytes())
         for name, array in sorted(_arrays(band).items()):
             digest.update(name.encode() + np.ascontiguousarray(array, "<f8").tobytes())
@@ -98,7 +104,7 @@ def write_band(path: str | Path, bands: list[CaseBand], *, variant: str, method:
                 group = h5.create_group(band.case_id)
                 group.attrs.update({"measured_us": band.measured_us, "nominal_us": band.nominal_us,
                                     "band_min_us": band.band_min_us, "band_max_us": band.band_max_us,
-                                    "monotone": band.monotone})
+                                    "monotone": band.monotone, "parameters_json": json.dumps(list(band.parameters))})
                 for name, array in _arrays(band).items():
                     group.create_dataset(name, data=array)
     return path
@@ -117,10 +123,12 @@ def read_band(path: str | Path) -> tuple[str, list[CaseBand]]:
             variant, expected = str(h5.attrs["variant"]), str(h5.attrs["data_sha256"])
             bands = []
             for case_id, group in h5.items():
-                axis_values = {n: group[f"axis_values_{n}"][()] for n in BAND_PARAMETERS}
-                axis_us = {n: group[f"axis_us_{n}"][()] for n in BAND_PARAMETERS}
+                names = tuple(json.loads(str(group.attrs["parameters_json"])))
+                axis_values = {n: group[f"axis_values_{i}"][()] for i, n in enumerate(names)}
+                axis_us = {n: group[f"axis_us_{i}"][()] for i, n in enumerate(names)}
                 bands.append(CaseBand(case_id, float(group.attrs["measured_us"]), float(group.attrs["nominal_us"]),
-                                      group["corner_parameters"][()], group["corner_us"][()], axis_values, axis_us))
+                                      group["corner_parameters"][()], group["corner_us"][()], axis_values, axis_us,
+                                      names))
     except (OSError, KeyError) as error:
         raise StoredFileError(path, f"not a readable band file ({error})") from None
     if _sha256(bands) != expected:

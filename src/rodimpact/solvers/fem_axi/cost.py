@@ -8,7 +8,7 @@ from typing import Any, Mapping
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.cost import MIB, SOLVE_S, Cost, contact_duration, horizon
 from rodimpact.solvers.fem_axi.farbar import BAR_ELEMENTS_PER_RADIUS, continuum_length
-from rodimpact.solvers.fem_axi.film_mesh import FILM_ASPECT, FILM_LAYERS
+from rodimpact.solvers.fem_axi.film_mesh import FILM_ASPECT, layer_elements
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact
 
@@ -45,14 +45,17 @@ def _refined_triangles(extent: float, coarse: float) -> float:
     return count
 
 
-def _film_triangles(problem: AxiImpact, fine: float, extent: float) -> float:
-    """Triangles the film adds to the rod's mesh: its layers of columns and the rod's band under it."""
-    if problem.film is None:
+def _film_triangles(problem: AxiImpact, fine: float, extent: float, layers: int) -> float:
+    """Triangles a film or stack adds to the rod's mesh: its rows of columns and the rod's
+    band under it (``layers``: elements through the thickest layer)."""
+    if problem.stack is None:
         return 0.0
-    r_f, h = problem.film_radius_m, problem.film.thickness_m
-    spacing = min(FILM_ASPECT * h / FILM_LAYERS, r_f / 2.0)
+    thicknesses = [layer.thickness_m for layer in problem.stack.layers]
+    counts = layer_elements(thicknesses, layers)
+    r_f = problem.film_radius_m
+    spacing = min(FILM_ASPECT * min(h / n for h, n in zip(thicknesses, counts)), r_f / 2.0)
     columns = FILM_COLUMNS_PER_SPACING * r_f / spacing + FILM_COLUMNS_PER_FINE * min(extent, r_f) / fine
-    return 2.0 * FILM_LAYERS * columns + FILM_BAND_TRIANGLES * r_f / spacing
+    return 2.0 * sum(counts) * columns + FILM_BAND_TRIANGLES * r_f / spacing
 
 
 def fem_axi_dofs(case: Mapping[str, Any]) -> int:
@@ -64,7 +67,7 @@ def fem_axi_dofs(case: Mapping[str, Any]) -> int:
     in the impactor), and coarse elsewhere, over the continuum's length (:mod:`.farbar`; the
     bar beyond adds one DOF per node). Vector P2 elements carry about 4 DOFs per
     triangle, P1 about 1. The 40 stored fem_axi runs have 0.48 to 0.90 of it (free DOFs).
-    A film (``contact.film``) adds its layers of columns and the rod's graded band under it
+    A film or stack (``contact.film``, ``contact.stack``) adds its layers of columns and the rod's graded band under it
     (:func:`_film_triangles`); its thin-layer law's larger contact radius sizes the rest.
 
     Parameters
@@ -88,7 +91,7 @@ def fem_axi_dofs(case: Mapping[str, Any]) -> int:
     meshed = length if z_c is None else z_c
     rod = (_refined_triangles(extent, a / 4.0 / fine) * FEM_AXI_TRIANGLES
            + 2.0 * 4.0 * math.ceil(2.0 * meshed / a)
-           + _film_triangles(problem, fine, options.contact_extent * contact_radius))
+           + _film_triangles(problem, fine, options.contact_extent * contact_radius, options.film_layers))
     height = 2.0 if problem.body == "sphere" else min(options.cap_height, 1.0)
     radius = problem.sphere_radius_m
     area = math.pi / 4.0 * (2.0 if problem.body == "sphere" else 1.0)  # R^2

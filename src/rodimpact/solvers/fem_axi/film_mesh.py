@@ -1,24 +1,27 @@
-"""The rod with a film bonded on its struck end: one conforming mesh of both regions.
+"""The rod with a film, or a stack of layers, bonded on its struck end: one conforming mesh.
 
 Geometry in the (r, z) half-plane, m: the rod occupies 0 <= r <= a, 0 <= z <= L (its end
-face z = 0, as in :func:`~rodimpact.solvers.fem_axi.meshes.rod_mesh`); the film, a disc of
-radius r_f <= a and thickness h, occupies 0 <= r <= r_f, -h <= z <= 0 and is bonded to the
-end face (the two regions share the vertices of the interface z = 0, r <= r_f). The film is
-added on top of the end face: the rod keeps its length, and outside the disc (r > r_f) the
-end face is the bare rod, a step of height h at r = r_f.
+face z = 0, as in :func:`~rodimpact.solvers.fem_axi.meshes.rod_mesh`); the layers, discs of
+radius r_f <= a and thicknesses h_1, ..., h_n (from the struck face to the rod; H their sum),
+occupy 0 <= r <= r_f, -H <= z <= 0 and are bonded to each other and to the end face (the
+regions share the vertices of their interfaces). A film is a stack of one layer. The layers are
+added on top of the end face: the rod keeps its length, and outside the disc (r > r_f) the end
+face is the bare rod, a step of height H at r = r_f.
 
 The rod's part is meshed as :func:`~rodimpact.solvers.fem_axi.meshes.rod_mesh` (the same
 uniform coarse grid, refined by longest-edge bisection down to ``fine`` within the fine extent
-of the origin), and also wherever it is near the film's disc, to face edges of at most
-``aspect * h / layers`` there (the target grows by SIZE_GRADIENT times the distance from the
-disc); then the end-face vertex nearest to r = r_f is moved there along the face (by at most
-half a face edge; no triangle folds, checked). The film is the extrusion of the rod's
-end-face vertices r_0 = 0 < ... < r_m = r_f through ``layers`` equal layers of thickness
-h / layers, every cell split into two triangles: the mesh conforms to the interface and to
-the disc's edge; ``layers`` elements through the thickness everywhere (so also under the
-contact), columns as fine as the rod's face (about fine / 2 within the fine extent, then
-graded up to the column spacing); flat cells of aspect up to ``aspect`` (1.5 ``aspect`` in the
-column at the edge) away from the contact.
+of the origin), and also wherever it is near the disc, to face edges of at most
+``aspect * dz`` there, dz the height of the layers' elements (the target grows by
+SIZE_GRADIENT times the distance from the disc); then the end-face vertex nearest to r = r_f
+is moved there along the face (by at most half a face edge; no triangle folds, checked). The
+layers are the extrusion of the rod's end-face vertices r_0 = 0 < ... < r_m = r_f: the
+thickest layer through ``layers`` equal elements of height dz = h_max / layers, every other
+layer through as many equal elements as make them at most dz high (at least one), every cell
+split into two triangles. The mesh conforms to the interfaces and to the disc's edge, with the
+same elements through the thickness everywhere (so also under the contact), columns as fine as
+the rod's face (about fine / 2 within the fine extent, then graded up to the column spacing),
+and flat cells of aspect up to ``aspect`` (1.5 ``aspect`` in the column at the edge) away from
+the contact. For one layer this is ``layers`` elements of h / layers.
 """
 
 from __future__ import annotations
@@ -26,6 +29,7 @@ from __future__ import annotations
 import logging
 import math
 from dataclasses import dataclass
+from typing import Sequence
 
 import numpy as np
 from numpy.typing import NDArray
@@ -35,13 +39,12 @@ from rodimpact.solvers.fem_axi.meshes import (
     SIZE_GRADIENT, BodyMesh, _area2, _ceil, _distance_to_origin, _fine_sizes, _longest_edges, _oriented, _positive, _tagged,
     graded_size, refine_until
 )
+from rodimpact.solvers.fem_axi.options import FILM_LAYERS
 
-__all__ = ["FILM_ASPECT", "FILM_LAYERS", "FilmRodMesh", "film_rod_mesh", "layers_within"]
+__all__ = ["FILM_ASPECT", "FILM_LAYERS", "FilmRodMesh", "film_rod_mesh", "layer_elements", "layers_within"]
 
 log = logging.getLogger(__name__)
 
-FILM_LAYERS = 4
-"""Elements through the film's thickness (everywhere, so also under the contact)."""
 FILM_ASPECT = 6.0
 """Largest ratio of a film cell's width to its height (the columns' spacing away from the contact)."""
 
@@ -57,11 +60,13 @@ class FilmRodMesh:
         bare end face z = 0, r >= r_f; empty when r_f = a), 'film' (the film's surface
         z = -h), 'film_edge' (r = r_f, -h <= z <= 0; empty when r_f = a, where it is 'lateral').
     film_elements, rod_elements : numpy.ndarray
-        Triangle indices (int) of the two regions.
+        Triangle indices (int) of the layers (all of them) and of the rod.
     film_radius_m, film_thickness_m : float
-        r_f and h, m.
+        r_f and the total thickness H, m.
     layers : int
-        Elements through the film's thickness.
+        Elements through the total thickness.
+    layer_elements : tuple of numpy.ndarray
+        Triangle indices of each layer, from the struck face to the rod (one for a film).
     """
 
     body: BodyMesh
@@ -70,6 +75,7 @@ class FilmRodMesh:
     film_radius_m: float
     film_thickness_m: float
     layers: int
+    layer_elements: tuple[NDArray[np.int64], ...] = ()
 
 
 def _distance_to_disc(mesh: MeshTri, radius: float) -> NDArray[np.float64]:
@@ -110,10 +116,30 @@ def _rod_under_film(a: float, length: float, fine: float, extent: float, film_ra
     return MeshTri(p, mesh.t, sort_t=False)
 
 
+def layer_elements(thicknesses_m: Sequence[float], layers: int = FILM_LAYERS) -> list[int]:
+    """Elements through each layer's thickness: ``layers`` through the thickest, and through
+    every other as many as make them at most as high (at least one).
+
+    Parameters
+    ----------
+    thicknesses_m : sequence of float
+        The layers' thicknesses, m (> 0).
+    layers : int
+        Elements through the thickest layer (>= 1).
+    """
+    if isinstance(layers, bool) or not isinstance(layers, int) or layers < 1:
+        raise ValueError(f"layers must be a positive integer, got {layers!r}")
+    thicknesses = [_positive("film_thickness_m", h) for h in thicknesses_m]
+    if not thicknesses:
+        raise ValueError("film_thickness_m: at least one layer")
+    height = max(thicknesses) / layers
+    return [layers if h == max(thicknesses) else max(1, math.ceil(h / height - 1e-9)) for h in thicknesses]
+
+
 def film_rod_mesh(radius_m: float, length_m: float, fine_size_m: float, fine_extent_m: float,
-                  film_radius_m: float, film_thickness_m: float, layers: int = FILM_LAYERS,
+                  film_radius_m: float, film_thickness_m: float | Sequence[float], layers: int = FILM_LAYERS,
                   aspect: float = FILM_ASPECT) -> FilmRodMesh:
-    """Mesh of the rod 0 <= r <= a, 0 <= z <= L with a film 0 <= r <= r_f, -h <= z <= 0 on its end.
+    """Mesh of the rod 0 <= r <= a, 0 <= z <= L with layers 0 <= r <= r_f, -H <= z <= 0 on its end.
 
     Parameters
     ----------
@@ -124,13 +150,14 @@ def film_rod_mesh(radius_m: float, length_m: float, fine_size_m: float, fine_ext
         centre of the rod's end face, h below the contact point), m, as in ``rod_mesh``.
     film_radius_m : float
         Radius r_f of the film's disc, m, 0 < r_f <= a.
-    film_thickness_m : float
-        Thickness h of the film, m (at most the rod's length).
+    film_thickness_m : float or sequence of float
+        Thickness h of the film, or of each layer from the struck face to the rod, m (their sum
+        at most the rod's length).
     layers : int
-        Elements through the film's thickness (>= 1).
+        Elements through the thickest layer (>= 1); see :func:`layer_elements`.
     aspect : float
-        The columns of the film (and the rod's face under it) are at most ``aspect * h / layers``
-        wide (> 0).
+        The columns of the layers (and the rod's face under them) are at most ``aspect`` times
+        the height of the layers' elements wide (> 0).
 
     Returns
     -------
@@ -138,14 +165,16 @@ def film_rod_mesh(radius_m: float, length_m: float, fine_size_m: float, fine_ext
     """
     a, length = _positive("radius_m", radius_m), _positive("length_m", length_m)
     fine, extent = _fine_sizes(fine_size_m, fine_extent_m, min(a, length))
-    film_radius, h = _positive("film_radius_m", film_radius_m), _positive("film_thickness_m", film_thickness_m)
+    thicknesses = [film_thickness_m] if isinstance(film_thickness_m, (int, float)) else list(film_thickness_m)
+    counts = layer_elements(thicknesses, layers)
+    film_radius = _positive("film_radius_m", film_radius_m)
+    h = thicknesses[0] if len(thicknesses) == 1 else math.fsum(thicknesses)
     if film_radius > a:
         raise ValueError(f"film_radius_m must not exceed the rod's radius {a!r} m, got {film_radius_m!r}")
     if h > length:
         raise ValueError(f"film_thickness_m must not exceed the rod's length {length!r} m, got {film_thickness_m!r}")
-    if isinstance(layers, bool) or not isinstance(layers, int) or layers < 1:
-        raise ValueError(f"layers must be a positive integer, got {layers!r}")
-    face_spacing = min(_positive("aspect", aspect) * h / layers, film_radius / 2)
+    height = min(t / n for t, n in zip(thicknesses, counts))
+    face_spacing = min(_positive("aspect", aspect) * height, film_radius / 2)
     rod = _rod_under_film(a, length, fine, extent, film_radius, face_spacing)
     p, n_rod = rod.p, rod.nvertices
     face = np.nonzero((p[1] == 0.0) & (p[0] <= film_radius))[0]
@@ -153,10 +182,19 @@ def film_rod_mesh(radius_m: float, length_m: float, fine_size_m: float, fine_ext
     if p[0, face[-1]] != film_radius:
         raise RuntimeError("the rod's mesh has no vertex at the film's edge")
     m = face.size - 1
-    z = -h * np.arange(1, layers + 1) / layers
-    z[-1] = -h
-    new = np.vstack([np.tile(p[0, face], layers), np.repeat(z, m + 1)])
-    index = np.vstack([face, n_rod + np.arange(layers * (m + 1)).reshape(layers, m + 1)])
+    # the levels above the face, from the rod's face up to the struck face -H; each layer's rows
+    levels, row_layer, bottom = [], [], 0.0
+    for index in reversed(range(len(thicknesses))):
+        top = -h if index == 0 else bottom - thicknesses[index]
+        level = bottom + (top - bottom) * np.arange(1, counts[index] + 1) / counts[index]
+        level[-1] = top
+        levels.append(level)
+        row_layer += [index] * counts[index]
+        bottom = top
+    z = np.concatenate(levels)
+    rows = z.size
+    new = np.vstack([np.tile(p[0, face], rows), np.repeat(z, m + 1)])
+    index = np.vstack([face, n_rod + np.arange(rows * (m + 1)).reshape(rows, m + 1)])
     lo_l, lo_r = index[:-1, :-1].ravel(), index[:-1, 1:].ravel()
     hi_l, hi_r = index[1:, :-1].ravel(), index[1:, 1:].ravel()
     film_t = np.hstack([np.vstack([lo_l, lo_r, hi_r]), np.vstack([lo_l, hi_r, hi_l])])
@@ -168,14 +206,16 @@ def film_rod_mesh(radius_m: float, length_m: float, fine_size_m: float, fine_ext
         "end": (q[1] == 0.0) & (q[0] >= film_radius), "film": q[1] == -h,
         "film_edge": (q[0] == film_radius) & (q[1] <= 0.0)})
     n_rod_t = rod.t.shape[1]
+    element_layer = np.tile(np.repeat(np.asarray(row_layer), m), 2)
+    per_layer = tuple(n_rod_t + np.nonzero(element_layer == i)[0].astype(np.int64) for i in range(len(thicknesses)))
     fine_reached = float(_longest_edges(mesh)[_distance_to_origin(mesh) <= extent].max())
-    log.info("rod + film mesh: %d vertices, %d triangles (%d in the film: %d layers of %.3g m, %d columns out to "
-             "r = %.3g m); size %.3g m within %.3g m", mesh.nvertices, mesh.t.shape[1], film_t.shape[1], layers,
-             h / layers, m, film_radius, fine_reached, extent)
+    log.info("rod + film mesh: %d vertices, %d triangles (%d in %d layer(s), %s elements through, %.3g m in all, "
+             "%d columns out to r = %.3g m); size %.3g m within %.3g m", mesh.nvertices, mesh.t.shape[1],
+             film_t.shape[1], len(thicknesses), counts, h, m, film_radius, fine_reached, extent)
     return FilmRodMesh(BodyMesh(mesh, boundaries, fine_reached, extent),
                        film_elements=np.arange(n_rod_t, mesh.t.shape[1], dtype=np.int64),
                        rod_elements=np.arange(n_rod_t, dtype=np.int64),
-                       film_radius_m=film_radius, film_thickness_m=h, layers=layers)
+                       film_radius_m=film_radius, film_thickness_m=h, layers=rows, layer_elements=per_layer)
 
 
 def layers_within(mesh: FilmRodMesh, radius_m: float) -> int:

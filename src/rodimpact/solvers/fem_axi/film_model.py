@@ -1,10 +1,10 @@
-"""The film in the continuum model: its material region and the contact's candidate nodes.
+"""The film or stack in the continuum model: its material regions and the contact's candidate nodes.
 
-The rod and its film are one body (:mod:`.film_mesh`): the stiffness and the mass are the
+The rod and its layers are one body (:mod:`.film_mesh`): the stiffness and the mass are the
 sums of each region's, assembled with ``Basis(mesh, elem, elements=region)`` and the region's
-material. The film's strain and kinetic energies are therefore in the rod's.
+material. The layers' strain and kinetic energies are therefore in the rod's.
 
-The contact's candidates are the *rod's* struck-surface nodes (the film's surface z = -h
+The contact's candidates are the *rod's* struck-surface nodes (the stack's surface z = -H
 and, should the contact zone reach beyond the disc, the bare face z = 0), each kept out of
 the impactor's surface: without a film the impactor's nodes are the candidates, but a soft
 thin film loaded only at the impactor's nodes bulges between them (a static indentation of a
@@ -34,16 +34,21 @@ __all__ = ["film_contact", "film_rod_matrices"]
 
 
 def film_rod_matrices(basis: Basis, film_mesh: FilmRodMesh, problem: AxiImpact) -> tuple[Any, Any]:
-    """Per-radian stiffness (N/m) and mass (kg) of the rod and its film on ``basis``'s DOFs,
-    each region assembled with its own material (``problem.rod_material``, ``problem.film``)."""
-    film, rod = problem.film, problem.rod_material
-    if film is None:
-        raise ValueError("problem: has no film")
+    """Per-radian stiffness (N/m) and mass (kg) of the rod and its layers on ``basis``'s DOFs,
+    each region assembled with its own material (``problem.rod_material``, each layer of
+    ``problem.stack``)."""
+    stack, rod = problem.stack, problem.rod_material
+    if stack is None:
+        raise ValueError("problem: has no film or stack")
+    if len(film_mesh.layer_elements) != len(stack.layers):
+        raise ValueError(f"film_mesh: {len(film_mesh.layer_elements)} layers meshed for a stack of {len(stack.layers)}")
     rod_part = Basis(basis.mesh, basis.elem, elements=film_mesh.rod_elements)
-    film_part = Basis(basis.mesh, basis.elem, elements=film_mesh.film_elements)
-    stiffness = (axisym_stiffness(rod_part, rod.youngs_modulus_pa, rod.poisson_ratio)
-                 + axisym_stiffness(film_part, film.youngs_modulus_pa, film.poisson_ratio))
-    mass = axisym_mass(rod_part, rod.density_kg_m3) + axisym_mass(film_part, film.density_kg_m3)
+    stiffness = axisym_stiffness(rod_part, rod.youngs_modulus_pa, rod.poisson_ratio)
+    mass = axisym_mass(rod_part, rod.density_kg_m3)
+    for layer, elements in zip(stack.layers, film_mesh.layer_elements):
+        part = Basis(basis.mesh, basis.elem, elements=elements)
+        stiffness = stiffness + axisym_stiffness(part, layer.youngs_modulus_pa, layer.poisson_ratio)
+        mass = mass + axisym_mass(part, layer.density_kg_m3)
     return stiffness.tocsr(), mass.tocsr()
 
 

@@ -5,8 +5,8 @@ contact LCP exactly as in :mod:`.fem_axi`. With the bulk of both bodies adding a
 compliance C, Hertz predicts d = (P / k)^(2/3) + C P with k = (4/3) E* sqrt(R), and the
 contact radius a = (3 P R / (4 E*))^(1/3): a check of the continuum against the Hertz law.
 
-With a film (``problem.film``) the cap presses the film's surface and the rod is the rod and
-its film (:mod:`.film_mesh`): the force against the rigid back's displacement is the static
+With a film or stack (``problem.stack``) the cap presses its surface and the rod is the rod
+and its layers (:mod:`.film_mesh`): the force against the rigid back's displacement is the static
 force-approach curve P(d) of the film-coated rod (d includes the cap's, the film's and the
 rod's compliance). The mean axial displacements of the rod's end face (z = 0, under the film)
 and of the struck surface are returned too: d minus the first is the approach relative to
@@ -91,8 +91,9 @@ def static_indentation(problem: AxiImpact, displacements_m: Sequence[float],
     solve_rod = splu(rod.K).solve
     solve_imp = splu(imp.K[free][:, free].tocsc()).solve
     B_i = B_imp[:, free]
-    G_rod = np.column_stack([solve_rod(c) for c in B_rod.T.toarray().T])
-    G_imp = np.column_stack([solve_imp(c) for c in B_i.T.toarray().T])
+    # every candidate's column at once: SuperLU solves the columns of a matrix right side one by one
+    G_rod = solve_rod(np.asfortranarray(B_rod.T.toarray()))
+    G_imp = solve_imp(np.asfortranarray(B_i.T.toarray()))
     chol = cholesky(B_rod @ G_rod + B_i @ G_imp, lower=True)
     # the rod's displacement is G_rod lam: the mean displacements are rows times G_rod
     face = rod.reduce_rows(cross_section_mean_uz(rod.basis, 0.0, problem.rod_radius_m))

@@ -8,7 +8,10 @@ from typing import ClassVar
 from rodimpact.solvers.options import OptionError, setting
 from rodimpact.solvers.stepping import SteppingOptions
 
-__all__ = ["FEMAxiOptions"]
+__all__ = ["FILM_LAYERS", "FEMAxiOptions"]
+
+FILM_LAYERS = 4
+"""Elements through the thickest layer of a film or stack (the default of ``film_layers``)."""
 
 
 @dataclass(frozen=True)
@@ -32,6 +35,9 @@ class FEMAxiOptions(SteppingOptions):
         "the rod is a 1-D bar joined to the continuum's last section (plane sections, uniaxial stress), on a rod "
         "at least 10 such continua long. Null: the whole rod is a continuum.",
         nullable=True, minimum=1)
+    film_layers: int = setting(
+        FILM_LAYERS, "Elements through the thickest layer of a film or stack on the struck end; every other layer gets "
+        "as many as make its elements at most as high, at least one.", kind=int, minimum=1)
     cap_height: float = setting(
         1.0, "Impactor body 'cap' only: height of the elastic cap, in sphere radii.", exclusive_minimum=0, maximum=1)
 

@@ -7,10 +7,9 @@ import math
 from dataclasses import dataclass
 from typing import Any, Literal, Mapping
 
-from rodimpact.contact.film import FilmLayer, HertzFilmLaw, film_constant
-from rodimpact.contact.hertz import hertz_constant
 from rodimpact.contact.law import ContactLaw, RigidImpact
 from rodimpact.contact.laws import build_law
+from rodimpact.contact.stack import Stack
 from rodimpact.model.materials import Material
 
 __all__ = ["AxiImpact", "AxiScales"]
@@ -51,12 +50,13 @@ class AxiImpact:
     far_end : {"fixed", "free"}
     contact : ContactLaw or None
         The case's contact law, used only for the scales (:meth:`scales`): the continuum
-        resolves the contact itself. None: Hertz's law of the two materials (with the
-        thin-layer ``hertz_film`` law of ``film`` when there is one).
-    film : FilmLayer or None
-        A film bonded on the rod's struck end, meshed as its own material region (a disc of
-        radius ``film.disc_radius(rod_radius_m)`` and thickness h on top of the end face; see
-        :mod:`.film_mesh`): the impactor strikes the film. None: the bare end face.
+        resolves the contact itself. None: Hertz's law of the two materials (in series with
+        the thin-layer law of ``stack`` when there is one).
+    stack : Stack or None
+        Layers bonded on the rod's struck end (a film is a stack of one), each meshed as its
+        own material region (discs of radius ``stack.disc_radius(rod_radius_m)`` on top of the
+        end face; see :mod:`.film_mesh`): the impactor strikes the first layer. None: the bare
+        end face.
     """
 
     mass_kg: float
@@ -69,44 +69,40 @@ class AxiImpact:
     rod_material: Material
     far_end: Literal["fixed", "free"] = "fixed"
     contact: ContactLaw | None = None
-    film: FilmLayer | None = None
+    stack: Stack | None = None
 
     @classmethod
     def from_case(cls, case: Mapping[str, Any], *, estimate: bool = False) -> "AxiImpact":
-        """The impact of a resolved case; ``film`` from ``case["contact"]["film"]`` when the
-        contact block has one (whatever its law). ``estimate`` is passed to
+        """The impact of a resolved case; ``stack`` from the contact block's film or stack when
+        it has one, whatever its law (:meth:`Stack.of`). ``estimate`` is passed to
         :func:`~rodimpact.contact.laws.build_law` (a law whose data do not exist yet is
         replaced by the law it calibrates)."""
         imp, rod = case["impactor"], case["rod"]
         imp_mat, rod_mat = Material.from_mapping(imp["material"]), Material.from_mapping(rod["material"])
         contact = case.get("contact")
-        film = contact.get("film") if contact is not None else None
         return cls(
             mass_kg=float(imp["mass_kg"]), velocity_m_s=float(imp["velocity_m_s"]),
             sphere_radius_m=float(imp["radius_m"]), impactor_material=imp_mat, body=imp.get("body", "cap"),
             rod_radius_m=math.sqrt(float(rod["area_m2"]) / math.pi), rod_length_m=float(rod["length_m"]),
             rod_material=rod_mat, far_end=rod.get("far_end", "fixed"),
             contact=build_law(contact, float(imp["radius_m"]), imp_mat, rod_mat, estimate=estimate),
-            film=None if film is None else FilmLayer.from_mapping(film),
+            stack=Stack.of(contact),
         )
 
     @functools.cached_property
     def law(self) -> ContactLaw:
         """The contact law of the scales: the case's; else Hertz's of the two materials, in
-        series with the thin-layer film (``hertz_film``) when there is a film."""
+        series with the stack as thin layers when there is one."""
         if self.contact is not None:
             return self.contact
-        if self.film is not None:
-            R, film = self.sphere_radius_m, self.film
-            return HertzFilmLaw(k=hertz_constant(R, self.impactor_material, self.rod_material),
-                                c=film_constant(R, film.thickness_m, film.constrained_modulus_pa),
-                                sphere_radius_m=R, thickness_m=film.thickness_m)
+        if self.stack is not None:
+            return self.stack.thin_layer_law(self.sphere_radius_m, self.impactor_material, self.rod_material)
         return build_law(None, self.sphere_radius_m, self.impactor_material, self.rod_material)
 
     @property
     def film_radius_m(self) -> float:
-        """Radius of the film's disc, m (0 without a film)."""
-        return 0.0 if self.film is None else self.film.disc_radius(self.rod_radius_m)
+        """Radius of the stack's disc, m (0 without one)."""
+        return 0.0 if self.stack is None else self.stack.disc_radius(self.rod_radius_m)
 
     @functools.cached_property
     def rigid_contact(self) -> RigidImpact:

@@ -109,9 +109,9 @@ def build_model(problem: AxiImpact, options: FEMAxiOptions) -> AxiModel:
     """Mesh and assemble both bodies and the contact's candidate gaps.
 
     Without a film the rod's end face z = 0 is struck, the impactor's sphere touches it at the
-    origin, and the candidates are the impactor's surface nodes. With a film (:mod:`.film_mesh`,
-    :mod:`.film_model`) the film's surface z = -h is struck over r <= r_f and the bare face
-    z = 0 beyond; the impactor, meshed in its own frame (touching the origin), stands h lower
+    origin, and the candidates are the impactor's surface nodes. With a film or a stack
+    (:mod:`.film_mesh`, :mod:`.film_model`) its surface z = -H is struck over r <= r_f and the
+    bare face z = 0 beyond; the impactor, meshed in its own frame (touching the origin), stands H lower
     (its forms do not depend on z, so only its gaps see this); the candidates are the rod's
     struck-surface nodes.
     """
@@ -127,11 +127,11 @@ def build_model(problem: AxiImpact, options: FEMAxiOptions) -> AxiModel:
     film_mesh = None
     z_c = continuum_length(problem.rod_radius_m, problem.rod_length_m, options.continuum_diameters)
     meshed_length = problem.rod_length_m if z_c is None else z_c
-    if problem.film is None:
+    if problem.stack is None:
         rod = rod_mesh(problem.rod_radius_m, meshed_length, fine, extent)
     else:
-        film_mesh = film_rod_mesh(problem.rod_radius_m, meshed_length, fine, extent,
-                                  problem.film_radius_m, problem.film.thickness_m)
+        film_mesh = film_rod_mesh(problem.rod_radius_m, meshed_length, fine, extent, problem.film_radius_m,
+                                  [layer.thickness_m for layer in problem.stack.layers], options.film_layers)
         rod = film_mesh.body
     rod_basis = _basis(rod.mesh, options.element)
     removed = axis_dofs(rod_basis)
@@ -347,6 +347,8 @@ def _result(problem: AxiImpact, model: AxiModel, hist: _History, stations: tuple
         extra.update(film_thickness_m=float(film.film_thickness_m), film_radius_m=float(film.film_radius_m),
                      film_elements=int(film.film_elements.size),
                      film_elements_through_thickness=layers_within(film, film.body.contact_extent_m))
+        if len(film.layer_elements) > 1:
+            extra["stack_layers"] = len(film.layer_elements)
     if stations:
         values = np.asarray(hist.stations).reshape(len(nodes.time), len(stations), 3)
         series["station_displacement"] = (values[:, :, 0], "m", "cross-section mean axial displacement at station_x_m")

@@ -1,0 +1,188 @@
+"""The sensor's prediction band from the continuum: the science behind the ``sensor_band`` rule.
+
+For one case whose law is calibrated by the continuum (``tabulated`` from the indentation) and
+whose rod carries a stack of layers, every constant the stack knows only to a range is a
+parameter of the band (:func:`stack_parameters`): each layer's thickness
+(``thickness_range_m``) and each constant of each layer material with ``ranges`` in the
+materials file (a material shared by two layers is one parameter: one ink, one modulus). The
+contact time at a set of values is the calibrated SEM's: the continuum's static indentation of
+the case's ball on the stack so changed (:func:`~rodimpact.jobs.indentation.indentation_curve`),
+then the SEM with that curve as its law.
+
+The band evaluates the nominal stack, each parameter at the two ends of its range with the
+others nominal (and at ``grid`` values for the parameter the inverse analysis fits), and the
+two corners where every parameter sits at the end that lengthens (shortens) the contact, read
+from its own axis. Where the time is monotone along every axis (recorded: ``monotone``), those
+two corners bound it over the box, if the parameters act independently of each other's values.
+"""
+
+from __future__ import annotations
+
+import copy
+import logging
+import math
+from dataclasses import dataclass
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+
+from rodimpact.jobs.indentation import indentation_curve
+from rodimpact.jobs.runner import run_case
+from rodimpact.storage.bands import CaseBand, write_band
+
+__all__ = ["StackParameter", "calibrated_time_us", "sensor_band", "sensor_band_to_file", "stack_parameters",
+           "with_values"]
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True)
+class StackParameter:
+    """A constant of a stack known to a range.
+
+    Attributes
+    ----------
+    name : str
+        ``"{layer name}: thickness_m"`` or ``"{material name}: {constant}"``.
+    nominal, low, high : float
+        Its nominal value and range (SI units: m, Pa or 1).
+    """
+
+    name: str
+    nominal: float
+    low: float
+    high: float
+
+
+def _stack(case: Mapping[str, Any]) -> Mapping[str, Any]:
+    stack = (case.get("contact") or {}).get("stack")
+    if stack is None:
+        raise ValueError(f"case {case['id']!r} has no stack (contact.stack)")
+    return stack
+
+
+def stack_parameters(case: Mapping[str, Any]) -> list[StackParameter]:
+    """The constants of the case's stack that have a range, layers first (from the struck face).
+
+    Layers of the same name (the two electrodes of one print) share their thickness's parameter;
+    their thicknesses and ranges must then agree.
+
+    Raises
+    ------
+    ValueError
+        Two layers of one name have different thicknesses or ranges.
+    """
+    layers = _stack(case)["layers"]
+    parameters: list[StackParameter] = []
+    for layer in layers:
+        parameter = StackParameter(f"{layer['name']}: thickness_m", float(layer["thickness_m"]),
+                                   *map(float, layer["thickness_range_m"]))
+        same = [p for p in parameters if p.name == parameter.name]
+        if same and same[0] != parameter:
+            raise ValueError(f"case {case['id']!r}: the layers named {layer['name']!r} differ in thickness or range")
+        if not same:
+            parameters.append(parameter)
+    seen: set[str] = set()
+    for layer in layers:
+        material = layer["material"]
+        if material["name"] in seen:
+            continue
+        seen.add(material["name"])
+        for constant, (low, high) in sorted((material.get("ranges") or {}).items()):
+            parameters.append(StackParameter(f"{material['name']}: {constant}", float(material[constant]),
+                                             float(low), float(high)))
+    return parameters
+
+
+def with_values(case: Mapping[str, Any], values: Mapping[str, float]) -> dict[str, Any]:
+    """A copy of the case with the stack's constants ``values`` (names of :func:`stack_parameters`).
+
+    Raises
+    ------
+    KeyError
+        A name is not a layer's thickness or a layer material's constant.
+    """
+    changed = copy.deepcopy(dict(case))
+    layers = _stack(changed)["layers"]
+    for name, value in values.items():
+        owner, _, key = name.rpartition(": ")
+        hit = False
+        for layer in layers:
+            if key == "thickness_m" and layer["name"] == owner:
+                layer["thickness_m"] = float(value)
+                hit = True
+            elif layer["material"]["name"] == owner and key in layer["material"]:
+                layer["material"][key] = float(value)
+                hit = True
+        if not hit:
+            raise KeyError(f"{name!r} is no constant of case {case['id']!r}'s stack")
+    return changed
+
+
+def calibrated_time_us(case: Mapping[str, Any], settings: Mapping[str, Any] | None = None,
+                       method: str = "sem") -> float:
+    """Contact time, us, of ``method`` with the law the continuum's indentation of the case gives."""
+    curve = indentation_curve(case, settings)
+    with_curve = {**case, "contact": {**case["contact"], "curve": curve.law_curve()}}
+    return 1e6 * run_case(with_curve, method).contact_time_s
+
+
+def sensor_band(case: Mapping[str, Any], settings: Mapping[str, Any] | None = None, method: str = "sem",
+                grid: Mapping[str, Sequence[float]] | None = None, *, band: bool = True) -> CaseBand:
+    """The band of one case (see the module docstring).
+
+    Parameters
+    ----------
+    case : mapping
+        A resolved case with a stack and a law calibrated by the indentation.
+    settings : mapping, optional
+        ``numerics.fem_axi`` of the continuum's indentation.
+    method : str
+        The 1-D method that runs the calibrated law.
+    grid : mapping, optional
+        Parameter name -> more values along its axis (the inverse analysis's grid).
+    band : bool
+        False: only the axes of ``grid`` (to apply a fitted value), no corners (the band's
+        min and max are then NaN).
+    """
+    parameters = stack_parameters(case)
+    if not band:
+        parameters = [p for p in parameters if p.name in (grid or {})]
+    names = tuple(p.name for p in parameters)
+    unknown = sorted(set(grid or {}) - set(names))
+    if unknown:
+        raise KeyError(f"grid: {unknown} are no constants of case {case['id']!r}'s stack; its constants: {list(names)}")
+    nominal_us = calibrated_time_us(case, settings, method)
+    axis_values, axis_us = {}, {}
+    for p in parameters:
+        values = sorted({p.low, p.nominal, p.high, *map(float, (grid or {}).get(p.name, ()))})
+        times = [nominal_us if v == p.nominal else calibrated_time_us(with_values(case, {p.name: v}), settings, method)
+                 for v in values]
+        axis_values[p.name], axis_us[p.name] = np.asarray(values), np.asarray(times)
+    # each parameter's end that lengthens the contact, from its own axis
+    longer = {}
+    for p in parameters:
+        values, times = axis_values[p.name], axis_us[p.name]
+        at_low, at_high = times[values == p.low][0], times[values == p.high][0]
+        longer[p.name] = (p.high, p.low) if at_high >= at_low else (p.low, p.high)
+    corners = np.array([[longer[n][0] for n in names], [longer[n][1] for n in names]] if band else np.empty((0, len(names))))
+    corner_us = np.array([calibrated_time_us(with_values(case, dict(zip(names, c))), settings, method)
+                          for c in corners])
+    measured = (case.get("measured") or {}).get("contact_time_us")
+    band = CaseBand(case_id=str(case["id"]), measured_us=math.nan if measured is None else float(measured),
+                    nominal_us=nominal_us, corner_parameters=corners, corner_us=corner_us,
+                    axis_values=axis_values, axis_us=axis_us, parameters=names)
+    log.info("case %s: nominal %.2f us, band %.2f-%.2f us over %d constants, monotone along every axis: %s",
+             band.case_id, band.nominal_us, band.band_min_us, band.band_max_us, len(names), band.monotone)
+    if not band.monotone:
+        log.warning("case %s: the contact time is not monotone along some constant's range; the corners may not "
+                    "bound it", band.case_id)
+    return band
+
+
+def sensor_band_to_file(case: Mapping[str, Any], variant: str, path: str, settings: Mapping[str, Any] | None = None,
+                        method: str = "sem", grid: Mapping[str, Sequence[float]] | None = None, *,
+                        band: bool = True) -> None:
+    """:func:`sensor_band` of ``case``, written atomically to ``path``."""
+    write_band(path, [sensor_band(case, settings, method, grid, band=band)], variant=variant, method=method,
+               config=dict(case))
