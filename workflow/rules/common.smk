@@ -300,6 +300,8 @@ def default_targets():
         targets += expand("results/tables/{name}.{ext}", name=["table2_film", "film_band", "film_indentation"],
                           ext=["csv", "md", "provenance.json"])
         targets += expand("results/figures/film_force.{ext}", ext=["pdf", "png"])
+        # the sensor as built: its band and the fit (sensor.smk)
+        targets += sensor_targets()
     if "model" in sets:
         targets += expand("results/figures/force_fit_model.{ext}", ext=["pdf", "png"])
     for name in sets:

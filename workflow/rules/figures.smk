@@ -75,6 +75,7 @@ rule fig_table2:
         runs=[run for v in TABLE2_VARIANTS for run in table2_runs(v)],
         sweep_runs=sweep_point_runs(PROJECT.sweeps_in("table2")),
         bands=expand("results/studies/film_band_{variant}.h5", variant=FILM_VARIANTS),
+        sensor_bands=sensor_band_files([v for v, band in SENSOR_READINGS.items() if band and v in SENSOR_VARIANTS]),
         code=SRC_PRESENT,
     output:
         pdf=report(
@@ -95,6 +96,7 @@ rule fig_table2:
     params:
         variants=TABLE2_VARIANTS,
         film_variants=FILM_VARIANTS,
+        sensors=SENSOR_VARIANTS,
         # each reading in words (the case file's description): the panels' titles
         descriptions={v: spec.get("description", "") for v, spec in PROJECT.variants.get("table2", {}).items()},
     log:

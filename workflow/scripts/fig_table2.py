@@ -10,4 +10,6 @@ with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (
                     sweep_runs=snakemake.input.sweep_runs,  # noqa: F821
                     film_variants=snakemake.params.film_variants,  # noqa: F821
                     band_files=snakemake.input.bands,  # noqa: F821
-                    descriptions=snakemake.params.descriptions)  # noqa: F821
+                    descriptions=snakemake.params.descriptions,  # noqa: F821
+                    sensors=snakemake.params.sensors,  # noqa: F821
+                    sensor_band_files=snakemake.input.sensor_bands)  # noqa: F821

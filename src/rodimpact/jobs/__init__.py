@@ -2,7 +2,8 @@
 its bookkeeping.
 
 What lives here: :mod:`.runner` (solve one run and store it), :mod:`.batch` (several runs in
-one job), :mod:`.band` (the film's prediction band), :mod:`.indentation` (the continuum's
+one job), :mod:`.band` (the film's prediction band, thin-layer law), :mod:`.sensor_band` (the
+sensor stack's band and the fit's grid by the law the continuum calibrates), :mod:`.indentation` (the continuum's
 indentation as a contact-law curve), :mod:`.cases` (the case files' contents),
 :mod:`.resources` (threads, memory and time of a job, estimated from its case), :mod:`.logs`
 (the scripts' logging), :mod:`.timing` (how a timed run is repeated) and :mod:`.machine` (the

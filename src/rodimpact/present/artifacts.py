@@ -17,6 +17,7 @@ from rodimpact.storage.casefile import read_case_file
 from rodimpact.storage.curves import read_contact_curve
 from rodimpact.storage.sidecar import provenance_record, write_provenance
 from rodimpact.storage.runs import read_run
+from rodimpact.present.sensor_tables import sensor_band_frame
 from rodimpact.present.film_tables import (
     film_band_frame, film_indentation_frame, film_table_frame, readings_frame, table2_panels,
     write_provenance_with_files
@@ -147,13 +148,16 @@ def make_fig4(runs: Sequence[str | Path], fraction: float, *, pdf: str | Path, p
 def make_fig_table2(runs: Sequence[str | Path], variants: Sequence[str], *, pdf: str | Path,
                     png: str | Path, provenance: str | Path, sweep_runs: Sequence[str | Path] = (),
                     film_variants: Sequence[str] = (), band_files: Sequence[str | Path] = (),
-                    descriptions: Mapping[str, str] | None = None) -> None:
+                    descriptions: Mapping[str, str] | None = None, sensors: Mapping[str, bool] | None = None,
+                    sensor_band_files: Sequence[str | Path] = ()) -> None:
     """Contact time against ball mass, one panel per rod, with the sweeps' curves; the readings
     with the film (``film_variants``) on the panel of their rod, with their bands (``band_files``).
 
     ``descriptions`` (variant -> the reading in words, the case file's ``description``) title
     the panels; the measured points are grouped by their source, and the runs with more than
-    one contact ringed, both read from the runs."""
+    one contact ringed, both read from the runs. ``sensors`` (variant -> calibrated by the
+    continuum) are the readings with the sensor as built, drawn on their rod's panel with the
+    bands of ``sensor_band_files``."""
     from rodimpact.present.figures import save_figure
     from rodimpact.present.table2_figures import plot_table2_contact_time
 
@@ -163,13 +167,18 @@ def make_fig_table2(runs: Sequence[str | Path], variants: Sequence[str], *, pdf:
     bands = film_band_frame(dict(read_band(p) for p in band_files), {r.case_id: r.config for r in records})
     sources = {r.case_id: str((r.config.get("measured") or {}).get("source", "")) for r in records}
     contacts = {(r.case_id, r.method): int(r.summary.get("n_contacts", 1)) for r in records}
-    fig = plot_table2_contact_time(frames, sweep_results_frame(sweeps), panels=table2_panels(readings, film_variants),
+    sensors = dict(sensors or {})
+    sensor_bands = sensor_band_frame([(v, b) for p in sensor_band_files for v, group in [read_band(p)] for b in group],
+                                     {r.case_id: r.config for r in records})
+    fig = plot_table2_contact_time(frames, sweep_results_frame(sweeps),
+                                   panels=table2_panels(readings, [*film_variants, *sensors]),
                                    readings=readings, bands=bands, descriptions=descriptions, sources=sources,
-                                   contacts=contacts)
+                                   contacts=contacts, sensors=sensors, sensor_bands=sensor_bands)
     artifacts = [pdf, png]
     save_figure(fig, pdf=pdf, png=png, provenance=provenance_record([*records, *sweeps], artifacts),
                 title="Table 2: contact time against ball mass")
-    write_provenance_with_files(provenance, [*records, *sweeps], artifacts, {"band": band_files})
+    write_provenance_with_files(provenance, [*records, *sweeps], artifacts,
+                                {"band": band_files, "sensor band": sensor_band_files})
 
 
 FILM_TABLE_CAPTION = (

@@ -119,7 +119,7 @@ def _film_sweep(ax: matplotlib.axes.Axes, curves: pd.DataFrame, nominal_pa: floa
     by_modulus = {m: c.sort_values("diameter_mm") for m, c in curves.groupby("film_modulus_pa")}
     line = by_modulus[nominal]
     ax.plot(line["mass_g"], line["contact_time_us"], "-", lw=1.2, color="tab:red",
-            label=f"{METHOD_LABELS.get(method, method)}, with film: sweep at film modulus {nominal / 1e9:g} GPa")
+            label=f"{METHOD_LABELS.get(method, method)}, film as a thin layer: sweep at film modulus {nominal / 1e9:g} GPa")
     _rings(ax, line["mass_g"], line["contact_time_us"], _many_contacts(line))
     if len(moduli) > 1:
         low, high = by_modulus[moduli[0]], by_modulus[moduli[-1]]
@@ -137,7 +137,7 @@ def _film_overlay(ax: matplotlib.axes.Axes, variant: str, frame: pd.DataFrame | 
     each row's prediction band over the film constants' ranges."""
     if frame is not None and f"{method}_us" in frame:
         ax.plot(frame["mass_g"], frame[f"{method}_us"], "D", ms=4.5, color="tab:red",
-                label=f"{METHOD_LABELS.get(method, method)}, with film")
+                label=f"{METHOD_LABELS.get(method, method)}, film as a thin layer (approximation, too soft)")
         _rings(ax, frame["mass_g"], frame[f"{method}_us"], [contacts.get((c, method), 1) > 1 for c in frame["case_id"]])
     if sweeps is not None and not sweeps.empty and "film_modulus_pa" in sweeps:
         for _, curves in sweeps[(sweeps["variant"] == variant) & sweeps["film_modulus_pa"].notna()].groupby("method"):
@@ -149,7 +149,31 @@ def _film_overlay(ax: matplotlib.axes.Axes, variant: str, frame: pd.DataFrame | 
             ax.errorbar(band["mass_g"], nominal, yerr=[nominal - band["band_min_us"].to_numpy(float),
                                                        band["band_max_us"].to_numpy(float) - nominal],
                         fmt="none", ecolor="darkred", elinewidth=1.2, capsize=3,
-                        label="with film: band over the film constants' ranges (SEM)")
+                        label="film as a thin layer: band over the film constants' ranges (approximation)")
+
+
+def _sensor_overlay(ax: matplotlib.axes.Axes, frame: pd.DataFrame | None, calibrated: bool,
+                    bands: pd.DataFrame | None) -> None:
+    """A reading with the sensor as built, on the panel of its rod: the continuum's dynamic runs
+    (``fem_axi``), or the 1-D methods with the law the continuum calibrates on the stack (the
+    SEM, a line through the rows) with each row's band over the stack's sourced ranges."""
+    if frame is None:
+        return
+    if not calibrated and "fem_axi_us" in frame:
+        ax.plot(frame["mass_g"], frame["fem_axi_us"], "D", ms=6, color="tab:green", zorder=6,
+                label=f"{METHOD_LABELS['fem_axi']}, sensor as built (electrodes, film, bond line)")
+    if calibrated and "sem_us" in frame:
+        ordered = frame.sort_values("mass_g")
+        ax.plot(ordered["mass_g"], ordered["sem_us"], "-", lw=1.6, color="tab:green", zorder=5,
+                label=f"{METHOD_LABELS['sem']}, sensor as built, contact law calibrated by the continuum")
+        if bands is not None and not bands.empty:
+            band = bands[bands["case_id"].isin(frame["case_id"])]
+            if not band.empty:
+                nominal = band["nominal_us"].to_numpy(float)
+                ax.errorbar(band["mass_g"], nominal, yerr=[nominal - band["band_min_us"].to_numpy(float),
+                                                           band["band_max_us"].to_numpy(float) - nominal],
+                            fmt="none", ecolor="darkgreen", elinewidth=1.6, capsize=4, zorder=5,
+                            label="sensor as built: band over its sourced ranges (continuum's law)")
 
 
 def _rows(ax: matplotlib.axes.Axes, frame: pd.DataFrame, sources: Mapping[str, str],
@@ -221,7 +245,8 @@ def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame], sweeps: pd.Data
                              descriptions: Mapping[str, str] | None = None,
                              sources: Mapping[str, str] | None = None,
                              contacts: Mapping[tuple[str, str], int] | None = None,
-                             film_method: str = "sem") -> matplotlib.figure.Figure:
+                             film_method: str = "sem", sensors: Mapping[str, bool] | None = None,
+                             sensor_bands: pd.DataFrame | None = None) -> matplotlib.figure.Figure:
     """Contact time against ball mass per rod: measured, published and ours, with the film.
 
     Parameters
@@ -250,6 +275,11 @@ def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame], sweeps: pd.Data
         (case id, method) -> the run's number of contacts: rows with more than one are ringed.
     film_method : str
         The method whose film runs are drawn.
+    sensors : mapping, optional
+        Variant -> whether its law is calibrated by the continuum, for the readings with the
+        sensor as built drawn on their rod's panel (listed in ``panels`` too): the continuum's
+        runs, or the calibrated SEM's line with the bands of ``sensor_bands``
+        (:func:`rodimpact.present.sensor_tables.sensor_band_frame`).
     """
     panels = {v: () for v in frames} if panels is None else dict(panels)
     descriptions, sources, contacts = dict(descriptions or {}), dict(sources or {}), dict(contacts or {})
@@ -268,8 +298,13 @@ def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame], sweeps: pd.Data
         drawn.append(ax)
         _rows(ax, frames[variant], sources, contacts)
         _sweep_curves(ax, variant, sweeps)
+        sensors = dict(sensors or {})
         for film in panels[variant]:
-            _film_overlay(ax, film, frames.get(film), sweeps, bands, nominal.get(film, math.nan), film_method, contacts)
+            if film in sensors:
+                _sensor_overlay(ax, frames.get(film), sensors[film], sensor_bands)
+            else:
+                _film_overlay(ax, film, frames.get(film), sweeps, bands, nominal.get(film, math.nan), film_method,
+                              contacts)
         ax.set_title(_panel_title(variant, panels[variant], descriptions, readings), fontsize=9)
         ax.set_xscale("log")
         ax.set_yscale("log")  # one scale for all panels: the readings' times differ tenfold
