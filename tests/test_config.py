@@ -32,6 +32,10 @@ VARIANTS = {  # name -> (rod radius, rod length), m
     "r1_l301_film": (0.001, 0.301),
     "r1_l30_film": (0.001, 0.0301),
     "r10_l301_film": (0.010, 0.301),
+    "r10_l30_sensor": (0.010, 0.0301),
+    "r1_l30_sensor": (0.001, 0.0301),
+    "r10_l30_sensor_cal": (0.010, 0.0301),
+    "r1_l30_sensor_cal": (0.001, 0.0301),
     "r10_l30_film_cal": (0.010, 0.0301),
     "r10_l30_cal": (0.010, 0.0301),
 }
@@ -80,7 +84,7 @@ STRESS = ["microgram_fast", "heavy_slow", "thin_wire", "long_rod_heavy", "short_
 
 def test_shipped_config_loads_all_cases(shipped: Project) -> None:
     expected = ["model"] + [f"{row}-{variant}" for row in ROWS for variant in VARIANTS]
-    # 1 + 6 rows x 10 variants, in file order (files sorted by name: model, stress, table2)
+    # 1 + 6 rows x 14 variants, in file order (files sorted by name: model, stress, table2)
     assert [c for c in shipped.cases if shipped.cases[c]["set"] != "stress"] == expected
     assert shipped.sets == {"model": ["model"], "table2": expected[1:], "stress": STRESS}
     assert list(shipped.variants["table2"]) == list(VARIANTS)
@@ -371,7 +375,7 @@ MALFORMED = {
     ),
     "unknown material name": (
         _set(MODEL, "cases", 0, "rod", "material", "steal"),
-        f"{MODEL}: case 'model': field 'rod.material': unknown material 'steal'; known: steel, aluminium_table1, rubber, pvdf",
+        f"{MODEL}: case 'model': field 'rod.material': unknown material 'steal'; known: steel, aluminium_table1, rubber, pvdf, silver_ink, cyanoacrylate",
     ),
     "unknown contact law": (
         _set(TABLE2, "variants", "r10_l30_film", "contact", "law", "hertz_flim"),
@@ -385,7 +389,7 @@ MALFORMED = {
     "unknown film material": (
         _set(TABLE2, "variants", "r10_l30_film", "contact", "film", "material", "pvfd"),
         f"{TABLE2}: case 'ball_3.16mm-r10_l30_film': field 'contact.film.material': unknown material 'pvfd'; "
-        "known: steel, aluminium_table1, rubber, pvdf",
+        "known: steel, aluminium_table1, rubber, pvdf, silver_ink, cyanoacrylate",
     ),
     "film on the hertz law": (
         _set(TABLE2, "variants", "r10_l30_film", "contact", "law", "hertz"),
@@ -451,6 +455,23 @@ MALFORMED = {
     "unknown target set": (
         _set("config/config.yaml", "targets", "sets", ["model", "tabel2"]),
         "config/config.yaml: field 'targets.sets[1]': unknown case set 'tabel2'; known: model, stress, table2",
+    ),
+    "sensor band of a reading without a calibrated stack": (
+        _set("config/config.yaml", "sensor", "band", ["r10_l30_sensor_cal", "r10_l30_film_cal"]),
+        "config/config.yaml: field 'sensor.band[1]': case 'ball_3.16mm-r10_l30_film_cal' of the reading "
+        "'r10_l30_film_cal' needs a law calibrated by the continuum (from: fem_axi_indentation) on a stack "
+        "(contact.stack)",
+    ),
+    "sensor fit of an unknown reading": (
+        _set("config/config.yaml", "sensor", "fit", "reading", "r10_l30_sensr_cal"),
+        "config/config.yaml: field 'sensor.fit.reading': unknown reading 'r10_l30_sensr_cal'; readings: r10_l30, "
+        "r10_l301, r10_l301_film, r10_l30_cal, r10_l30_film, r10_l30_film_cal, r10_l30_sensor, r10_l30_sensor_cal, "
+        "r1_l30, r1_l301, r1_l301_film, r1_l30_film, r1_l30_sensor, r1_l30_sensor_cal",
+    ),
+    "sensor fit of a layer the stack lacks": (
+        _set("config/config.yaml", "sensor", "fit", "layer", "glue"),
+        "config/config.yaml: field 'sensor.fit.layer': case 'ball_3.16mm-r10_l30_sensor_cal': its stack has no "
+        "layer named 'glue'",
     ),
     "work precision on an unknown case": (
         _set("config/config.yaml", "work_precision", "cases", ["model", "modle"]),

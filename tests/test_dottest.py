@@ -42,7 +42,8 @@ def test_its_cases_are_the_shipped_cases() -> None:
 #: Where .test/config/config.yaml may differ from config/config.yaml (its header says why).
 SMALLER = {("materials",), ("work_precision", "cases"), ("work_precision", "timing"), ("work_precision", "methods"),
            ("stability", "map", "mass_kg"), ("stability", "map", "impedance_kg_s"),
-           ("numerics", "fem_axi", "steps_per_contact"), ("numerics", "fem_axi", "elements_across")}
+           ("numerics", "fem_axi", "steps_per_contact"), ("numerics", "fem_axi", "elements_across"),
+           ("sensor", "fit", "apply_to"), ("sensor", "fit", "thickness_grid_m")}
 
 
 def _leaves(document: object, path: tuple = ()) -> dict:

@@ -33,7 +33,9 @@ from rodimpact.present.forces import export_forces  # noqa: E402
 from rodimpact.present.study_figures import quantity_words  # noqa: E402
 from rodimpact.present.table2_figures import SECOND_CONTACT_LABEL, short_source  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
+from rodimpact.jobs.indentation import indentation_to_file  # noqa: E402
 from rodimpact.jobs.runner import run_to_file  # noqa: E402
+from rodimpact.present.figures import METHOD_LABELS  # noqa: E402
 
 from helpers.figures import MAX_LEGEND_ENTRIES, assert_journal_ready  # noqa: E402
 
@@ -108,6 +110,8 @@ def test_the_force_fit_figure_is_journal_ready(model_runs, rendered, tmp_path) -
 
 ROWS = ("ball_3.16mm", "ball_5.56mm", "ball_12.73mm")
 READINGS = ("r1_l30", "r1_l301", "r10_l30", "r10_l301", "r10_l30_film")
+#: The readings with the sensor as built -> calibrated by the continuum.
+SENSORS = {"r10_l30_sensor": False, "r10_l30_sensor_cal": True}
 #: A user's own measurement of one more ball, on the text's rod.
 OWN = ("ball_4.75mm-r10_l30", "Our drop tests, 2024 (high-speed camera, 20 balls)")
 
@@ -133,8 +137,23 @@ def table2(shipped_project, tmp_path_factory: pytest.TempPathFactory) -> dict:
                       {n: np.array([1.0, 2.0]) for n in BAND_PARAMETERS},
                       {n: np.array([1.0, 2.0]) for n in BAND_PARAMETERS}) for r in film]
     band = write_band(folder / "film_band_r10_l30_film.h5", bands, variant="r10_l30_film", method="sem", config={})
+    # the sensor as built: the continuum on one row, the calibrated SEM on every row, with a band each
+    sensor = shipped_project.cases["ball_3.16mm-r10_l30_sensor"]
+    runs.append(run_to_file(sensor, "fem_axi", folder / sensor["id"] / "fem_axi.h5"))
+    sensor_bands = []
+    for row in ROWS:
+        case = shipped_project.cases[f"{row}-r10_l30_sensor_cal"]
+        curve = folder / f"{case['id']}.curve.h5"
+        indentation_to_file(case, str(curve))
+        runs.append(run_to_file(case, "sem", folder / case["id"] / "sem.h5", contact_curve=curve))
+        t = 1e6 * read_summary(runs[-1]).summary["contact_time_s"]
+        sensor_bands.append(write_band(folder / f"sensor_band_{case['id']}.h5", [CaseBand(
+            case["id"], float(case["measured"]["contact_time_us"]), t, np.ones((2, 1)), t * np.array([0.8, 1.3]),
+            {"a: thickness_m": np.array([1.0, 2.0])}, {"a: thickness_m": np.array([t, 1.1 * t])}, ("a: thickness_m",))],
+            variant="r10_l30_sensor_cal", method="sem", config={}))
     descriptions = {v: spec["description"] for v, spec in shipped_project.variants["table2"].items()}
-    return {"runs": runs, "sweeps": sweep_runs, "band": band, "descriptions": descriptions}
+    return {"runs": runs, "sweeps": sweep_runs, "band": band, "descriptions": descriptions,
+            "sensor_bands": sensor_bands}
 
 
 @pytest.fixture(scope="module")
@@ -143,8 +162,9 @@ def table2_figure(table2, tmp_path_factory: pytest.TempPathFactory):
     real = figures.save_figure
     figures.save_figure = lambda fig, **kwargs: (kept.append(fig), real(fig, **kwargs))
     try:
-        make_fig_table2(table2["runs"], list(READINGS), sweep_runs=table2["sweeps"], film_variants=["r10_l30_film"],
-                        band_files=[table2["band"]], descriptions=table2["descriptions"],
+        make_fig_table2(table2["runs"], [*READINGS, *SENSORS], sweep_runs=table2["sweeps"],
+                        film_variants=["r10_l30_film"], band_files=[table2["band"]], descriptions=table2["descriptions"],
+                        sensors=SENSORS, sensor_band_files=table2["sensor_bands"],
                         **(out := outputs(tmp_path_factory.mktemp("fig"), "table2_contact_time")))
     finally:
         figures.save_figure = real
@@ -212,6 +232,32 @@ def test_table2_measured_points_by_source_and_the_papers_points(table2_figure, t
         (line,) = [line for line in panel.lines if line.get_label() == f"the paper's {family.upper()} (its Table 2)"]
         expected = sorted(c["published"][family]["contact_time_us"] for c in configs)
         assert sorted(v for v in line.get_ydata() if np.isfinite(v)) == pytest.approx(expected)
+
+
+def test_every_prediction_drawn_names_its_model(table2_figure) -> None:
+    """Each line and band of a model in the Table 2 figure says which model it is in the legend:
+    a method and how it takes the contact (no film, the film as a thin layer, the sensor as built,
+    calibrated by the continuum), or the paper's; the thin-layer law is labelled an approximation,
+    and the sensor's band as the continuum's."""
+    models = [*METHOD_LABELS.values(), "the paper's"]
+    contact = ("no film", "thin layer", "sensor as built")
+    labels = [t.get_text() for t in table2_figure.legends[0].get_texts()]
+    drawn = {artist.get_label() for ax in table2_figure.axes for artist in [*ax.lines, *ax.containers]}
+    drawn = {label for label in drawn if not label.startswith("_")}
+    assert drawn <= set(labels)  # everything drawn is in the legend
+    predictions = [label for label in drawn if not label.startswith("measured") and label != SECOND_CONTACT_LABEL]
+    for label in predictions:
+        if "band" in label:
+            assert ("continuum" in label) != ("approximation" in label), label
+        else:
+            assert any(model in label for model in models), label
+            assert "the paper's" in label or any(words in label for words in contact), label
+        if "thin layer" in label and "band" not in label and "sweep" not in label:
+            assert "approximation" in label, label
+    sensor = [label for label in predictions if "sensor as built" in label]
+    assert any(METHOD_LABELS["fem_axi"] in label for label in sensor)  # the continuum, the headline
+    assert any("calibrated by the continuum" in label for label in sensor)
+    assert any("band" in label and "continuum" in label for label in sensor)
 
 
 def test_short_source_cuts_long_sources_at_a_word() -> None:

@@ -9,29 +9,16 @@ SRC_SENSOR_TABLES = sources("rodimpact.present.sensor_artifacts", "rodimpact.job
 
 
 def _sensor_readings():
-    """Reading -> whether its cases get the whole band (else the fit's grid only); each checked."""
-    named = [(f"sensor.band[{i}]", v, True) for i, v in enumerate(SENSOR.get("band", []))]
-    if SENSOR_FIT:
-        named.append(("sensor.fit.reading", SENSOR_FIT["reading"], False))
-        named += [(f"sensor.fit.apply_to[{i}]", v, False) for i, v in enumerate(SENSOR_FIT.get("apply_to", []))]
-    readings = {}
-    for field, variant, band in named:
-        cases = PROJECT.cases_in("table2", variant) if variant in TABLE2_VARIANTS else []
-        if not cases:
-            refuse(f"config/config.yaml: field '{field}': {variant!r} is not a Table 2 reading; readings: "
-                   f"{', '.join(TABLE2_VARIANTS)}")
-        if not all(curve_rule_of(c) == "indentation" and (c.get("contact") or {}).get("stack") for c in cases):
-            refuse(f"config/config.yaml: field '{field}': the reading {variant!r} needs a law calibrated by the "
-                   "continuum (from: fem_axi_indentation) on a stack (contact.stack)")
-        if SENSOR_FIT and not any(layer["name"] == SENSOR_FIT["layer"] for layer in cases[0]["contact"]["stack"]["layers"]):
-            refuse(f"config/config.yaml: field 'sensor.fit.layer': the stack of {variant!r} has no layer named "
-                   f"{SENSOR_FIT['layer']!r}")
-        readings[variant] = readings.get(variant, False) or band
+    """Reading -> whether its cases get the whole band (else the fit's grid only); the
+    configuration checked them (rodimpact.config.checks.check_sensor)."""
+    readings = {v: True for v in SENSOR.get("band", [])}
+    for v in [SENSOR_FIT["reading"], *SENSOR_FIT.get("apply_to", [])] if SENSOR_FIT else []:
+        readings.setdefault(v, False)
     return readings
 
 
 SENSOR_READINGS = _sensor_readings()
-SENSOR_READING_OF = {c["id"]: v for v in SENSOR_READINGS for c in PROJECT.cases_in("table2", v)}
+SENSOR_READING_OF = {c["id"]: v for v in SENSOR_READINGS for c in PROJECT.cases.values() if c.get("variant") == v}
 SENSOR_GRID = {f"{SENSOR_FIT['layer']}: thickness_m": SENSOR_FIT["thickness_grid_m"]} if SENSOR_FIT else {}
 
 
@@ -42,7 +29,8 @@ SENSOR_VARIANTS = {v: curve_rule_of(PROJECT.cases_in("table2", v)[0]) == "indent
 
 
 def sensor_band_files(variants):
-    return [f"results/studies/sensor_band/{c['id']}.h5" for v in variants for c in PROJECT.cases_in("table2", v)]
+    return [f"results/studies/sensor_band/{case}.h5" for v in variants for case, reading in SENSOR_READING_OF.items()
+            if reading == v]
 
 
 def sensor_targets():
@@ -52,6 +40,7 @@ def sensor_targets():
         targets += expand("results/tables/sensor_band.{ext}", ext=["csv", "md", "provenance.json"])
     if SENSOR_FIT:
         targets += expand("results/tables/sensor_fit.{ext}", ext=["csv", "md", "json", "provenance.json"])
+        targets += expand("results/figures/sensor_fit.{ext}", ext=["pdf", "png", "provenance.json"])
     return targets
 
 
@@ -85,8 +74,7 @@ rule sensor_band_table:
     """The sensor's band of every case of the band readings."""
     input:
         bands=sensor_band_files([v for v, band in SENSOR_READINGS.items() if band]),
-        cases=[f"results/cases/{c['id']}.yaml" for v, band in SENSOR_READINGS.items() if band
-               for c in PROJECT.cases_in("table2", v)],
+        cases=[f"results/cases/{case}.yaml" for case, v in SENSOR_READING_OF.items() if SENSOR_READINGS[v]],
         code=SRC_SENSOR_TABLES,
     output:
         csv=report(
@@ -140,3 +128,40 @@ rule sensor_fit:
         "../envs/rodimpact.yaml"
     script:
         "../scripts/sensor_fit.py"
+
+
+rule fig_sensor_fit:
+    """The inverse analysis as a figure: measured, the sourced stack, the fitted one, the rows held out."""
+    input:
+        fitted=sensor_band_files([SENSOR_FIT["reading"]] if SENSOR_FIT else []),
+        applied=sensor_band_files(SENSOR_FIT.get("apply_to", []) if SENSOR_FIT else []),
+        cases=[f"results/cases/{c}.yaml" for c in SENSOR_READING_OF],
+        code=SRC_SENSOR_TABLES,
+    output:
+        pdf=report(
+            "results/figures/sensor_fit.pdf",
+            caption="../report/sensor_fit_figure.rst",
+            category="Paper, Table 2",
+            subcategory="The sensor as built",
+            labels={"artifact": "A fit of the bond line (figure)", "format": "PDF"},
+        ),
+        png=report(
+            "results/figures/sensor_fit.png",
+            caption="../report/sensor_fit_figure.rst",
+            category="Paper, Table 2",
+            subcategory="The sensor as built",
+            labels={"artifact": "A fit of the bond line (figure)", "format": "PNG"},
+        ),
+        provenance="results/figures/sensor_fit.provenance.json",
+    params:
+        layer=SENSOR_FIT["layer"] if SENSOR_FIT else "",
+        descriptions={v: spec.get("description", "") for v, spec in PROJECT.variants.get("table2", {}).items()},
+    log:
+        "logs/figures/sensor_fit.log",
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
+    conda:
+        "../envs/rodimpact.yaml"
+    script:
+        "../scripts/fig_sensor_fit.py"

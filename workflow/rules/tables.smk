@@ -88,10 +88,12 @@ rule fig2_comparison:
 
 
 # The sensor film. The text's rod by role: without the film (Hertz), with it (the thin-layer law;
-# fem_axi's bonded film), with the law calibrated by the continuum, with and without the film.
+# fem_axi's bonded film), with the law calibrated by the continuum, with and without the film,
+# and with the sensor as built (fem_axi's bonded layers; the law calibrated on them).
 TEXT_ROD_READINGS = {role: variant for role, variant in (
     ("no_film", "r10_l30"), ("film", "r10_l30_film"), ("film_calibrated", "r10_l30_film_cal"),
-    ("no_film_calibrated", "r10_l30_cal")) if variant in TABLE2_VARIANTS}
+    ("no_film_calibrated", "r10_l30_cal"), ("sensor", "r10_l30_sensor"),
+    ("sensor_calibrated", "r10_l30_sensor_cal")) if variant in TABLE2_VARIANTS}
 # The Table 2 cases whose law the continuum calibrates: one indentation curve each.
 CALIBRATED_CASES = [c["id"] for c in PROJECT.cases_in("table2") if curve_rule_of(c) == "indentation"]
 
@@ -102,6 +104,8 @@ rule table2_film:
     input:
         runs=[run for v in TEXT_ROD_READINGS.values() for run in table2_runs(v)],
         band=f"results/studies/film_band_{TEXT_ROD_READINGS.get('film')}.h5",
+        sensor_bands=sensor_band_files([v for v in [TEXT_ROD_READINGS.get("sensor_calibrated")]
+                                        if SENSOR_READINGS.get(v)]),
         code=SRC_PRESENT,
     output:
         csv=report(

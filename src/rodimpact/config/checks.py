@@ -10,11 +10,12 @@ from __future__ import annotations
 from typing import Any, Callable, Mapping
 
 from rodimpact.analysis.studies import level_case
+from rodimpact.contact.laws import law_of
 from rodimpact.solvers.field import FIELD_OUTPUT
 from rodimpact.solvers.options import OptionError
 from rodimpact.solvers.registry import METHODS
 
-__all__ = ["check_outputs", "check_run", "check_stability", "check_work_precision"]
+__all__ = ["check_outputs", "check_run", "check_sensor", "check_stability", "check_work_precision"]
 
 
 def check_run(case: Mapping[str, Any], method: str) -> None:
@@ -105,3 +106,29 @@ def check_stability(study: Mapping[str, Any] | None, cases: Mapping[str, dict], 
     spec = study.get("map")
     if spec and spec["base_case"] not in cases:
         raise error(f"unknown case {spec['base_case']!r}", field="stability.map.base_case")
+
+
+def check_sensor(study: Mapping[str, Any] | None, cases: Mapping[str, dict], error: Callable[..., Exception]) -> None:
+    """Check config.yaml's ``sensor`` against the cases (``error`` as above): each reading it
+    names has cases, every one calibrated by the continuum (a law that needs a curve) on a
+    ``stack``, and the fitted layer is a layer of each."""
+    if not study:
+        return
+    fit = study.get("fit")
+    named = [(f"sensor.band[{i}]", v) for i, v in enumerate(study.get("band", []))]
+    if fit:
+        named += [("sensor.fit.reading", fit["reading"])]
+        named += [(f"sensor.fit.apply_to[{i}]", v) for i, v in enumerate(fit.get("apply_to", []))]
+    readings = sorted({c["variant"] for c in cases.values() if c.get("variant")})
+    for field, variant in named:
+        members = [c for c in cases.values() if c.get("variant") == variant]
+        if not members:
+            raise error(f"unknown reading {variant!r}; readings: {', '.join(readings)}", field=field)
+        for case in members:
+            contact = case.get("contact") or {}
+            if law_of(contact).needs.curve_rule is None or not contact.get("stack"):
+                raise error(f"case {case['id']!r} of the reading {variant!r} needs a law calibrated by the continuum "
+                            "(from: fem_axi_indentation) on a stack (contact.stack)", field=field)
+            if fit and fit["layer"] not in [layer["name"] for layer in contact["stack"]["layers"]]:
+                raise error(f"case {case['id']!r}: its stack has no layer named {fit['layer']!r}",
+                            field="sensor.fit.layer")

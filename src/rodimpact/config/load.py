@@ -27,7 +27,7 @@ from typing import Any
 from rodimpact.analysis.sweeps import SweepError, sweep_point_case, sweep_points
 from rodimpact.contact.laws import contact_schema
 from rodimpact.config.bodies import MATERIAL_FIELDS, check_law, check_material_ranges, resolve_contact, resolve_material
-from rodimpact.config.checks import check_outputs, check_run, check_stability, check_work_precision
+from rodimpact.config.checks import check_outputs, check_run, check_sensor, check_stability, check_work_precision
 from rodimpact.config.plausible import Budget, check_plausible
 from rodimpact.config.project import ConfigError, Project, _File
 from rodimpact.config.schema import Schemas, deep_merge, format_path, with_floats
@@ -431,5 +431,6 @@ class _ProjectBuilder:
         check_work_precision(self.config.get("work_precision"), self.cases, self.config["numerics"],
                              self.config_source.error)
         check_stability(self.config.get("stability"), self.cases, self.sets, self.config_source.error)
+        check_sensor(self.config.get("sensor"), self.cases, self.config_source.error)
         return Project(cases=self.cases, sets=self.sets, variants=self.variants, sweeps=self.sweeps,
                        config=self.config)

@@ -15,6 +15,7 @@ run's contact force as CSV, and its closed form as JSON) and
 
 What it may import: :mod:`rodimpact.storage` (to read runs, bands, curves and case files, and write
 files), :mod:`rodimpact.analysis`, :mod:`rodimpact.solvers.registry` (labels, styles, order of the
-methods), :mod:`rodimpact.contact.laws` (the law of a case, its words), pandas
+methods), :mod:`rodimpact.contact.laws` (the law of a case, its words), :mod:`rodimpact.contact.stack`
+(the layers of a case's film or stack), pandas
 and matplotlib (headless). Never a solver.
 """

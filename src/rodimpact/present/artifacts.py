@@ -182,24 +182,30 @@ def make_fig_table2(runs: Sequence[str | Path], variants: Sequence[str], *, pdf:
 
 
 FILM_TABLE_CAPTION = (
-    "Table 2 on the rod of the text, without and with the sensor film: measured and published contact "
-    "times, ours by every method (no film: Hertz; film: the thin-layer law for the 1-D methods, the bonded "
-    "film for the continuum; calibrated: the law of the continuum's static indentation), the film's "
-    "prediction band (SEM over the film constants' ranges), each model's |model - measured| / measured, "
-    "the contact radius over the film thickness (thin-layer law, SEM), and the model-form error of the "
-    "quasi-static contact: (calibrated SEM with film - continuum with film) / continuum with film.")
+    "Table 2 on the rod of the text, without the sensor, with the film alone and with the sensor as built "
+    "(electrodes, film and bond line, each from its source): measured and published contact times, ours by "
+    "every method (no film: Hertz; film and sensor: the layers bonded in the continuum, the thin-layer law "
+    "for the 1-D methods, an approximation; calibrated: the law of the continuum's static indentation), "
+    "the sensor's prediction band from the continuum (calibrated SEM over the stack's sourced ranges), the "
+    "film's band with the thin-layer law (approximation), each model's |model - measured| / measured, the "
+    "contact radius over the film thickness (thin-layer law, SEM), and the model-form error of the "
+    "quasi-static contact: (calibrated SEM - continuum) / continuum, with the film and with the sensor.")
 
 
 def make_table2_film(runs: Sequence[str | Path], variants: Mapping[str, str], band: str | Path, *,
-                     csv: str | Path, md: str | Path, provenance: str | Path, html: str | Path | None = None) -> None:
-    """Table 2 on one rod without and with the film (:func:`film_table_frame`), and its sidecar."""
+                     csv: str | Path, md: str | Path, provenance: str | Path, html: str | Path | None = None,
+                     sensor_bands: Sequence[str | Path] = ()) -> None:
+    """Table 2 on one rod without and with the film and the sensor as built
+    (:func:`film_table_frame`), and its sidecar."""
     records = load_records(runs)
     band_variant, bands = read_band(band)
     if band_variant != variants.get("film"):
         raise ValueError(f"{band}: the band of {band_variant!r}, not of the film reading {variants.get('film')!r}")
-    frame = film_table_frame(records, variants, bands)
+    sensor = [b for p in sensor_bands for b in read_band(p)[1]]
+    frame = film_table_frame(records, variants, bands, sensor_bands=sensor)
     write_table(frame, csv=csv, md=md, html=html, caption=FILM_TABLE_CAPTION, views=film_table_views(frame))
-    write_provenance_with_files(provenance, records, _outputs(csv, md, html), {"band": [band]})
+    write_provenance_with_files(provenance, records, _outputs(csv, md, html),
+                                {"band": [band], "sensor band": sensor_bands})
     log.info("table 2 with the film: %d rows from %d runs", len(frame), len(records))
 
 

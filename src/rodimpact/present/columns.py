@@ -73,7 +73,8 @@ SUFFIX_UNITS = {"_kg_s": "kg/s", "_m_s": "m/s", "_us": "µs", "_um": "µm", "_mm
 
 #: The readings of Table 2 with and without the sensor film (``film_tables.FILM_ROLES``), in words.
 ROLE_WORDS = {"no_film": "no film", "film": "film", "film_calibrated": "film, calibrated",
-              "no_film_calibrated": "calibrated, no film"}
+              "no_film_calibrated": "calibrated, no film", "sensor": "sensor as built",
+              "sensor_calibrated": "sensor as built, calibrated"}
 
 _TEXT = ""
 _ORDINALS = ("1st", "2nd", "3rd")
@@ -105,6 +106,11 @@ COLUMNS: dict[str, Column] = {
     "band_max_us": Column("Band max", "µs"), "measured_in_band": Column("Measured in band", fmt=_TEXT),
     "monotone": Column("Monotone", fmt=_TEXT), "radius_to_thickness": Column("Contact radius / film thickness"),
     "model_form_pct": Column("Model-form error", "%"),
+    "sensor_model_form_pct": Column("Model-form error, sensor", "%"),
+    "sensor_band_min_us": Column("Sensor band min (continuum)", "µs"),
+    "sensor_band_max_us": Column("Sensor band max (continuum)", "µs"),
+    "thin_layer_band_min_us": Column("Thin-layer band min (approximation)", "µs"),
+    "thin_layer_band_max_us": Column("Thin-layer band max (approximation)", "µs"),
     "nominal_error_pct": Column("Nominal error", "%"), "constants": Column("Constants", fmt=_TEXT),
     "role": Column("Role", fmt=_TEXT), "fitted_us": Column("Fitted stack", "µs"),
     "held_out_us": Column("Held out", "µs"), "fitted_error_pct": Column("Fitted stack error", "%"),

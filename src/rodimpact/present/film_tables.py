@@ -22,6 +22,7 @@ import numpy as np
 import pandas as pd
 
 from rodimpact.contact.laws import DEFAULT_LAW
+from rodimpact.contact.stack import Stack
 from rodimpact.storage.atomic import atomic_output
 from rodimpact.storage.bands import CaseBand
 from rodimpact.storage.curves import ContactCurve
@@ -36,7 +37,7 @@ __all__ = ["FILM_ROLES", "film_band_frame", "film_indentation_frame", "film_tabl
 log = logging.getLogger(__name__)
 
 #: The readings :func:`film_table_frame` compares, by role: the column suffix of each.
-FILM_ROLES = ("no_film", "film", "film_calibrated", "no_film_calibrated")
+FILM_ROLES = ("no_film", "film", "film_calibrated", "no_film_calibrated", "sensor", "sensor_calibrated")
 
 
 def reading_of(config: Mapping[str, Any]) -> dict[str, Any]:
@@ -116,8 +117,8 @@ def _row_of(case_id: str, variant: str, rows: Mapping[str, str]) -> str:
 
 def film_table_frame(records: Sequence[RunRecord], variants: Mapping[str, str], bands: Sequence[CaseBand] = (),
                      *, calibrated_method: str = "sem", continuum_method: str = "fem_axi",
-                     radius_method: str = "sem") -> pd.DataFrame:
-    """Table 2 on one rod, without and with the film, one row per Table 2 row (by mass).
+                     radius_method: str = "sem", sensor_bands: Sequence[CaseBand] = ()) -> pd.DataFrame:
+    """Table 2 on one rod, without and with the film and the sensor as built, one row per Table 2 row (by mass).
 
     Parameters
     ----------
@@ -126,12 +127,19 @@ def film_table_frame(records: Sequence[RunRecord], variants: Mapping[str, str], 
     variants : mapping
         Role (one of :data:`FILM_ROLES`) -> variant: ``no_film`` (Hertz), ``film`` (the
         thin-layer law; the continuum's bonded film), ``film_calibrated`` (the law calibrated
-        by the continuum, with the film), ``no_film_calibrated`` (calibrated, no film).
+        by the continuum, with the film), ``no_film_calibrated`` (calibrated, no film),
+        ``sensor`` (the sensor as built: the continuum's bonded layers; the stack's thin-layer
+        law for the 1-D methods), ``sensor_calibrated`` (the law calibrated on the stack).
     bands : sequence of CaseBand
-        The prediction bands of the ``film`` variant's cases (``read_band``).
+        The thin-layer law's prediction bands of the ``film`` variant's cases (``read_band``):
+        ``thin_layer_band_min_us``, ``thin_layer_band_max_us``.
     calibrated_method, continuum_method : str
         ``model_form_pct`` = (``{calibrated}_film_calibrated_us`` - ``{continuum}_film_us``) /
-        ``{continuum}_film_us`` x 100: the error of the quasi-static contact law.
+        ``{continuum}_film_us`` x 100: the error of the quasi-static contact law;
+        ``sensor_model_form_pct`` the same for the sensor.
+    sensor_bands : sequence of CaseBand
+        The bands from the continuum of the ``sensor_calibrated`` variant's cases:
+        ``sensor_band_min_us``, ``sensor_band_max_us``.
     radius_method : str
         The method of the ``film`` run whose ``film_radius_to_thickness`` is reported.
 
@@ -139,9 +147,10 @@ def film_table_frame(records: Sequence[RunRecord], variants: Mapping[str, str], 
     -------
     DataFrame
         ``row, mass_g, diameter_mm, measured_us, published_fem_us, published_sem_us``, then
-        ``{method}_{role}_us`` per role and method present, ``band_min_us, band_max_us``,
+        ``{method}_{role}_us`` per role and method present, ``sensor_band_min_us,
+        sensor_band_max_us, thin_layer_band_min_us, thin_layer_band_max_us``,
         ``published_fem_error_pct, published_sem_error_pct``, ``{method}_{role}_error_pct``,
-        ``radius_to_thickness``, ``model_form_pct``.
+        ``radius_to_thickness``, ``model_form_pct``, ``sensor_model_form_pct``.
 
     Raises
     ------
@@ -176,21 +185,28 @@ def film_table_frame(records: Sequence[RunRecord], variants: Mapping[str, str], 
         frame = frame.merge(part[["row", *(c for c in part.columns if c in model_columns)]], on="row", how="left")
     measured = frame["measured_us"].to_numpy(float)
     by_case = {r.case_id: r.config.get("row", r.case_id) for r in records}
-    film_variant = variants.get("film", "")
-    band_by_row = {_row_of(b.case_id, film_variant, by_case): b for b in bands}
-    frame["band_min_us"] = [band_by_row[r].band_min_us if r in band_by_row else math.nan for r in frame["row"]]
-    frame["band_max_us"] = [band_by_row[r].band_max_us if r in band_by_row else math.nan for r in frame["row"]]
+    band_columns = []
+    for prefix, role, case_bands in (("sensor", "sensor_calibrated", sensor_bands), ("thin_layer", "film", bands)):
+        variant = variants.get(role, "")
+        band_by_row = {_row_of(b.case_id, variant, by_case): b for b in case_bands}
+        for end in ("min", "max"):
+            frame[f"{prefix}_band_{end}_us"] = [getattr(band_by_row[r], f"band_{end}_us") if r in band_by_row
+                                                else math.nan for r in frame["row"]]
+            band_columns.append(f"{prefix}_band_{end}_us")
     for column in model_columns:
         frame[column.removesuffix("_us") + "_error_pct"] = _error_pct(frame[column], measured)
+    film_variant = variants.get("film", "")
     ratio = {rec.config.get("row"): float(rec.summary.get("film_radius_to_thickness", math.nan)) for rec in records
              if rec.method == radius_method and rec.config.get("variant") == film_variant}
     frame["radius_to_thickness"] = [ratio.get(r, math.nan) for r in frame["row"]]
-    calibrated, continuum = f"{calibrated_method}_film_calibrated_us", f"{continuum_method}_film_us"
-    if calibrated in frame and continuum in frame:
-        frame["model_form_pct"] = (frame[calibrated] - frame[continuum]) / frame[continuum] * 100.0
-    else:
-        frame["model_form_pct"] = math.nan
-    head = base[:6] + model_columns + ["band_min_us", "band_max_us"] + base[6:]
+    for name, calibrated, continuum in (
+            ("model_form_pct", f"{calibrated_method}_film_calibrated_us", f"{continuum_method}_film_us"),
+            ("sensor_model_form_pct", f"{calibrated_method}_sensor_calibrated_us", f"{continuum_method}_sensor_us")):
+        if calibrated in frame and continuum in frame:
+            frame[name] = (frame[calibrated] - frame[continuum]) / frame[continuum] * 100.0
+        else:
+            frame[name] = math.nan
+    head = base[:6] + model_columns + band_columns + base[6:]
     frame = frame[head + [c for c in frame.columns if c not in head]]
     return frame.sort_values("mass_g", kind="stable").reset_index(drop=True)
 
@@ -246,8 +262,8 @@ def film_indentation_frame(curves: Sequence[ContactCurve]) -> pd.DataFrame:
     rows = []
     for curve in curves:
         config, data = curve.config, curve.data
-        film = (config.get("contact") or {}).get("film")
-        thickness = float(film["thickness_m"]) if film else math.nan
+        stack = Stack.of(config.get("contact"))
+        thickness = stack.thickness_m if stack is not None else math.nan
         approach, force = data["approach_m"], data["force_N"]
         law_approach = data.get("law_approach_m", np.full_like(force, math.nan))
         radius = data["contact_radius_m"]

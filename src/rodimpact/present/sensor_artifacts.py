@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 import logging
 from pathlib import Path
-from typing import Sequence
+from typing import Mapping, Sequence
 
 from rodimpact.present.film_tables import write_provenance_with_files
 from rodimpact.present.sensor_tables import sensor_band_frame, sensor_fit_frame
@@ -14,8 +14,9 @@ from rodimpact.present.tables import write_table
 from rodimpact.storage.atomic import atomic_output
 from rodimpact.storage.bands import read_band
 from rodimpact.storage.casefile import read_case_file
+from rodimpact.storage.sidecar import provenance_record
 
-__all__ = ["make_sensor_band_table", "make_sensor_fit_table"]
+__all__ = ["make_fig_sensor_fit", "make_sensor_band_table", "make_sensor_fit_table"]
 
 log = logging.getLogger(__name__)
 
@@ -44,18 +45,37 @@ def make_sensor_band_table(bands: Sequence[str | Path], case_files: Sequence[str
     log.info("sensor bands: %d cases, %d measurements inside", len(frame), int(frame["measured_in_band"].sum()))
 
 
-def make_sensor_fit_table(fitted: Sequence[str | Path], applied: Sequence[str | Path],
-                          case_files: Sequence[str | Path], layer: str, *, csv: str | Path, md: str | Path,
-                          summary: str | Path, provenance: str | Path, html: str | Path | None = None) -> None:
-    """The inverse analysis (:func:`sensor_fit_frame`), its table and its summary (JSON)."""
+def _fit(fitted: Sequence[str | Path], applied: Sequence[str | Path], case_files: Sequence[str | Path], layer: str):
     cases = {record["case_id"]: record["case"] for record in map(read_case_file, case_files)}
     variants, bands = {}, {}
     for path in [*fitted, *applied]:
         variant, group = read_band(path)
         for band in group:
             variants[band.case_id], bands[str(path)] = variant, band
-    frame, facts = sensor_fit_frame([bands[str(p)] for p in fitted], [bands[str(p)] for p in applied], cases, layer,
-                                    variants)
+    return sensor_fit_frame([bands[str(p)] for p in fitted], [bands[str(p)] for p in applied], cases, layer, variants)
+
+
+def make_fig_sensor_fit(fitted: Sequence[str | Path], applied: Sequence[str | Path], case_files: Sequence[str | Path],
+                        layer: str, *, pdf: str | Path, png: str | Path, provenance: str | Path,
+                        descriptions: Mapping[str, str] | None = None) -> None:
+    """The fit's figure (:func:`~rodimpact.present.sensor_figures.plot_sensor_fit`)."""
+    from rodimpact.present.figures import save_figure
+    from rodimpact.present.sensor_figures import plot_sensor_fit
+
+    frame, facts = _fit(fitted, applied, case_files, layer)
+    artifacts = [pdf, png]
+    record = provenance_record([], artifacts)
+    record["input_files"] = [str(p) for p in [*fitted, *applied, *case_files]]
+    save_figure(plot_sensor_fit(frame, facts, descriptions), pdf=pdf, png=png, provenance=record,
+                title="A fit of the sensor's bond line")
+    write_provenance_with_files(provenance, [], artifacts, {"band": [*fitted, *applied], "case file": case_files})
+
+
+def make_sensor_fit_table(fitted: Sequence[str | Path], applied: Sequence[str | Path],
+                          case_files: Sequence[str | Path], layer: str, *, csv: str | Path, md: str | Path,
+                          summary: str | Path, provenance: str | Path, html: str | Path | None = None) -> None:
+    """The inverse analysis (:func:`sensor_fit_frame`), its table and its summary (JSON)."""
+    frame, facts = _fit(fitted, applied, case_files, layer)
     views = panels(frame, f"A fit, not a prediction: the {layer}'s thickness fitted to the measurements",
                    ["row"], ["measured_us", "nominal_us", "fitted_us", "held_out_us", "nominal_error_pct",
                              "fitted_error_pct", "held_out_error_pct"], by="variant")

@@ -28,9 +28,14 @@ from rodimpact.tools.bench_plan import (
 from rodimpact.jobs.machine import machine_info
 from rodimpact.jobs.resources import estimate_resources
 
-__all__ = ["benchmark_fem1d", "benchmark_fem_axi", "benchmark_sem", "resource_margins", "write_benchmark"]
+__all__ = ["STACK_RUN_TARGET_S", "benchmark_fem1d", "benchmark_fem_axi", "benchmark_sem", "resource_margins",
+           "stack_runs", "write_benchmark"]
 
 log = logging.getLogger(__name__)
+
+#: The speed target of a fem_axi run of a row with a stack of several layers (the sensor as
+#: built) at the shipped level, s, on the 2-core machine the project is built on.
+STACK_RUN_TARGET_S = 15.0
 
 def _timed(problem: ImpactProblem, options: Any, repeats: int, solver=solve_sem):
     best, result = np.inf, None
@@ -119,13 +124,15 @@ def _fem_axi_task(case: Mapping[str, Any]) -> dict[str, Any]:
     import resource
 
     started = time.perf_counter()
-    result = solve_fem_axi(AxiImpact.from_case(case), FEMAxiOptions.from_settings(case["numerics"]["fem_axi"]),
+    problem = AxiImpact.from_case(case)
+    result = solve_fem_axi(problem, FEMAxiOptions.from_settings(case["numerics"]["fem_axi"]),
                            stations=case.get("stations", ()))
     wall = time.perf_counter() - started
     sem = solve_sem(ImpactProblem.from_case(case), SEMOptions(steps_per_contact=FEM_AXI_SEM_STEPS))
     full = _far_bar_check(case, result) if case["id"] in FAR_BAR_CHECK_CASES else {}
     return {"case": case["id"], "method": "fem_axi", "success": result.success,
             "elements_across": case["numerics"]["fem_axi"]["elements_across"],
+            "layers": 0 if problem.stack is None else len(problem.stack.layers),
             "steps_per_contact": case["numerics"]["fem_axi"]["steps_per_contact"],
             "n_dofs": result.extra["rod_dofs"] + result.extra["impactor_dofs"], "n_steps": result.n_steps,
             "wall_time_s": wall, "peak_memory_MiB": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
@@ -209,8 +216,19 @@ def resource_margins(frame: pd.DataFrame) -> pd.DataFrame:
     return frame.loc[frame["method"] == "fem_axi", columns].reset_index(drop=True)
 
 
+def stack_runs(frame: pd.DataFrame) -> pd.DataFrame:
+    """The fem_axi rows of a ``fem.csv`` benchmark whose case has a stack of several layers,
+    with ``within_target`` (wall time at most :data:`STACK_RUN_TARGET_S`)."""
+    if "layers" not in frame.columns:
+        raise ValueError("frame: no 'layers' column; rerun make bench")
+    rows = frame.loc[(frame["method"] == "fem_axi") & (frame["layers"] > 1), ["case", "layers", "n_dofs",
+                                                                                "wall_time_s"]]
+    return rows.assign(within_target=rows["wall_time_s"] <= STACK_RUN_TARGET_S).reset_index(drop=True)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m rodimpact.tools.bench results/benchmarks/fem.csv``: log the resource margins."""
+    """``python -m rodimpact.tools.bench results/benchmarks/fem.csv``: log the resource margins,
+    and check the stack rows' speed target (exit status 1 when a row misses it)."""
     import argparse
 
     parser = argparse.ArgumentParser(prog="python -m rodimpact.tools.bench", description=main.__doc__)
@@ -226,6 +244,14 @@ def main(argv: Sequence[str] | None = None) -> int:
              table.to_string(index=False, float_format=lambda x: f"{x:.4g}"))
     log.info("smallest margins: run time x%.1f, memory x%.1f", table["runtime_margin"].min(),
              table["mem_margin"].min())
+    stacks = stack_runs(pd.read_csv(args.csv))
+    if not stacks.empty:
+        log.info("fem_axi with a stack of layers: at most %.1f s a run (target %g s)\n%s", stacks["wall_time_s"].max(),
+                 STACK_RUN_TARGET_S, stacks.to_string(index=False, float_format=lambda x: f"{x:.4g}"))
+        if not stacks["within_target"].all():
+            log.error("rodimpact.tools.bench: %d stack run(s) over the %g s target", int((~stacks["within_target"]).sum()),
+                      STACK_RUN_TARGET_S)
+            return 1
     return 0
 
 
