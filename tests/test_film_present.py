@@ -98,8 +98,9 @@ def test_film_table_numbers(store: dict) -> None:
     frame = film_table_frame(records, ROLES, bands)
     assert list(frame["row"]) == ["ball_b", "ball_a"]  # by mass
     for column in ("sem_no_film_us", "fem1d_no_film_us", "fem_axi_no_film_us", "sem_film_us", "fem1d_film_us",
-                   "fem_axi_film_us", "sem_film_calibrated_us", "sem_no_film_calibrated_us", "band_min_us",
-                   "band_max_us", "radius_to_thickness", "model_form_pct"):
+                   "fem_axi_film_us", "sem_film_calibrated_us", "sem_no_film_calibrated_us", "thin_layer_band_min_us",
+                   "thin_layer_band_max_us", "sensor_band_min_us", "sensor_band_max_us", "radius_to_thickness",
+                   "model_form_pct", "sensor_model_form_pct"):
         assert column in frame, column
     for record in frame.itertuples():
         measured = ROWS[record.row][2]
@@ -115,8 +116,10 @@ def test_film_table_numbers(store: dict) -> None:
         assert record.model_form_pct == pytest.approx((calibrated - continuum) / continuum * 100, rel=1e-9)
         assert record.model_form_pct == pytest.approx((0.95 / (0.9 * 1.03) - 1) * 100, abs=1e-9)
         assert record.radius_to_thickness == pytest.approx(4.0 if record.row == "ball_b" else 9.0, abs=1e-12)
-    assert list(frame["band_min_us"]) == pytest.approx([30.0, 95.0], abs=1e-12)
-    assert list(frame["band_max_us"]) == pytest.approx([38.0, 105.0], abs=1e-12)
+    assert list(frame["thin_layer_band_min_us"]) == pytest.approx([30.0, 95.0], abs=1e-12)
+    assert list(frame["thin_layer_band_max_us"]) == pytest.approx([38.0, 105.0], abs=1e-12)
+    # no sensor reading: its band and model-form columns are there, and empty
+    assert frame[["sensor_band_min_us", "sensor_band_max_us", "sensor_model_form_pct"]].isna().all().all()
 
 
 def test_film_table_refuses_a_stray_run(store: dict) -> None:
@@ -243,7 +246,7 @@ def test_table2_figure_draws_the_film_on_its_rod(store: dict) -> None:
     visible = [ax for ax in fig.axes if ax.get_visible()]
     assert len(visible) == 1 and "µs" in visible[0].get_ylabel() and "g" in visible[0].get_xlabel()
     labels = [t.get_text() for t in fig.legends[0].get_texts()]
-    assert any("with film" in label and "3 GPa" in label for label in labels), labels
+    assert any("film as a thin layer" in label and "3 GPa" in label for label in labels), labels
     assert any("2 to 4 GPa" in label for label in labels) and any("band" in label for label in labels), labels
     low, high = visible[0].get_ylim()
     assert 0 < low <= 30.0 and high >= 120.0  # the band of the lightest ball and the sweep are inside

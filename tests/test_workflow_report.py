@@ -98,7 +98,15 @@ def _expected_report(workdir: Path) -> dict[str, list[str]]:
     expected["results/tables/table2_variants.csv"] = [
         "Error against the measurements, per rod geometry reading and method", "Paper's mean error",
         *variants, *(settings[m] for m in table2)]
-    expected["results/tables/table2_film.csv"] = ["Table 2 with and without the sensor film", "Against the paper"]
+    expected["results/tables/table2_film.csv"] = [
+        "Table 2 without the sensor, with the film alone and with the sensor as built", "Against the paper"]
+    if config.get("sensor", {}).get("band"):
+        expected["results/tables/sensor_band.csv"] = [
+            "The sensor as built: the continuum's prediction and its band", "What to see", "sensor_band/*.h5"]
+    if config.get("sensor", {}).get("fit"):
+        expected["results/tables/sensor_fit.csv"] = ["A fit, not a prediction", "Held out", "never extrapolates"]
+        for ext in ("png", "pdf"):
+            expected[f"results/figures/sensor_fit.{ext}"] = ["A fit, not a prediction", "Purple rings"]
     expected["results/tables/film_band.csv"] = ["prediction band", "Against the paper"]
     expected["results/tables/film_indentation.csv"] = ["calibrated by the continuum", "Against the paper"]
     for ext in ("png", "pdf"):

@@ -2,48 +2,6 @@
 # SEM with the law the continuum calibrates on the case's stack, over the stack's sourced ranges
 # (results/studies/sensor_band/{case}.h5; a reading of the fit only gets its layer's thickness
 # grid); then the bands' table and the inverse analysis, labelled as a fit.
-SENSOR = config.get("sensor", {})
-SENSOR_FIT = SENSOR.get("fit")
-SRC_SENSOR = sources("rodimpact.jobs.sensor_band", "rodimpact.jobs.logs")
-SRC_SENSOR_TABLES = sources("rodimpact.present.sensor_artifacts", "rodimpact.jobs.logs")
-
-
-def _sensor_readings():
-    """Reading -> whether its cases get the whole band (else the fit's grid only); the
-    configuration checked them (rodimpact.config.checks.check_sensor)."""
-    readings = {v: True for v in SENSOR.get("band", [])}
-    for v in [SENSOR_FIT["reading"], *SENSOR_FIT.get("apply_to", [])] if SENSOR_FIT else []:
-        readings.setdefault(v, False)
-    return readings
-
-
-SENSOR_READINGS = _sensor_readings()
-SENSOR_READING_OF = {c["id"]: v for v in SENSOR_READINGS for c in PROJECT.cases.values() if c.get("variant") == v}
-SENSOR_GRID = {f"{SENSOR_FIT['layer']}: thickness_m": SENSOR_FIT["thickness_grid_m"]} if SENSOR_FIT else {}
-
-
-# The Table 2 readings with the sensor as built (a stack on the rod) -> whether their law is
-# calibrated by the continuum: the Table 2 figure draws them on their rod's panel.
-SENSOR_VARIANTS = {v: curve_rule_of(PROJECT.cases_in("table2", v)[0]) == "indentation" for v in TABLE2_VARIANTS
-                   if all((c.get("contact") or {}).get("stack") for c in PROJECT.cases_in("table2", v))}
-
-
-def sensor_band_files(variants):
-    return [f"results/studies/sensor_band/{case}.h5" for v in variants for case, reading in SENSOR_READING_OF.items()
-            if reading == v]
-
-
-def sensor_targets():
-    """The sensor's tables, when the configuration asks for them."""
-    targets = []
-    if any(SENSOR_READINGS.values()):
-        targets += expand("results/tables/sensor_band.{ext}", ext=["csv", "md", "provenance.json"])
-    if SENSOR_FIT:
-        targets += expand("results/tables/sensor_fit.{ext}", ext=["csv", "md", "json", "provenance.json"])
-        targets += expand("results/figures/sensor_fit.{ext}", ext=["pdf", "png", "provenance.json"])
-    return targets
-
-
 rule sensor_band:
     """The calibrated SEM over one case's sensor stack: its band, and the fit's thickness grid."""
     input:

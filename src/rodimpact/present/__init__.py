@@ -7,8 +7,8 @@ panels of chosen columns), :mod:`.table_views` (which columns each table shows),
 (Fig. 2, Fig. 4, the force's closed form), :mod:`.table2_figures` (the Table 2 figure: contact
 time against ball mass per reading of the rod), :mod:`.film_tables` and :mod:`.film_figures` (the sensor
 film: Table 2 with and without it, its prediction bands, the indentation curves, the contact
-force), :mod:`.sensor_tables` and :mod:`.sensor_artifacts` (the sensor as built: its band from
-the continuum and the fit of its bond line), :mod:`.study_figures` (error against run time, the stability map), :mod:`.wave_figures`
+force), :mod:`.sensor_tables`, :mod:`.sensor_figures` and :mod:`.sensor_artifacts` (the sensor as built:
+its band from the continuum and the fit of its bond line), :mod:`.study_figures` (error against run time, the stability map), :mod:`.wave_figures`
 (the strain over the rod against time: its figure and its artifact), :mod:`.forces` (each
 run's contact force as CSV, and its closed form as JSON) and
 :mod:`.artifacts` (one function per artifact of the workflow).

@@ -41,14 +41,15 @@ FILM_ROLES = ("no_film", "film", "film_calibrated", "no_film_calibrated", "senso
 
 
 def reading_of(config: Mapping[str, Any]) -> dict[str, Any]:
-    """What a run's case reads the experiment as: rod (mm), film (bool), contact law, film modulus."""
+    """What a run's case reads the experiment as: rod (mm), film (bool: a film or a stack of
+    layers on the struck end), contact law, film modulus (a one-layer film's)."""
     contact = config.get("contact") or {}
     film = contact.get("film")
     material = (film or {}).get("material") or {}
     return {
         "rod_radius_mm": 1000.0 * float(config["rod"]["radius_m"]) if "radius_m" in config["rod"] else math.nan,
         "rod_length_mm": 1000.0 * float(config["rod"]["length_m"]),
-        "film": film is not None,
+        "film": Stack.of(contact) is not None,
         "contact_law": str(contact.get("law", DEFAULT_LAW)),
         "film_modulus_pa": float(material.get("youngs_modulus_pa", math.nan)),
     }

@@ -6,8 +6,8 @@
   over config, series and summary) matches its content, it was made by the libraries
   installed now, and the case file it records still holds its case;
 * a case file (``results/cases/*.yaml``): its case has the hash it was written with;
-* a contact-law curve (``results/indentation/*.h5``) or a film band
-  (``results/studies/film_band_*.h5``): its data match their hash;
+* a contact-law curve (``results/indentation/*.h5``) or a band
+  (``results/studies/film_band_*.h5``, ``results/studies/sensor_band/*.h5``): its data match their hash;
 * a table or figure: a provenance sidecar (``*.provenance.json``) lists it with the SHA-256
   of its bytes as written, and every input run the sidecar names still has the config and
   content hashes the artifact was made from;
@@ -257,7 +257,8 @@ def audit(root: str | Path = ".", *, results: str = "results", workflow: bool = 
         for path in files:
             if path.startswith(f"{results}/indentation/") and path.endswith(".h5"):
                 found[path] = audit_derived(path, "curve", repo_root)
-            elif path.startswith(f"{results}/studies/film_band_") and path.endswith(".h5"):
+            elif path.startswith((f"{results}/studies/film_band_", f"{results}/studies/sensor_band/")) \
+                    and path.endswith(".h5"):
                 found[path] = audit_derived(path, "band", repo_root)
             elif path.endswith(".h5"):
                 found[path] = audit_run(path, libraries, repo_root)
