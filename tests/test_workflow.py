@@ -389,13 +389,15 @@ def test_provenance_audit_passes_on_a_fresh_build(built: Path) -> None:
     result = audit(built)
     assert result.success, [f for f in result.findings if not f.ok][:5]
     kinds = Counter(f.kind for f in result.findings)
-    # every HDF5 file of the build is a run (the contact-law curves and the film bands aside), and
+    # every HDF5 file of the build is a run (the contact-law curves and the bands aside), and
     # every table and figure is an artifact its provenance record names
     h5 = [p.relative_to(built).as_posix() for p in (built / "results").rglob("*.h5")]
-    runs = [p for p in h5 if not p.startswith(("results/indentation/", "results/studies/film_band_"))]
+    bands = ("results/studies/film_band_", "results/studies/sensor_band/")
+    runs = [p for p in h5 if not p.startswith(("results/indentation/", *bands))]
     artifacts = [p for p in (built / "results").rglob("*") if p.is_file() and p.parent.name in ("tables", "figures")
                  and not p.name.endswith(".provenance.json")]
     assert kinds["run"] == len(runs) and kinds["artifact"] >= len(artifacts) >= 20 and not kinds["unknown"], kinds
+    assert kinds["band"] == len([p for p in h5 if p.startswith(bands)]) >= 3, kinds
     # a copy is an untagged history: its version is 0.0.0.post1 (rodimpact._version), plus the commit
     assert all(CODE_VERSION.fullmatch(v) for f in result.findings for v in f.code_versions)
 

@@ -207,15 +207,19 @@ def test_a_methods_code_change_reruns_only_its_runs(changed: DotTestBuild) -> No
     rows = summary(changed.project, workdir=DOTTEST)  # what a run would rebuild, file by file
     reruns = {row["output_file"] for row in rows if row["plan"] == "update pending" and row["output_file"].endswith(".h5")}
     cases = project_cases(changed.workdir).cases.values()
-    # and the runs of the law calibrated by fem_axi's indentation, which reads fem_axi's code
-    # (.test calibrates none: test_a_methods_code_change_reruns_the_law_it_calibrates)
-    calibrated = {c["id"] for c in cases if (c.get("contact") or {}).get("law") == "tabulated"}
+    # and the runs of the law calibrated by fem_axi's indentation, which reads fem_axi's code, by
+    # each of their methods, with the sensor's bands over that law (.test calibrates the sensor
+    # as built; test_a_methods_code_change_reruns_the_law_it_calibrates: the film's)
+    calibrated = {c["id"]: c for c in cases if (c.get("contact") or {}).get("law") == "tabulated"}
+    assert calibrated
     assert pending(rows, "solve") == {run_path(c["id"], "fem_axi") for c in cases
                                       if "fem_axi" in c["methods"] and c["set"] in ("model", "table2")} | {
-        run_path(case, "sem") for case in calibrated}
+        run_path(case, m) for case, c in calibrated.items() for m in c["methods"]}
     assert pending(rows, "indentation") == {f"results/indentation/{case}.h5" for case in calibrated}
+    assert pending(rows, "sensor_band") == {f"results/studies/sensor_band/{case}.h5" for case in calibrated}
     assert reruns and all("fem_axi" in path or Path(path).parent.name in calibrated
-                          or path.startswith("results/indentation/") for path in reruns), sorted(reruns)
+                          or path.startswith(("results/indentation/", "results/studies/sensor_band/"))
+                          for path in reruns), sorted(reruns)
 
 
 #: A run of the law calibrated by fem_axi's indentation (the text's rod without the film).

@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import logging
+import textwrap
 from typing import Any, Mapping
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 import pandas as pd  # noqa: E402
 
 __all__ = ["plot_sensor_fit"]
@@ -36,18 +38,22 @@ def plot_sensor_fit(frame: pd.DataFrame, summary: Mapping[str, Any],
     for ax, variant in zip(axes[0], variants):
         rows = frame[frame["variant"] == variant].sort_values("mass_g")
         fitted = bool((rows["role"] == "fitted").any())
-        ax.plot(rows["mass_g"], rows["measured_us"], "s", color="k", ms=6, label="measured (the paper's Table 2)")
+        ax.plot(rows["mass_g"], rows["measured_us"], "s", color="k", ms=6, label="measured")
         ax.plot(rows["mass_g"], rows["nominal_us"], "-o", color="tab:green", ms=4,
                 label="sensor as built, sourced constants (prediction, no fit)")
         ax.plot(rows["mass_g"], rows["fitted_us"], "--D", color="tab:orange", ms=4,
-                label=f"FIT: bond line {thickness} (fitted on the text's rod)")
+                label=f"FIT: {summary['layer']} {thickness} (fitted on the left panel's reading)")
         if fitted:
             ax.plot(rows["mass_g"], rows["held_out_us"], "o", mfc="none", color="tab:purple", ms=8,
                     label="fit on the other rows, this row held out")
-        title = descriptions.get(variant, variant)
+        title = textwrap.fill(descriptions.get(variant, variant), 60)
         ax.set_title(f"{title}\n({'the fit' if fitted else 'the fitted stack applied'})", fontsize=9)
         ax.set_xscale("log")
         ax.set_yscale("log")
+        for axis in (ax.xaxis, ax.yaxis):  # plain numbers on the log axes (0.5, 1, 2; 40, 60, 100)
+            axis.set_major_locator(matplotlib.ticker.LogLocator(subs=(1.0, 2.0, 3.0, 5.0)))
+            axis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:g}"))
+            axis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         ax.set_xlabel("ball mass $m$ (g)")
         ax.grid(alpha=0.3, which="both")
     axes[0][0].set_ylabel("contact time (µs)")

@@ -35,6 +35,8 @@ _SOURCE_MARKERS = ("s", "P", "X", "*", "h", "p")
 _MASS_MARGIN, _TIME_MARGIN = 1.3, 1.15
 #: Longest source text in the legend.
 _SOURCE_CHARS = 48
+#: The colour of the sensor as built (no method's: the methods take C0 to C3).
+SENSOR_COLOR = "C9"
 
 
 def short_source(source: str) -> str:
@@ -81,17 +83,21 @@ def panel_grid(panels: Sequence[str], readings: pd.DataFrame | None) -> list[lis
 
 
 def _panel_title(variant: str, overlays: Sequence[str], descriptions: Mapping[str, str],
-                 readings: pd.DataFrame | None) -> str:
-    """The reading in words (its ``description`` in the case file), and what the film adds."""
+                 readings: pd.DataFrame | None, sensors: Mapping[str, bool]) -> str:
+    """The reading in words (its ``description`` in the case file), and what its overlays add:
+    the sensor as built (``sensors``), the film alone (the other overlays)."""
     title = descriptions.get(variant, "")
     if not title and readings is not None and variant in set(readings["variant"]):
         reading = readings.set_index("variant").loc[variant]
         title = f"Rod radius {reading['rod_radius_mm']:g} mm, length {reading['rod_length_mm']:g} mm"
     title = title or "Rod of this reading"
-    for film in overlays:
-        text = descriptions.get(film, "")
-        extra = text[len(title):].strip(" ,;") if text.startswith(title) else ""
-        title += f"\nwithout film, and {extra or 'with the sensor film'} (red)"
+    drawn = []
+    if any(v in sensors for v in overlays):
+        drawn.append("the sensor as built (cyan)")
+    if any(v not in sensors for v in overlays):
+        drawn.append("the film alone (red)")
+    if drawn:
+        title += "\nwithout the sensor, and with " + " and ".join(drawn)
     return title
 
 
@@ -160,11 +166,11 @@ def _sensor_overlay(ax: matplotlib.axes.Axes, frame: pd.DataFrame | None, calibr
     if frame is None:
         return
     if not calibrated and "fem_axi_us" in frame:
-        ax.plot(frame["mass_g"], frame["fem_axi_us"], "D", ms=6, color="tab:green", zorder=6,
+        ax.plot(frame["mass_g"], frame["fem_axi_us"], "D", ms=6, color=SENSOR_COLOR, zorder=6,
                 label=f"{METHOD_LABELS['fem_axi']}, sensor as built (electrodes, film, bond line)")
     if calibrated and "sem_us" in frame:
         ordered = frame.sort_values("mass_g")
-        ax.plot(ordered["mass_g"], ordered["sem_us"], "-", lw=1.6, color="tab:green", zorder=5,
+        ax.plot(ordered["mass_g"], ordered["sem_us"], "-", lw=1.6, color=SENSOR_COLOR, zorder=5,
                 label=f"{METHOD_LABELS['sem']}, sensor as built, contact law calibrated by the continuum")
         if bands is not None and not bands.empty:
             band = bands[bands["case_id"].isin(frame["case_id"])]
@@ -172,7 +178,7 @@ def _sensor_overlay(ax: matplotlib.axes.Axes, frame: pd.DataFrame | None, calibr
                 nominal = band["nominal_us"].to_numpy(float)
                 ax.errorbar(band["mass_g"], nominal, yerr=[nominal - band["band_min_us"].to_numpy(float),
                                                            band["band_max_us"].to_numpy(float) - nominal],
-                            fmt="none", ecolor="darkgreen", elinewidth=1.6, capsize=4, zorder=5,
+                            fmt="none", ecolor="teal", elinewidth=1.6, capsize=4, zorder=5,
                             label="sensor as built: band over its sourced ranges (continuum's law)")
 
 
@@ -283,6 +289,7 @@ def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame], sweeps: pd.Data
     """
     panels = {v: () for v in frames} if panels is None else dict(panels)
     descriptions, sources, contacts = dict(descriptions or {}), dict(sources or {}), dict(contacts or {})
+    sensors = dict(sensors or {})
     nominal = ({} if readings is None else
                dict(zip(readings["variant"], readings["film_modulus_pa"].astype(float))))
     grid = panel_grid(list(panels), readings)
@@ -298,14 +305,13 @@ def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame], sweeps: pd.Data
         drawn.append(ax)
         _rows(ax, frames[variant], sources, contacts)
         _sweep_curves(ax, variant, sweeps)
-        sensors = dict(sensors or {})
         for film in panels[variant]:
             if film in sensors:
                 _sensor_overlay(ax, frames.get(film), sensors[film], sensor_bands)
             else:
                 _film_overlay(ax, film, frames.get(film), sweeps, bands, nominal.get(film, math.nan), film_method,
                               contacts)
-        ax.set_title(_panel_title(variant, panels[variant], descriptions, readings), fontsize=9)
+        ax.set_title(_panel_title(variant, panels[variant], descriptions, readings, sensors), fontsize=9)
         ax.set_xscale("log")
         ax.set_yscale("log")  # one scale for all panels: the readings' times differ tenfold
         ax.grid(alpha=0.3, which="both")
