@@ -6,6 +6,8 @@ rule sensor_band:
     """The calibrated SEM over one case's sensor stack: its band, and the fit's thickness grid."""
     input:
         case=case_file(lambda w: w.case),
+        # the nominal stack's calibrated law: the curve the case's own runs take
+        curve=CURVE_FILES["indentation"],
         code=SRC_SENSOR,
     output:
         h5="results/studies/sensor_band/{case}.h5",

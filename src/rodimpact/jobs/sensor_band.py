@@ -9,7 +9,8 @@ contact time at a set of values is the calibrated SEM's: the continuum's static 
 the case's ball on the stack so changed (:func:`~rodimpact.jobs.indentation.indentation_curve`),
 then the SEM with that curve as its law.
 
-The band evaluates the nominal stack, each parameter at the two ends of its range with the
+The band evaluates the nominal stack (with the case's own curve, the ``indentation`` rule's,
+when the rule hands it over), each parameter at the two ends of its range with the
 others nominal (and at ``grid`` values for the parameter the inverse analysis fits), and the
 two corners where every parameter sits at the end that lengthens (shortens) the contact, read
 from its own axis. Where the time is monotone along every axis (recorded: ``monotone``), those
@@ -29,6 +30,7 @@ import numpy as np
 from rodimpact.jobs.indentation import indentation_curve
 from rodimpact.jobs.runner import run_case
 from rodimpact.storage.bands import CaseBand, write_band
+from rodimpact.storage.curves import read_contact_curve
 
 __all__ = ["StackParameter", "calibrated_time_us", "sensor_band", "sensor_band_to_file", "stack_parameters",
            "with_values"]
@@ -120,15 +122,17 @@ def with_values(case: Mapping[str, Any], values: Mapping[str, float]) -> dict[st
 
 
 def calibrated_time_us(case: Mapping[str, Any], settings: Mapping[str, Any] | None = None,
-                       method: str = "sem") -> float:
-    """Contact time, us, of ``method`` with the law the continuum's indentation of the case gives."""
-    curve = indentation_curve(case, settings)
-    with_curve = {**case, "contact": {**case["contact"], "curve": curve.law_curve()}}
+                       method: str = "sem", curve: Mapping[str, Any] | None = None) -> float:
+    """Contact time, us, of ``method`` with the law the continuum's indentation of the case gives
+    (``curve``: that law's curve, already computed, as ``ContactCurve.law_curve`` gives it)."""
+    law_curve = indentation_curve(case, settings).law_curve() if curve is None else curve
+    with_curve = {**case, "contact": {**case["contact"], "curve": law_curve}}
     return 1e6 * run_case(with_curve, method).contact_time_s
 
 
 def sensor_band(case: Mapping[str, Any], settings: Mapping[str, Any] | None = None, method: str = "sem",
-                grid: Mapping[str, Sequence[float]] | None = None, *, band: bool = True) -> CaseBand:
+                grid: Mapping[str, Sequence[float]] | None = None, *, band: bool = True,
+                nominal_curve: Mapping[str, Any] | None = None) -> CaseBand:
     """The band of one case (see the module docstring).
 
     Parameters
@@ -144,6 +148,9 @@ def sensor_band(case: Mapping[str, Any], settings: Mapping[str, Any] | None = No
     band : bool
         False: only the axes of ``grid`` (to apply a fitted value), no corners (the band's
         min and max are then NaN).
+    nominal_curve : mapping, optional
+        The case's own calibrated curve (the ``indentation`` rule's), for the nominal stack:
+        computed again when not given.
     """
     parameters = stack_parameters(case)
     if not band:
@@ -152,7 +159,7 @@ def sensor_band(case: Mapping[str, Any], settings: Mapping[str, Any] | None = No
     unknown = sorted(set(grid or {}) - set(names))
     if unknown:
         raise KeyError(f"grid: {unknown} are no constants of case {case['id']!r}'s stack; its constants: {list(names)}")
-    nominal_us = calibrated_time_us(case, settings, method)
+    nominal_us = calibrated_time_us(case, settings, method, nominal_curve)
     axis_values, axis_us = {}, {}
     for p in parameters:
         values = sorted({p.low, p.nominal, p.high, *map(float, (grid or {}).get(p.name, ()))})
@@ -182,7 +189,20 @@ def sensor_band(case: Mapping[str, Any], settings: Mapping[str, Any] | None = No
 
 def sensor_band_to_file(case: Mapping[str, Any], variant: str, path: str, settings: Mapping[str, Any] | None = None,
                         method: str = "sem", grid: Mapping[str, Sequence[float]] | None = None, *,
-                        band: bool = True) -> None:
-    """:func:`sensor_band` of ``case``, written atomically to ``path``."""
-    write_band(path, [sensor_band(case, settings, method, grid, band=band)], variant=variant, method=method,
-               config=dict(case))
+                        band: bool = True, curve_file: str | None = None) -> None:
+    """:func:`sensor_band` of ``case``, written atomically to ``path``; the nominal stack's law
+    from ``curve_file`` (the case's ``indentation`` output) when given.
+
+    Raises
+    ------
+    ValueError
+        ``curve_file`` is another case's curve.
+    """
+    nominal = None
+    if curve_file is not None:
+        curve = read_contact_curve(curve_file)
+        if curve.case_id != case["id"]:
+            raise ValueError(f"curve_file: {curve_file} is the curve of case {curve.case_id!r}, not {case['id']!r}")
+        nominal = curve.law_curve()
+    write_band(path, [sensor_band(case, settings, method, grid, band=band, nominal_curve=nominal)], variant=variant,
+               method=method, config=dict(case))
