@@ -1,4 +1,4 @@
-"""The sensor's artifacts (tables), each from band files and case files only."""
+"""The sensor's artifacts (its tables and the fit's figure), each from band files and case files only."""
 
 from __future__ import annotations
 
