@@ -236,7 +236,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(message)s")
     try:
-        table = resource_margins(pd.read_csv(args.csv))
+        frame = pd.read_csv(args.csv)
+        table, stacks = resource_margins(frame), stack_runs(frame)
     except (OSError, ValueError) as error:
         log.error("rodimpact.tools.bench: %s: %s", args.csv, error)
         return 1
@@ -244,7 +245,6 @@ def main(argv: Sequence[str] | None = None) -> int:
              table.to_string(index=False, float_format=lambda x: f"{x:.4g}"))
     log.info("smallest margins: run time x%.1f, memory x%.1f", table["runtime_margin"].min(),
              table["mem_margin"].min())
-    stacks = stack_runs(pd.read_csv(args.csv))
     if not stacks.empty:
         log.info("fem_axi with a stack of layers: at most %.1f s a run (target %g s)\n%s", stacks["wall_time_s"].max(),
                  STACK_RUN_TARGET_S, stacks.to_string(index=False, float_format=lambda x: f"{x:.4g}"))
