@@ -47,3 +47,26 @@ def test_outputs_and_runs_must_match(sweep: dict, tmp_path: Path) -> None:
     with pytest.raises(ValueError, match="runs and paths differ"):
         run_batch(runs, {"other": tmp_path / "x.h5"})
     assert not list(tmp_path.iterdir())
+
+
+def test_a_calibrated_sweep_point_computes_its_own_curve_as_the_indentation_rule_does(
+        shipped_project, shipped_config: dict, tmp_path: Path) -> None:
+    """A point of a sweep with the law the continuum calibrates: its batch indents the point's
+    own ball (the indentation rule's function, the rule's settings) and runs the SEM with that
+    curve; the run stores the curve's summary, and equals the same point with its curve given."""
+    from rodimpact.jobs.indentation import indentation_curve
+
+    sweep = copy.deepcopy(shipped_project.sweeps["ball_sweep_sensor-r10_l30_sensor_cal"])
+    runs = _runs(sweep, 1)
+    settings = shipped_config["numerics"]["fem_axi"]
+    runs["p0"]["curve"] = {"rule": "indentation", "settings": settings}
+    run_batch(runs, {"p0": tmp_path / "p0.h5"})
+    stored = read_run(tmp_path / "p0.h5")
+    curve = indentation_curve(runs["p0"]["case"], settings)
+    given = run_to_file(runs["p0"]["case"], "sem", tmp_path / "given.h5", study=runs["p0"]["study"],
+                        contact_curve=curve)
+    assert stored.summary["contact_time_s"] == read_run(given).summary["contact_time_s"]
+    assert stored.config["run"]["contact_curve"] == {"computed_in_job": True, "summary": curve.summary}
+    with pytest.raises(ValueError, match="no curve rule 'elsewhere'"):
+        run_batch({"p0": {**runs["p0"], "curve": {"rule": "elsewhere"}}}, {"p0": tmp_path / "x.h5"})
+    assert not (tmp_path / "x.h5").exists()

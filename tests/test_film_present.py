@@ -245,7 +245,7 @@ def test_table2_figure_draws_the_film_on_its_rod(store: dict) -> None:
                                    bands=band_frame)
     visible = [ax for ax in fig.axes if ax.get_visible()]
     assert len(visible) == 1 and "µs" in visible[0].get_ylabel() and "g" in visible[0].get_xlabel()
-    labels = [t.get_text() for t in fig.legends[0].get_texts()]
+    labels = [" ".join(t.get_text().split()) for t in fig.legends[0].get_texts()]  # unwrapped
     assert any("film as a thin layer" in label and "3 GPa" in label for label in labels), labels
     assert any("2 to 4 GPa" in label for label in labels) and any("band" in label for label in labels), labels
     low, high = visible[0].get_ylim()

@@ -4,6 +4,7 @@ cover what a real run takes, and that bad input is refused by name."""
 from __future__ import annotations
 
 import copy
+import math
 import json
 import subprocess
 import sys
@@ -18,7 +19,8 @@ from rodimpact.tools.bench import resource_margins
 from rodimpact.jobs.resources import (
     MIN_MEM_MB, MIN_RUNTIME_MIN, PRESENTATION, SAFETY, JobResources, estimate_resources, estimate_sequence
 )
-from rodimpact.solvers.fem_axi.cost import fem_axi_dofs
+from rodimpact.solvers.fem_axi.cost import fem_axi_dofs, fem_axi_indentation_cost
+from rodimpact.analysis.sweeps import sweep_point_case, sweep_points
 from rodimpact.plumbing.sources import module_sources
 from rodimpact.analysis.studies import level_case
 
@@ -115,6 +117,21 @@ def test_a_sequence_sums_times_and_keeps_the_largest_memory(model):
     bench_fem = estimate_sequence(fem_bench_runs(model, [model]))
     assert bench_sem.runtime_min > estimate_resources(model, "sem").runtime_min
     assert bench_fem.mem_mb >= estimate_resources(model, "fem_axi").mem_mb
+
+
+def test_a_batch_that_indents_its_points_asks_for_the_indentations(shipped_project, shipped_config):
+    """A calibrated sweep's batch computes each point's curve: its request adds each
+    indentation's cost (the continuum's meshes, one solve per candidate column) to the SEM's."""
+    sweep = shipped_project.sweeps["ball_sweep_sensor-r10_l30_sensor_cal"]
+    settings = shipped_config["numerics"]["fem_axi"]
+    points = [sweep_point_case(sweep, point, f"p{k}") for k, point in enumerate(sweep_points(sweep["sweep"]))]
+    runs = [(point, "sem", 1) for point in points]
+    indentations = [fem_axi_indentation_cost(point, settings) for point in points]
+    plain, indenting = estimate_sequence(runs), estimate_sequence(runs, extra=indentations)
+    seconds = sum(cost.solve_s for cost in indentations)
+    assert indenting.runtime_min >= plain.runtime_min + math.floor(SAFETY * seconds / 60.0)
+    assert indenting.mem_mb >= max(cost.mem_mib for cost in indentations) * SAFETY * 2**20 / 1e6
+    assert all(cost.solve_s > 2.5 for cost in indentations)  # the heaviest row's indentation took 2.5 s
 
 
 @pytest.mark.parametrize("call, name", [

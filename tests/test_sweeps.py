@@ -79,7 +79,9 @@ def test_table2_balls_are_solid_balls_of_the_sweeps_steel(project) -> None:
 
 def test_shipped_sweep_is_expanded_over_the_variants_and_not_a_row(project) -> None:
     no_film = [v for v in project.variants["table2"] if "film" not in v and "sensor" not in v and not v.endswith("_cal")]
-    assert sorted(project.sweeps) == sorted([f"ball_sweep-{v}" for v in no_film] + ["ball_sweep_film-r10_l30_film"])
+    sensor = ["ball_sweep_sensor-r10_l30_sensor_cal", "ball_sweep_sensor-r1_l30_sensor_cal"]
+    assert sorted(project.sweeps) == sorted([f"ball_sweep-{v}" for v in no_film] + ["ball_sweep_film-r10_l30_film"]
+                                            + sensor)
     assert not [c for c in project.cases_in("table2") if c["row"] == "ball_sweep"]
     assert [c["id"] for c in project.sweeps_in("table2", "r1_l30")] == ["ball_sweep-r1_l30"]
     assert project.sweeps_in("model") == []

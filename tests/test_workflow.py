@@ -358,7 +358,7 @@ def test_sweep_points_are_runs_and_a_table(built: Path, expected: dict) -> None:
     files = sorted(p.relative_to(built).as_posix() for p in (built / "results/sweeps").rglob("*.h5"))
     assert len(files) == sum(expected["sweep_points"].values())
     point = r"ball_diameter_m~[0-9.e-]+(_film_modulus_pa~[0-9.e+]+)?"
-    assert all(re.fullmatch(rf"results/sweeps/ball_sweep(_film)?-\w+/sem/{point}\.h5", f) for f in files), files
+    assert all(re.fullmatch(rf"results/sweeps/ball_sweep(_film|_sensor)?-\w+/sem/{point}\.h5", f) for f in files), files
     table = pd.read_csv(built / "results/tables/sweep_table2.csv")
     swept = {sweep["id"].rpartition("-")[2] for sweep in project.sweeps.values()}
     assert len(table) == len(files) and set(table["variant"]) == swept
@@ -371,13 +371,17 @@ def test_sweep_points_are_runs_and_a_table(built: Path, expected: dict) -> None:
             assert row.contact_time_us < curve.loc[curve["ball_diameter_m"] == row.ball_diameter_m,
                                                    "contact_time_us"].item()
     table = table[table["sweep"] != film_sweep]
-    for variant, curve in table.groupby("variant"):
+    for (sweep, variant), curve in table.groupby(["sweep", "variant"]):
         assert curve["mass_g"].is_monotonic_increasing and curve["contact_time_us"].is_monotonic_increasing, variant
-        rho = project.sweeps[f"ball_sweep-{variant}"]["impactor"]["material"]["density_kg_m3"]
+        rho = project.sweeps[sweep]["impactor"]["material"]["density_kg_m3"]
         mass = rho * math.pi * curve["ball_diameter_m"] ** 3 / 6 * 1000
         np.testing.assert_allclose(curve["mass_g"], mass, rtol=1e-9)  # the CSV keeps 10 digits
     record = read_run(built / files[0])
     assert record.config["run"]["study"]["name"] == "sweep" and "sweep_point" in record.config
+    # a point of the calibrated law's sweep: its batch indented the point's own ball
+    sensor = [read_run(built / f) for f in files if "/ball_sweep_sensor-" in f]
+    assert sensor and all(r.config["run"]["contact_curve"]["computed_in_job"] for r in sensor)
+    assert len({r.config["run"]["contact_curve"]["summary"]["max_force_N"] for r in sensor}) == len(sensor)
 
 
 # --------------------------------------------------------------------------------------------

@@ -145,6 +145,10 @@ FILM_VARIANTS = [v for v in TABLE2_VARIANTS
 # The rules that compute a law's curve per case (a law declares its rule: needs.curve_rule) -> the
 # curve file of a case; a law that names another rule is refused here, before any job.
 CURVE_FILES = {"indentation": "results/indentation/{case}.h5"}
+# ... the settings each rule computes a curve with (a sweep point's batch computes its own), and
+# its cost model (module:function, imported when a batch needs it: the continuum's modules are heavy)
+CURVE_SETTINGS = {"indentation": config["numerics"]["fem_axi"]}
+CURVE_COSTS = {"indentation": "rodimpact.solvers.fem_axi.cost:fem_axi_indentation_cost"}
 _NO_CURVE_FILE = [law for law in LAWS.values() if law.needs.curve_rule not in (None, *CURVE_FILES)]
 if _NO_CURVE_FILE:
     sys.exit(f"rodimpact: the {_NO_CURVE_FILE[0].name} contact law needs a curve from the rule "

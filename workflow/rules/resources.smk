@@ -3,6 +3,8 @@
 # from that case by rodimpact.jobs.resources (twice the cost model, calibrated on measured runs),
 # tables and figures get constants. A retry (--retries, the slurm profile) gets `attempt`
 # times the memory and the run time.
+import importlib
+
 from rodimpact.tools.bench_plan import fem_bench_runs, sem_bench_runs, sem_scaling_runs
 from rodimpact.jobs.resources import PRESENTATION, estimate_resources, estimate_sequence
 
@@ -31,9 +33,15 @@ def sweep_batch_runs(case_id, names):
         if wildcards.method not in case["sweep"]["methods"]:
             refuse(f"sweep {case_id!r} does not run {wildcards.method!r}; its methods: "
                    f"{', '.join(case['sweep']['methods'])}")
-        return {f"p{k}": {"case": sweep_point_case(case, SWEEP_POINTS[case_id][name], name),
-                          "method": wildcards.method, "study": {"name": "sweep", "sweep": case_id, "point": name}}
-                for k, name in enumerate(names)}
+        runs = {}
+        for k, name in enumerate(names):
+            point = sweep_point_case(case, SWEEP_POINTS[case_id][name], name)
+            runs[f"p{k}"] = {"case": point, "method": wildcards.method,
+                             "study": {"name": "sweep", "sweep": case_id, "point": name}}
+            curve_rule = curve_rule_of(point)
+            if curve_rule is not None:  # a point is no case of the curve rule's: its batch computes its curve
+                runs[f"p{k}"]["curve"] = {"rule": curve_rule, "settings": CURVE_SETTINGS[curve_rule]}
+        return runs
 
     return runs
 
@@ -79,12 +87,16 @@ def _estimate(case, method, timing):
 def batch_resources(runs, timing=None):
     """Resources of a batch rule: ``runs(wildcards)`` maps its outputs to their runs (``case``,
     ``method``), solved one after another; ``timing`` when each is timed."""
-    return _resources(lambda w: PLAN.remember(([(r["case"], r["method"], 1) for r in runs(w).values()], timing),
+    return _resources(lambda w: PLAN.remember(([(r["case"], r["method"], 1) for r in runs(w).values()], timing,
+                                               [(r["case"], r["curve"]) for r in runs(w).values() if "curve" in r]),
                                               _estimate_batch))
 
 
-def _estimate_batch(runs, timing):
-    return estimate_sequence(runs, timing=timing)
+def _estimate_batch(runs, timing, curves):
+    costs = {name: getattr(importlib.import_module(path.partition(":")[0]), path.partition(":")[2])
+             for name, path in CURVE_COSTS.items() if any(curve["rule"] == name for _, curve in curves)}
+    return estimate_sequence(runs, timing=timing, extra=[costs[curve["rule"]](case, curve["settings"])
+                                                         for case, curve in curves])
 
 
 def bench_resources(runs):

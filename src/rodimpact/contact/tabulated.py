@@ -20,8 +20,8 @@ from __future__ import annotations
 
 import logging
 import math
+from bisect import bisect_right
 from dataclasses import dataclass, field
-from types import MappingProxyType
 from typing import Any, Mapping
 
 import numpy as np
@@ -133,11 +133,11 @@ class TabulatedLaw(ContactLaw):
     label = "tabulated (continuum-calibrated)"
     reading = "contact law calibrated by the continuum"
     settings = TabulatedSettings
-    #: The curve of each case, computed by the indentation rule before its runs.
+    #: The curve of each case, computed by the indentation rule before its runs (a sweep
+    #: point's by its batch, for the point's own ball).
     needs = Needs(curve_rule=CURVE_SOURCES["fem_axi_indentation"])
     #: A curve is what the 1-D methods take; a continuum method resolves the bodies itself.
     method_contact = frozenset({"law"})
-    conflicts = MappingProxyType({"sweep": "its curve is computed per case, not per sweep point"})
     _x: NDArray[np.float64] = field(init=False, repr=False, compare=False)
     _y: NDArray[np.float64] = field(init=False, repr=False, compare=False)
     _d: NDArray[np.float64] = field(init=False, repr=False, compare=False)
@@ -158,6 +158,8 @@ class TabulatedLaw(ContactLaw):
         object.__setattr__(self, "_x", x)
         object.__setattr__(self, "_y", y)
         object.__setattr__(self, "_d", d)
+        # the same nodes as Python floats, for the scalar path the steppers call per iteration
+        object.__setattr__(self, "_nodes", (x.tolist(), y.tolist(), d.tolist()))
         # stored energy at the nodes: the power law below the first node, Gauss on each segment
         energy = np.empty(len(x))
         energy[0] = force[0] * alpha[0] / (d[0] + 1.0)
@@ -207,17 +209,34 @@ class TabulatedLaw(ContactLaw):
         y, _ = self._log_force(np.log(np.where(positive, alpha, 1.0)))
         return np.where(positive, np.exp(y), 0.0)
 
+    def _log_force_scalar(self, x: float) -> tuple[float, float]:
+        """:meth:`_log_force` at one ``x``, in Python floats: the same operations in the same
+        order (so the same numbers), without numpy's per-call cost."""
+        xs, ys, ds = self._nodes
+        if x < xs[0]:
+            return ys[0] + ds[0] * (x - xs[0]), ds[0]
+        if x > xs[-1]:
+            return ys[-1] + ds[-1] * (x - xs[-1]), ds[-1]
+        i = min(max(bisect_right(xs, x) - 1, 0), len(xs) - 2)
+        h = xs[i + 1] - xs[i]
+        t = (x - xs[i]) / h
+        t2, t3 = t * t, t * t * t
+        y = ((2 * t3 - 3 * t2 + 1) * ys[i] + (t3 - 2 * t2 + t) * h * ds[i]
+             + (-2 * t3 + 3 * t2) * ys[i + 1] + (t3 - t2) * h * ds[i + 1])
+        dy = ((6 * t2 - 6 * t) * ys[i] / h + (3 * t2 - 4 * t + 1) * ds[i]
+              + (-6 * t2 + 6 * t) * ys[i + 1] / h + (3 * t2 - 2 * t) * ds[i + 1])
+        return y, dy
+
     def force(self, approach_m: float) -> float:
         if approach_m <= 0.0:
             return 0.0
-        y, _ = self._log_force(np.float64(math.log(approach_m)))
-        return math.exp(float(y))
+        return math.exp(self._log_force_scalar(math.log(approach_m))[0])
 
     def stiffness(self, approach_m: float) -> float:
         if approach_m <= 0.0:
             return 0.0
-        y, dy = self._log_force(np.float64(math.log(approach_m)))
-        return float(dy) * math.exp(float(y)) / approach_m
+        y, dy = self._log_force_scalar(math.log(approach_m))
+        return dy * math.exp(y) / approach_m
 
     def energy(self, approach_m: ArrayLike) -> NDArray[np.float64] | float:
         alpha = np.asarray(approach_m, dtype=float)
@@ -238,10 +257,12 @@ class TabulatedLaw(ContactLaw):
         """int_lower^upper P d alpha, J: Gauss-Legendre on each piece between the table's nodes
         (the interpolant is smooth on each piece, its second derivative jumps at the nodes)."""
         nodes = np.exp(self._x)
-        cuts = [lower_m, *nodes[(nodes > lower_m) & (nodes < upper_m)], upper_m]
+        cuts = np.array([lower_m, *nodes[(nodes > lower_m) & (nodes < upper_m)], upper_m])
+        a, width = cuts[:-1], np.diff(cuts)
+        forces = self._force_array(a[:, None] + width[:, None] * _GX[None, :])  # every piece's nodes at once
         total = 0.0
-        for a, b in zip(cuts[:-1], cuts[1:]):
-            total += (b - a) * float(self._force_array(a + (b - a) * _GX) @ _GW)
+        for w, f in zip(width.tolist(), forces):  # piece by piece, in order
+            total += w * float(f @ _GW)
         return total
 
     def approach(self, force_N: float) -> float:
@@ -249,13 +270,13 @@ class TabulatedLaw(ContactLaw):
             return 0.0
         target = math.log(force_N)
         lo, hi = float(self._x[0]), float(self._x[-1])
-        while float(self._log_force(np.float64(lo))[0]) > target:
+        while self._log_force_scalar(lo)[0] > target:
             lo -= 1.0
-        while float(self._log_force(np.float64(hi))[0]) < target:
+        while self._log_force_scalar(hi)[0] < target:
             hi += 1.0
         for _ in range(200):  # bisection in ln alpha: ln P is increasing
             mid = 0.5 * (lo + hi)
-            if float(self._log_force(np.float64(mid))[0]) < target:
+            if self._log_force_scalar(mid)[0] < target:
                 lo = mid
             else:
                 hi = mid

@@ -3,10 +3,16 @@ work-precision sweep. Each run is its own HDF5 file, written whole (atomically) 
 provenance, as :func:`rodimpact.jobs.runner.run_to_file` writes a single run; a batch only
 shares what every run of it would repeat: the process, its imports, the case file's record and
 the code version.
+
+A run whose contact law is calibrated by a curve (a sweep point of a ``tabulated`` law) has no
+case of its own for the workflow's curve rule to compute it: its ``curve`` entry names the rule
+and its settings, and the batch computes the curve of the point's own bodies before the run
+(:data:`CURVE_BUILDERS`); the run stores the curve's summary (``run.contact_curve``).
 """
 
 from __future__ import annotations
 
+import importlib
 import logging
 from pathlib import Path
 from typing import Any, Mapping
@@ -16,9 +22,14 @@ from rodimpact.storage.provenance import code_version
 from rodimpact.jobs.runner import run_to_file
 from rodimpact.jobs.timing import Timing
 
-__all__ = ["run_batch"]
+__all__ = ["CURVE_BUILDERS", "run_batch"]
 
 log = logging.getLogger(__name__)
+
+#: A law's curve rule (``needs.curve_rule``) -> the module and function that compute its curve
+#: in a job, ``(case, settings) -> ContactCurve`` (imported by the batches that need one: the
+#: continuum's modules cost a batch of SEM runs more than its runs).
+CURVE_BUILDERS = {"indentation": ("rodimpact.jobs.indentation", "indentation_curve")}
 
 
 def run_batch(runs: Mapping[str, Mapping[str, Any]], paths: Mapping[str, str | Path], *,
@@ -30,7 +41,8 @@ def run_batch(runs: Mapping[str, Mapping[str, Any]], paths: Mapping[str, str | P
     ----------
     runs : mapping of str to mapping
         Output name -> run: ``case`` (a resolved case), ``method``, and optionally ``study``
-        (stored in the run's config, ``run.study``) and ``level`` (a work-precision level).
+        (stored in the run's config, ``run.study``), ``level`` (a work-precision level) and
+        ``curve`` (``{"rule": ..., "settings": ...}``: the law's curve, computed here first).
     paths : mapping of str to path
         Output name -> the run's HDF5 file (the rule's named outputs); the same names as ``runs``.
     case_file : path, optional
@@ -49,7 +61,8 @@ def run_batch(runs: Mapping[str, Mapping[str, Any]], paths: Mapping[str, str | P
     Raises
     ------
     ValueError
-        ``runs`` and ``paths`` name different outputs.
+        ``runs`` and ``paths`` name different outputs, or a run's ``curve`` names no rule of
+        :data:`CURVE_BUILDERS`.
     """
     if set(runs) != set(paths):
         raise ValueError(f"runs and paths differ: runs {sorted(runs)}, paths {sorted(paths)}")
@@ -58,8 +71,15 @@ def run_batch(runs: Mapping[str, Mapping[str, Any]], paths: Mapping[str, str | P
     timed = Timing(**timing) if timing is not None else None
     written = []
     for name, run in runs.items():
+        curve = None
+        if run.get("curve") is not None:
+            rule = run["curve"].get("rule")
+            if rule not in CURVE_BUILDERS:
+                raise ValueError(f"runs: {name}: no curve rule {rule!r} in a batch; known: {', '.join(CURVE_BUILDERS)}")
+            module, function = CURVE_BUILDERS[rule]
+            curve = getattr(importlib.import_module(module), function)(run["case"], run["curve"].get("settings"))
         written.append(run_to_file(run["case"], run["method"], paths[name], level=run.get("level"),
                                    keep_failed=keep_failed, timing=timed, study=run.get("study"),
-                                   case_file=reference, code_version=version))
+                                   case_file=reference, contact_curve=curve, code_version=version))
     log.info("batch of %d runs written", len(written))
     return written

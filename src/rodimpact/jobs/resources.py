@@ -147,7 +147,7 @@ def estimate_resources(case: Mapping[str, Any], method: str, *,
 
 
 def estimate_sequence(runs: Iterable[tuple[Mapping[str, Any], str, int]], *,
-                      timing: Mapping[str, Any] | None = None) -> JobResources:
+                      timing: Mapping[str, Any] | None = None, extra: Iterable[Cost] = ()) -> JobResources:
     """Resources of one job that solves several runs one after another (a benchmark, a batch).
 
     Parameters
@@ -156,6 +156,9 @@ def estimate_sequence(runs: Iterable[tuple[Mapping[str, Any], str, int]], *,
         Each solve and how many times it runs (>= 1).
     timing : mapping, optional
         The runs are timed (as in :func:`estimate_resources`): each is repeated on top.
+    extra : iterable of Cost
+        What the job computes besides its solves, once each (a curve a sweep point's law needs,
+        :func:`rodimpact.solvers.fem_axi.cost.fem_axi_indentation_cost`).
 
     Returns
     -------
@@ -176,4 +179,4 @@ def estimate_sequence(runs: Iterable[tuple[Mapping[str, Any], str, int]], *,
         costs.append((cost, repeats * _timed_repeats(timing, cost.solve_s)))
     if not costs:
         raise ValueError("runs: no run given")
-    return _job(costs)
+    return _job([*costs, *((cost, 1.0) for cost in extra)])

@@ -12,6 +12,7 @@ import numpy as np
 
 from rodimpact.contact.laws import law_of
 from rodimpact.storage.casefile import case_file_reference
+from rodimpact.storage.curves import ContactCurve, read_contact_curve
 from rodimpact.storage.provenance import file_sha256
 from rodimpact.storage.runs import write_run
 from rodimpact.solvers.registry import METHODS, UnknownMethod
@@ -72,30 +73,30 @@ def _failure_record(error: BaseException) -> tuple[dict, dict]:
     return {"time": (np.zeros(1), "s", "time since first contact")}, summary
 
 
-def _with_curve(case: Mapping[str, Any], path: str | Path | None) -> Mapping[str, Any]:
-    """The case with its law's curve read from ``path`` when the law needs one (its
-    ``needs.curve_rule``), the case itself otherwise."""
+def _with_curve(case: Mapping[str, Any], curve: str | Path | ContactCurve | None) -> Mapping[str, Any]:
+    """The case with its law's curve (read from the file ``curve``, or the curve itself,
+    computed in the job) when the law needs one (its ``needs.curve_rule``), the case itself otherwise."""
     contact = case.get("contact") or {}
     law = law_of(contact)
     if law.needs.curve_rule is None:
-        if path is not None:
+        if curve is not None:
             raise ValueError(f"contact_curve: case {case['id']!r} has the {law.name} law, which takes no curve")
         return case
-    if path is None:
+    if curve is None:
         raise ValueError(f"contact_curve: case {case['id']!r} has the {law.name} law and needs its curve file "
                          f"(rule {law.needs.curve_rule})")
-    from rodimpact.storage.curves import read_contact_curve  # only a calibrated law's runs read a curve
-
-    curve = read_contact_curve(path)
+    where = "the curve computed in this job" if isinstance(curve, ContactCurve) else str(curve)
+    if not isinstance(curve, ContactCurve):
+        curve = read_contact_curve(curve)
     if curve.case_id != case["id"]:
-        raise ValueError(f"contact_curve: {path} is the curve of case {curve.case_id!r}, not {case['id']!r}")
+        raise ValueError(f"contact_curve: {where} is the curve of case {curve.case_id!r}, not {case['id']!r}")
     return {**case, "contact": {**contact, "curve": curve.law_curve()}}
 
 
 def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: int | None = None, *,
                 keep_failed: bool = False, timing: Timing | None = None,
                 study: Mapping[str, Any] | None = None, case_file: str | Path | Mapping[str, str] | None = None,
-                contact_curve: str | Path | None = None, code_version: str | None = None) -> Path:
+                contact_curve: str | Path | ContactCurve | None = None, code_version: str | None = None) -> Path:
     """Solve and write ``path`` (HDF5, atomically); returns the path.
 
     Only the outputs the case lists are stored (the strain field, ``strain_field``, by the
@@ -117,11 +118,12 @@ def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: i
         The case file the run was made from (``results/cases/{case}.yaml``): its path, its
         SHA-256 and its case's hash are stored in the config (``run.case_file``); a mapping
         is that record already read (:func:`rodimpact.storage.casefile.case_file_reference`).
-    contact_curve : path, optional
+    contact_curve : path or ContactCurve, optional
         The curve file of a case whose contact law needs one (``needs.curve_rule``: the indentation rule's
         output, :mod:`rodimpact.storage.curves`): read, checked against its hash and against
         the case, and given to the law; its path and SHA-256 are stored in the config
-        (``run.contact_curve``).
+        (``run.contact_curve``). A :class:`~rodimpact.storage.curves.ContactCurve` is a curve
+        the job computed itself (a sweep point's): its summary is stored instead.
     code_version : str, optional
         The code version stored with the run (default: :func:`rodimpact.storage.provenance.code_version`).
 
@@ -138,7 +140,9 @@ def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: i
     if case_file is not None:
         config["run"]["case_file"] = dict(case_file) if isinstance(case_file, Mapping) else case_file_reference(case_file)
     case = _with_curve(case, contact_curve)
-    if contact_curve is not None:
+    if isinstance(contact_curve, ContactCurve):
+        config["run"]["contact_curve"] = {"computed_in_job": True, "summary": dict(contact_curve.summary)}
+    elif contact_curve is not None:
         config["run"]["contact_curve"] = {"path": str(contact_curve), "sha256": file_sha256(contact_curve)}
     walls: list[float] = []
     result = error = None

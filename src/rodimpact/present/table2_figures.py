@@ -10,6 +10,7 @@ from __future__ import annotations
 import logging
 import math
 import re
+import textwrap
 from typing import Any, Mapping, Sequence
 
 import matplotlib
@@ -35,6 +36,14 @@ _SOURCE_MARKERS = ("s", "P", "X", "*", "h", "p")
 _MASS_MARGIN, _TIME_MARGIN = 1.3, 1.15
 #: Longest source text in the legend.
 _SOURCE_CHARS = 48
+#: A panel's width and height, in; the legend's font size, pt; a character's mean width, em (DejaVu Sans);
+#: a panel title's line, characters (at 9 pt on a panel's width): legends and titles wrap to fit.
+_PANEL_WIDTH_IN = 5.0
+_PANEL_HEIGHT_IN = 3.5
+_LEGEND_PT = 7.5
+_CHAR_EM = 0.6
+_TITLE_CHARS = 70
+
 #: The colour of the sensor as built (no method's: the methods take C0 to C3).
 SENSOR_COLOR = "C9"
 
@@ -97,7 +106,7 @@ def _panel_title(variant: str, overlays: Sequence[str], descriptions: Mapping[st
     if any(v not in sensors for v in overlays):
         drawn.append("the film alone (red)")
     if drawn:
-        title += "\nwithout the sensor, and with " + " and ".join(drawn)
+        title += "\n" + textwrap.fill("without the sensor, and with " + " and ".join(drawn), _TITLE_CHARS)
     return title
 
 
@@ -158,20 +167,30 @@ def _film_overlay(ax: matplotlib.axes.Axes, variant: str, frame: pd.DataFrame | 
                         label="film as a thin layer: band over the film constants' ranges (approximation)")
 
 
-def _sensor_overlay(ax: matplotlib.axes.Axes, frame: pd.DataFrame | None, calibrated: bool,
-                    bands: pd.DataFrame | None) -> None:
+def _sensor_overlay(ax: matplotlib.axes.Axes, variant: str, frame: pd.DataFrame | None, calibrated: bool,
+                    bands: pd.DataFrame | None, sweeps: pd.DataFrame | None) -> None:
     """A reading with the sensor as built, on the panel of its rod: the continuum's dynamic runs
     (``fem_axi``), or the 1-D methods with the law the continuum calibrates on the stack (the
-    SEM, a line through the rows) with each row's band over the stack's sourced ranges."""
+    SEM: its sweep over the ball sizes as a line, each indented by the continuum, or a line
+    through the rows without one; its rows as points) with each row's band over the stack's
+    sourced ranges."""
     if frame is None:
         return
     if not calibrated and "fem_axi_us" in frame:
         ax.plot(frame["mass_g"], frame["fem_axi_us"], "D", ms=6, color=SENSOR_COLOR, zorder=6,
                 label=f"{METHOD_LABELS['fem_axi']}, sensor as built (electrodes, film, bond line)")
     if calibrated and "sem_us" in frame:
-        ordered = frame.sort_values("mass_g")
-        ax.plot(ordered["mass_g"], ordered["sem_us"], "-", lw=1.6, color=SENSOR_COLOR, zorder=5,
-                label=f"{METHOD_LABELS['sem']}, sensor as built, contact law calibrated by the continuum")
+        label = f"{METHOD_LABELS['sem']}, sensor as built, contact law calibrated by the continuum"
+        sweep = (None if sweeps is None or sweeps.empty else
+                 sweeps[(sweeps["variant"] == variant) & (sweeps["method"] == "sem")].sort_values("mass_g"))
+        if sweep is not None and not sweep.empty:
+            ax.plot(sweep["mass_g"], sweep["contact_time_us"], "-", lw=1.6, color=SENSOR_COLOR, zorder=5,
+                    label=f"{label}: sweep over {len(sweep)} ball sizes")
+            ax.plot(frame["mass_g"], frame["sem_us"], "o", ms=4, color=SENSOR_COLOR, zorder=6,
+                    label=f"{label}: the rows")
+        else:
+            ordered = frame.sort_values("mass_g")
+            ax.plot(ordered["mass_g"], ordered["sem_us"], "-", lw=1.6, color=SENSOR_COLOR, zorder=5, label=label)
         if bands is not None and not bands.empty:
             band = bands[bands["case_id"].isin(frame["case_id"])]
             if not band.empty:
@@ -284,7 +303,8 @@ def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame], sweeps: pd.Data
     sensors : mapping, optional
         Variant -> whether its law is calibrated by the continuum, for the readings with the
         sensor as built drawn on their rod's panel (listed in ``panels`` too): the continuum's
-        runs, or the calibrated SEM's line with the bands of ``sensor_bands``
+        runs, or the calibrated SEM's line (its sweep in ``sweeps`` under the reading's variant,
+        else a line through its rows) with the bands of ``sensor_bands``
         (:func:`rodimpact.present.sensor_tables.sensor_band_frame`).
     """
     panels = {v: () for v in frames} if panels is None else dict(panels)
@@ -294,7 +314,7 @@ def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame], sweeps: pd.Data
                dict(zip(readings["variant"], readings["film_modulus_pa"].astype(float))))
     grid = panel_grid(list(panels), readings)
     rows, cols = len(grid), len(grid[0])
-    fig, axes = plt.subplots(rows, cols, figsize=(5.0 * cols, 3.5 * rows + 1.6), squeeze=False,
+    fig, axes = plt.subplots(rows, cols, figsize=(_PANEL_WIDTH_IN * cols, _PANEL_HEIGHT_IN * rows + 1.6), squeeze=False,
                              sharex=True, sharey=True, layout="constrained")
     drawn = []
     for (i, j), variant in np.ndenumerate(np.array(grid, dtype=object)):
@@ -307,7 +327,7 @@ def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame], sweeps: pd.Data
         _sweep_curves(ax, variant, sweeps)
         for film in panels[variant]:
             if film in sensors:
-                _sensor_overlay(ax, frames.get(film), sensors[film], sensor_bands)
+                _sensor_overlay(ax, film, frames.get(film), sensors[film], sensor_bands, sweeps)
             else:
                 _film_overlay(ax, film, frames.get(film), sweeps, bands, nominal.get(film, math.nan), film_method,
                               contacts)
@@ -334,6 +354,13 @@ def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame], sweeps: pd.Data
     for ax in drawn:
         for handle, label in zip(*ax.get_legend_handles_labels()):
             handles.setdefault(label, handle)
-    fig.legend(list(handles.values()), list(handles), loc="outside lower center", ncol=2 if cols > 1 else 1,
-               fontsize=7.5, frameon=False)
+    ncol = 2 if cols > 1 else 1
+    # each legend column holds its share of the figure's width, less the marker: wrap to it
+    width = int((_PANEL_WIDTH_IN * cols / ncol - 0.6) / (_CHAR_EM * _LEGEND_PT / 72.0))
+    labels = [textwrap.fill(label, width) for label in handles]
+    fig.legend(list(handles.values()), labels, loc="outside lower center", ncol=ncol, fontsize=_LEGEND_PT,
+               frameon=False)
+    # the legend below the panels takes its own height: the panels keep theirs
+    lines = math.ceil(sum(label.count("\n") + 1 for label in labels) / ncol)
+    fig.set_size_inches(_PANEL_WIDTH_IN * cols, _PANEL_HEIGHT_IN * rows + 0.8 + lines * _LEGEND_PT * 1.5 / 72.0)
     return fig

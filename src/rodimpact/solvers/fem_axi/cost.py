@@ -12,7 +12,7 @@ from rodimpact.solvers.fem_axi.film_mesh import FILM_ASPECT, layer_elements
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact
 
-__all__ = ["fem_axi_cost", "fem_axi_dofs"]
+__all__ = ["fem_axi_cost", "fem_axi_dofs", "fem_axi_indentation_cost"]
 
 #: fem_axi: s per DOF of the set-up (meshes, factorisations), s per step and DOF (3.8e-7 to
 #: 5.7e-7 measured), bytes per DOF of the bound (sparse factors, the contact columns G, the
@@ -114,4 +114,22 @@ def fem_axi_cost(case: Mapping[str, Any], options: FEMAxiOptions) -> Cost:
     steps = span / step + 1.0
     return Cost(time_step_s=step, steps=steps,
                 solve_s=SOLVE_S + dofs * (FEM_AXI_SETUP_DOF_S + FEM_AXI_DOF_STEP_S * steps),
+                mem_mib=dofs * FEM_AXI_DOF_BYTES / MIB)
+
+
+#: The static indentation's candidate columns per contact extent (in contact radii) and element
+#: across the contact radius: 111 columns at extent 1.5 and 10 elements with the sensor's stack.
+INDENTATION_COLUMNS = 8.0
+
+
+def fem_axi_indentation_cost(case: Mapping[str, Any], settings: Mapping[str, Any]) -> Cost:
+    """The time and memory of the static indentation (:mod:`.indentation`) of ``case``'s
+    bodies with the ``numerics.fem_axi`` ``settings``: the meshes' set-up and one solve per
+    candidate column, each costing a step's solve (upper side: 2.5 s measured where it estimates 9.9 s, the
+    heaviest Table 2 ball on the sensor's stack)."""
+    options = FEMAxiOptions.from_settings(settings)
+    dofs = fem_axi_dofs({**case, "numerics": {**case["numerics"], "fem_axi": dict(settings)}})
+    columns = INDENTATION_COLUMNS * options.contact_extent * options.elements_across
+    return Cost(time_step_s=math.nan, steps=0.0,
+                solve_s=SOLVE_S + dofs * (FEM_AXI_SETUP_DOF_S + FEM_AXI_DOF_STEP_S * columns),
                 mem_mib=dofs * FEM_AXI_DOF_BYTES / MIB)
