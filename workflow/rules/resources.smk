@@ -38,9 +38,9 @@ def sweep_batch_runs(case_id, names):
             point = sweep_point_case(case, SWEEP_POINTS[case_id][name], name)
             runs[f"p{k}"] = {"case": point, "method": wildcards.method,
                              "study": {"name": "sweep", "sweep": case_id, "point": name}}
-            curve_rule = curve_rule_of(point)
-            if curve_rule is not None:  # a point is no case of the curve rule's: its batch computes its curve
-                runs[f"p{k}"]["curve"] = {"rule": curve_rule, "settings": CURVE_SETTINGS[curve_rule]}
+            builder = curve_rule_of(point)
+            if builder is not None:  # no rule computes a point's curve, its batch does
+                runs[f"p{k}"]["curve"] = {"rule": builder, "settings": CURVE_SETTINGS[builder]}
         return runs
 
     return runs
