@@ -29,6 +29,7 @@ include: "workflow/rules/sweeps.smk"
 include: "workflow/rules/bench.smk"
 include: "workflow/rules/forces.smk"
 include: "workflow/rules/waves.smk"
+include: "workflow/rules/compare.smk"
 
 
 rule all:

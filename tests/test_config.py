@@ -84,9 +84,10 @@ STRESS = ["microgram_fast", "heavy_slow", "thin_wire", "long_rod_heavy", "short_
 
 def test_shipped_config_loads_all_cases(shipped: Project) -> None:
     expected = ["model"] + [f"{row}-{variant}" for row in ROWS for variant in VARIANTS]
-    # 1 + 6 rows x 14 variants, in file order (files sorted by name: model, stress, table2)
-    assert [c for c in shipped.cases if shipped.cases[c]["set"] != "stress"] == expected
-    assert shipped.sets == {"model": ["model"], "table2": expected[1:], "stress": STRESS}
+    # 1 + 6 rows x 14 variants, in file order (files sorted by name: model, stress, table2, worked_example)
+    assert [c for c in shipped.cases if shipped.cases[c]["set"] not in ("stress", "example")] == expected
+    assert shipped.sets == {"example": ["ball_10mm", "ball_20mm"], "model": ["model"], "table2": expected[1:],
+                            "stress": STRESS}
     assert list(shipped.variants["table2"]) == list(VARIANTS)
     assert shipped.variants["model"] == {}
 
@@ -454,7 +455,7 @@ MALFORMED = {
     ),
     "unknown target set": (
         _set("config/config.yaml", "targets", "sets", ["model", "tabel2"]),
-        "config/config.yaml: field 'targets.sets[1]': unknown case set 'tabel2'; known: model, stress, table2",
+        "config/config.yaml: field 'targets.sets[1]': unknown case set 'tabel2'; known: model, stress, table2, example",
     ),
     "sensor band of a reading without a calibrated stack": (
         _set("config/config.yaml", "sensor", "band", ["r10_l30_sensor_cal", "r10_l30_film_cal"]),
@@ -498,7 +499,7 @@ MALFORMED = {
     ),
     "stability on an unknown set": (
         _set("config/config.yaml", "stability", "sets", ["stres"]),
-        "config/config.yaml: field 'stability.sets[0]': unknown case set 'stres'; known: model, stress, table2",
+        "config/config.yaml: field 'stability.sets[0]': unknown case set 'stres'; known: model, stress, table2, example",
     ),
     "stability without a method's tolerances": (
         _set("config/config.yaml", "stability", "tolerances", "fem1d", None),
@@ -749,3 +750,27 @@ def test_alias_bomb_is_refused_before_it_is_built(project_dir: Path) -> None:
     (project_dir / "config/cases/bomb.yaml").write_text("\n".join(lines) + "\n")
     assert error_of(project_dir) == ("config/cases/bomb.yaml: invalid YAML: its aliases expand it to 4.9e+08 "
                                      "nodes, more than the 200000 allowed (an alias bomb?)")
+
+
+@pytest.mark.parametrize("change, field, words", [
+    (lambda h, f: f.write_text("time,force_N\n" + "".join(f"{k},1\n" for k in range(10))), "time_unit",
+     "names no unit of time"),
+    (lambda h, f: f.write_text("time_us,force_N\n" + "".join(f"{k % 5},1\n" for k in range(10))), "file",
+     "line 7: the time must increase"),
+    (lambda h, f: h.update(file="../../outside.csv"), "file", "outside the directory of its case file"),
+    (lambda h, f: f.unlink(), "file", "no such file"),
+])
+def test_a_bad_force_history_is_one_line_before_any_job(project_dir: Path, change, field, words) -> None:
+    """Each fault of a measured force history stops the load with one line naming the case
+    file, the case and the field of the history block."""
+    case_file = project_dir / "config" / "cases" / "worked_example.yaml"
+    document = yaml.safe_load(case_file.read_text())
+    history = document["cases"][0]["measured"]["force_history"]
+    change(history, case_file.parent / history["file"])
+    case_file.write_text(yaml.safe_dump(document, sort_keys=False))
+    with pytest.raises(ConfigError) as caught:
+        load(project_dir)
+    message = str(caught.value)
+    assert message.startswith("config/cases/worked_example.yaml: case 'ball_10mm': "
+                              f"field 'measured.force_history.{field}': "), message
+    assert words in message and "\n" not in message, message

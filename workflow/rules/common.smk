@@ -41,6 +41,7 @@ from pathlib import Path
 from snakemake.utils import Paramspace
 
 from rodimpact.analysis.studies import level_case, map_point_case, map_point_names, reference_case
+from rodimpact.analysis.measured import measured_cases
 from rodimpact.analysis.sweeps import sweep_frame, sweep_point_case, sweep_points
 from rodimpact.contact.laws import LAWS, law_of
 from rodimpact.solvers.field import FIELD_OUTPUT
@@ -321,6 +322,7 @@ def default_targets():
         targets += ["results/tables/work_precision.csv", "results/tables/work_precision_orders.md"]
         targets += expand("results/figures/work_precision_{case}.{ext}", case=WORK_PRECISION["cases"],
                           ext=["pdf", "png"])
+    targets += compare_targets()
     if STABILITY:
         targets += ["results/tables/stability.csv"]
     if MAP:
@@ -374,4 +376,40 @@ def sensor_targets():
     if SENSOR_FIT:
         targets += expand("results/tables/sensor_fit.{ext}", ext=["csv", "md", "json", "provenance.json"])
         targets += expand("results/figures/sensor_fit.{ext}", ext=["pdf", "png", "provenance.json"])
+    return targets
+
+
+# The case sets compared with their measurements (compare.smk): every target set that has cases
+# with something measured, whatever its name; and the cases with a measured force history.
+SRC_COMPARE = sources("rodimpact.present.compare_artifacts", "rodimpact.jobs.logs")
+COMPARE_SETS = [name for name in config["targets"]["sets"] if measured_cases(PROJECT.cases_in(name))]
+HISTORY_CASES = {c["id"]: name for name in COMPARE_SETS for c in measured_cases(PROJECT.cases_in(name))
+                 if c["measured"].get("force_history")}
+
+
+def compare_runs(set_name):
+    """The runs of a set's cases that carry measurements."""
+    return runs_of(measured_cases(PROJECT.cases_in(set_name)))
+
+
+def compare_histories(set_name):
+    """The measured force histories of a set's cases (inputs: a changed record reruns the comparison)."""
+    return sorted({c["measured"]["force_history"]["path"] for c in measured_cases(PROJECT.cases_in(set_name))
+                   if c["measured"].get("force_history")})
+
+
+def compare_case_runs(set_name, case_id):
+    """The runs of one case with a measured force history, of the set that holds it."""
+    if HISTORY_CASES.get(case_id) != set_name:
+        refuse(f"case {case_id!r} has no measured force history in set {set_name!r}; cases that have one: "
+               f"{', '.join(f'{c} ({s})' for c, s in HISTORY_CASES.items()) or 'none'}")
+    return runs_of([PROJECT.cases[case_id]])
+
+
+def compare_targets():
+    """The comparison of every compared set: its table, its figure, a figure per measured history."""
+    targets = expand("results/tables/compare_{set}.{ext}", set=COMPARE_SETS,
+                     ext=["csv", "md", "html", "tex", "provenance.json"])
+    targets += expand("results/figures/compare_{set}.{ext}", set=COMPARE_SETS, ext=["pdf", "png"])
+    targets += [f"results/figures/compare_{s}_{c}.{ext}" for c, s in HISTORY_CASES.items() for ext in ("pdf", "png")]
     return targets

@@ -7,8 +7,10 @@ observed orders), :mod:`.stability_study` (the stress runs' verdicts and the sta
 map), :mod:`.sweeps` (parameter sweeps of a case), :mod:`.waves` (the paths of the wave fronts in the
 rod, for its strain map), :mod:`.force_fit` (a closed form of a computed contact force),
 :mod:`.inverse` (the least-squares fit of one model parameter to measured contact times, from a
-grid of predictions, and its leave-one-out check) and :mod:`.records` (what the analyses read of a
-stored run).
+grid of predictions, and its leave-one-out check), :mod:`.measured` (a measured force history's
+file, read and checked), :mod:`.history_compare` (a computed force against a measured one:
+alignment, error norms, contact times read at a threshold) and :mod:`.records` (what the analyses
+read of a stored run).
 
 What it may import: :mod:`rodimpact.contact`, :mod:`rodimpact.model`, numpy, scipy,
 pandas. Stored runs are read by duck typing (any object with ``config``, ``summary``,

@@ -27,6 +27,7 @@ from typing import Any
 from rodimpact.analysis.sweeps import SweepError, sweep_point_case, sweep_points
 from rodimpact.contact.laws import contact_schema
 from rodimpact.config.bodies import MATERIAL_FIELDS, check_law, check_material_ranges, resolve_contact, resolve_material
+from rodimpact.config.measured import resolve_measured
 from rodimpact.config.checks import check_outputs, check_run, check_sensor, check_stability, check_work_precision
 from rodimpact.config.plausible import Budget, check_plausible
 from rodimpact.config.project import ConfigError, Project, _File
@@ -243,6 +244,7 @@ class _ProjectBuilder:
         self.sets: dict[str, list[str]] = {}
         self.variants: dict[str, dict[str, dict]] = {}
         self.sweeps: dict[str, dict] = {}
+        self.histories: dict[tuple, str] = {}  # measured force histories checked (config.measured)
 
     def add_file(self, source: _File, schemas: Schemas) -> None:
         document = source.read()
@@ -324,7 +326,8 @@ class _ProjectBuilder:
             **({"field_grid": FieldGrid.from_settings(case.get("field_grid", {})).as_settings()}
                if FIELD_OUTPUT in case["outputs"] else {}),
             "numerics": self._numerics(case, case_id, source),
-            "measured": with_floats(case["measured"]),
+            "measured": resolve_measured(with_floats(case["measured"]), source.path, source.label, error,
+                                         self.histories),
             "published": with_floats(case["published"]),
         }
         check_law(resolved if sweep is None else {**resolved, "sweep": sweep}, error)

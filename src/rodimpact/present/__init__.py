@@ -8,7 +8,9 @@ panels of chosen columns), :mod:`.table_views` (which columns each table shows),
 time against ball mass per reading of the rod), :mod:`.film_tables` and :mod:`.film_figures` (the sensor
 film: Table 2 with and without it, its prediction bands, the indentation curves, the contact
 force), :mod:`.sensor_tables`, :mod:`.sensor_figures` and :mod:`.sensor_artifacts` (the sensor as built:
-its band from the continuum and the fit of its bond line), :mod:`.study_figures` (error against run time, the stability map), :mod:`.wave_figures`
+its band from the continuum and the fit of its bond line), :mod:`.compare`, :mod:`.compare_figures` and
+:mod:`.compare_artifacts` (any case set against its measurements: its table, its figure, a figure per
+measured force history), :mod:`.study_figures` (error against run time, the stability map), :mod:`.wave_figures`
 (the strain over the rod against time: its figure and its artifact), :mod:`.forces` (each
 run's contact force as CSV, and its closed form as JSON) and
 :mod:`.artifacts` (one function per artifact of the workflow).

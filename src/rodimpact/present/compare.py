@@ -1,0 +1,117 @@
+"""A case set against its measurements: the frames behind ``results/tables/compare_{set}.*``.
+
+Any case set whose cases carry ``measured`` values is compared the same way, whatever its
+name. For each case (and variant) and each method that ran it, every measured quantity is set
+against the computed one: the contact time, the peak force, the rebound velocity (positive away
+from the rod; its ratio to the impact velocity is the coefficient of restitution), and, for a
+measured force history (:mod:`rodimpact.analysis.measured`), the contact time read from both
+signals at the history's ``threshold``, and the L2 and max-norm errors of the computed force
+after alignment (:mod:`rodimpact.analysis.history_compare`). Errors are signed, in % of the
+measured value: (computed - measured) / |measured|; a history's norms are errors already.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+import pandas as pd
+
+from rodimpact.analysis.history_compare import HistoryComparison, compare_force_histories
+from rodimpact.analysis.measured import MeasuredHistory
+from rodimpact.storage.runs import RunRecord
+from rodimpact.solvers.registry import METHODS
+
+__all__ = ["HISTORY_QUANTITIES", "QUANTITIES", "compare_frame", "compare_summary", "history_comparison"]
+
+#: Measured scalars a case may give (:data:`rodimpact.analysis.measured.MEASURED_KEYS`): key ->
+#: (words, unit, the computed value from a run's summary).
+QUANTITIES: dict[str, tuple[str, str, Any]] = {
+    "contact_time_us": ("contact time", "µs", lambda s: 1e6 * float(s["contact_time_s"])),
+    "peak_force_n": ("peak force", "N", lambda s: float(np.max(s["peak_force_N"])) if len(s["peak_force_N"]) else math.nan),
+    "rebound_velocity_m_s": ("rebound velocity", "m/s", lambda s: -float(s["rebound_velocity_m_s"])),
+}
+#: Rows a measured force history adds: quantity -> (words, unit).
+HISTORY_QUANTITIES = {
+    "signal_contact_time_us": ("contact time read from the signal", "µs"),
+    "history_l2_pct": ("force history, L2 error after alignment", "%"),
+    "history_max_pct": ("force history, max-norm error after alignment", "%"),
+}
+
+
+def history_comparison(record: RunRecord, history: MeasuredHistory, threshold: float) -> HistoryComparison:
+    """The run's contact force against the measured history (needs the run's ``contact_force``)."""
+    if "contact_force" not in record.series:
+        raise ValueError(f"run {record.path}: no contact_force series to compare with the measured history")
+    return compare_force_histories(history.time_s, history.force_N, record.series["time"],
+                                   record.series["contact_force"], threshold)
+
+
+def _row(config: Mapping[str, Any], method: str, quantity: str, words: str, unit: str, measured: float,
+         computed: float, error_pct: float) -> dict[str, Any]:
+    return {"case_id": config["id"], "row": config.get("row", config["id"]), "variant": config.get("variant"),
+            "mass_g": 1000.0 * float(config["impactor"]["mass_kg"]), "method": method,
+            "method_label": METHODS[method].label if method in METHODS else method,
+            "quantity": quantity, "quantity_words": words, "unit": unit, "measured": measured,
+            "computed": computed, "error_pct": error_pct,
+            "source": str((config.get("measured") or {}).get("source", ""))}
+
+
+def compare_frame(records: Sequence[RunRecord],
+                  histories: Mapping[str, tuple[MeasuredHistory, float]] | None = None) -> pd.DataFrame:
+    """One row per case, method and measured quantity (see the module docstring).
+
+    Parameters
+    ----------
+    records : sequence of RunRecord
+        Full runs (with series where a history is compared) of the set's measured cases.
+    histories : mapping, optional
+        Case id -> (its measured history, its threshold).
+
+    Returns
+    -------
+    DataFrame
+        Columns ``case_id, row, variant, mass_g, method, method_label, quantity,
+        quantity_words, unit, measured, computed, error_pct, source``, sorted by mass, case,
+        quantity and the registry's method order.
+    """
+    histories = dict(histories or {})
+    rows = []
+    for record in records:
+        config, measured = record.config, record.config.get("measured") or {}
+        for key, (words, unit, computed_of) in QUANTITIES.items():
+            if measured.get(key) is None:
+                continue
+            value, computed = float(measured[key]), computed_of(record.summary)
+            rows.append(_row(config, record.method, key, words, unit, value, computed,
+                             100.0 * (computed - value) / abs(value)))
+        if record.case_id in histories:
+            history, threshold = histories[record.case_id]
+            result = history_comparison(record, history, threshold)
+            signal_us, model_us = 1e6 * result.measured_contact_time_s, 1e6 * result.model_contact_time_s
+            words, unit = HISTORY_QUANTITIES["signal_contact_time_us"]
+            rows.append(_row(config, record.method, "signal_contact_time_us", f"{words} at {threshold:g} of its peak",
+                             unit, signal_us, model_us, 100.0 * (model_us - signal_us) / signal_us))
+            for key, value in (("history_l2_pct", result.l2_error), ("history_max_pct", result.max_error)):
+                words, unit = HISTORY_QUANTITIES[key]
+                rows.append(_row(config, record.method, key, words, unit, math.nan, math.nan, 100.0 * value))
+    frame = pd.DataFrame(rows, columns=list(_row({"id": "", "impactor": {"mass_kg": 0}}, "", "", "", "", 0, 0, 0)))
+    if frame.empty:
+        return frame
+    order = {m: k for k, m in enumerate(METHODS)}
+    quantities = {q: k for k, q in enumerate([*QUANTITIES, *HISTORY_QUANTITIES])}
+    frame = frame.assign(_m=frame["method"].map(order).fillna(len(order)), _q=frame["quantity"].map(quantities))
+    return frame.sort_values(["mass_g", "case_id", "_q", "_m"], kind="stable").drop(columns=["_m", "_q"]).reset_index(drop=True)
+
+
+def compare_summary(frame: pd.DataFrame) -> pd.DataFrame:
+    """Per method and quantity: the cases compared, the mean and max of |error|, the mean signed error, %."""
+    if frame.empty:
+        return pd.DataFrame(columns=["method", "method_label", "quantity", "quantity_words", "cases",
+                                     "mean_abs_error_pct", "max_abs_error_pct", "mean_signed_error_pct"])
+    grouped = frame.groupby(["method", "method_label", "quantity", "quantity_words"], sort=False)["error_pct"]
+    summary = grouped.agg(cases="count", mean_abs_error_pct=lambda e: float(np.mean(np.abs(e))),
+                          max_abs_error_pct=lambda e: float(np.max(np.abs(e))),
+                          mean_signed_error_pct="mean").reset_index()
+    return summary

@@ -1,0 +1,120 @@
+"""The figures of a case set against its measurements: one for the set, one per measured history."""
+
+from __future__ import annotations
+
+import textwrap
+from typing import Mapping, Sequence
+
+import matplotlib
+
+matplotlib.use("Agg")  # headless: the workflow's figures never open a window
+
+import matplotlib.pyplot as plt  # noqa: E402
+import pandas as pd  # noqa: E402
+
+from rodimpact.analysis.history_compare import HistoryComparison  # noqa: E402
+from rodimpact.present.table2_figures import short_source  # noqa: E402
+from rodimpact.solvers.registry import METHODS  # noqa: E402
+
+__all__ = ["plot_compare_set", "plot_history_overlay"]
+
+#: The measured scalars drawn, in this order, each in its row of panels.
+_DRAWN = ("contact_time_us", "peak_force_n", "rebound_velocity_m_s")
+_MARKERS = ("s", "D", "P", "X", "h")
+
+
+def _method_style(method: str) -> dict:
+    spec = METHODS.get(method)
+    return {"color": spec.color, "ls": spec.style} if spec is not None else {"color": "0.3", "ls": "-"}
+
+
+def plot_compare_set(frame: pd.DataFrame, title: str, x: str = "mass_g", x_label: str = "impactor mass $m$ (g)",
+                     descriptions: Mapping[str, str] | None = None) -> matplotlib.figure.Figure:
+    """Measured and computed values against ``x``, a panel per measured quantity (rows) and
+    variant (columns); measured points marked by their source, each method a line.
+
+    Parameters
+    ----------
+    frame : DataFrame
+        :func:`rodimpact.present.compare.compare_frame`.
+    title : str
+        The set in words.
+    x : str
+        The frame's column along the set (default the impactor's mass, g).
+    descriptions : mapping, optional
+        Variant -> its description (panel titles).
+    """
+    descriptions = dict(descriptions or {})
+    quantities = [q for q in _DRAWN if q in set(frame["quantity"])]
+    variants = list(dict.fromkeys(frame["variant"].fillna("")))
+    fig, axes = plt.subplots(len(quantities), len(variants), figsize=(5.0 * len(variants), 3.2 * len(quantities) + 1.4),
+                             squeeze=False, sharex=True, layout="constrained")
+    sources = list(dict.fromkeys(frame["source"]))
+    for i, quantity in enumerate(quantities):
+        for j, variant in enumerate(variants):
+            ax = axes[i, j]
+            rows = frame[(frame["quantity"] == quantity) & (frame["variant"].fillna("") == variant)]
+            measured = rows.drop_duplicates("case_id").sort_values(x)
+            for source, points in measured.groupby("source", sort=False):
+                ax.plot(points[x], points["measured"], _MARKERS[sources.index(source) % len(_MARKERS)], color="k",
+                        ms=6, ls="none", zorder=5, label=f"measured ({short_source(source)})" if source else "measured")
+            for method, computed in rows.groupby("method", sort=False):
+                computed = computed.sort_values(x)
+                ax.plot(computed[x], computed["computed"], marker="o", ms=4, lw=1.2, label=computed["method_label"].iloc[0],
+                        **_method_style(method))
+            words, unit = rows["quantity_words"].iloc[0], rows["unit"].iloc[0]
+            ax.set_ylabel(f"{words} ({unit})")
+            ax.grid(alpha=0.3)
+            if i == 0:
+                ax.set_title(textwrap.fill(descriptions.get(variant, variant) or title, 60), fontsize=9)
+            if i == len(quantities) - 1:
+                ax.set_xlabel(x_label)
+    handles: dict[str, object] = {}
+    for ax in axes.flat:
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            handles.setdefault(label, handle)
+    fig.legend(list(handles.values()), [textwrap.fill(label, 70) for label in handles], loc="outside lower center",
+               ncol=min(2, len(variants)) or 1, fontsize=8, frameon=False)
+    fig.suptitle(textwrap.fill(title, 90), fontsize=10)
+    return fig
+
+
+def plot_history_overlay(comparisons: Sequence[tuple[str, HistoryComparison]], title: str,
+                         note: str = "") -> matplotlib.figure.Figure:
+    """A measured force history and each method's, aligned (upper panel), and their difference
+    computed minus measured (lower panel), against the computed time.
+
+    Parameters
+    ----------
+    comparisons : sequence of (method, HistoryComparison)
+        Each method's comparison with the same measured history.
+    title : str
+        The case in words.
+    note : str
+        How the history was measured (in the title).
+    """
+    fig, (upper, lower) = plt.subplots(2, 1, figsize=(6.5, 6.0), sharex=True, height_ratios=(2, 1),
+                                       layout="constrained")
+    drawn_measured = False
+    for method, result in comparisons:
+        t_us = 1e6 * result.time_s
+        if not drawn_measured:
+            upper.plot(t_us, result.measured_N, color="k", lw=1.0, label="measured (aligned at "
+                       f"{result.threshold:g} of its peak)")
+            drawn_measured = True
+        style = _method_style(method)
+        label = METHODS[method].label if method in METHODS else method
+        upper.plot(t_us, result.model_N, lw=1.4, label=f"{label}: L2 error {100 * result.l2_error:.1f} %", **style)
+        lower.plot(t_us, result.model_N - result.measured_N, lw=1.0, label=label, **style)
+    upper.set_ylabel("contact force $P$ (N)")
+    upper.legend(fontsize=8, loc="upper right")
+    upper.grid(alpha=0.3)
+    lower.axhline(0.0, color="0.5", lw=0.8)
+    lower.set_ylabel("computed − measured (N)")
+    lower.set_xlabel("time since the computed contact began (µs)")
+    lower.grid(alpha=0.3)
+    upper.set_title(textwrap.fill(title + (f" — {note}" if note else ""), 80), fontsize=9)
+    if not comparisons:
+        upper.text(0.5, 0.5, "no run to compare", transform=upper.transAxes, ha="center")
+    return fig
+

@@ -1,0 +1,103 @@
+# Every case set of targets.sets whose cases carry measurements (measured: contact time, peak
+# force, rebound velocity, a force history; rodimpact.analysis.measured) against its runs, with
+# no set named here: results/tables/compare_{set}.*, results/figures/compare_{set}.*, and for
+# each case with a measured force history results/figures/compare_{set}_{case}.*. The history
+# files are inputs: a changed record reruns its comparison.
+
+
+rule compare_table:
+    """One case set's runs against its measurements: per case, method and quantity, with a summary."""
+    input:
+        runs=lambda w: compare_runs(w.set),
+        histories=lambda w: compare_histories(w.set),
+        code=SRC_COMPARE,
+    output:
+        csv=report(
+            "results/tables/compare_{set}.csv",
+            caption="../report/compare_table.rst",
+            category="Comparison with measurements",
+            subcategory="{set}",
+            labels={"set": "{set}", "artifact": "Measured against computed", "format": "CSV"},
+        ),
+        summary="results/tables/compare_{set}_summary.csv",
+        md="results/tables/compare_{set}.md",
+        html="results/tables/compare_{set}.html",
+        tex="results/tables/compare_{set}.tex",
+        provenance="results/tables/compare_{set}.provenance.json",
+    params:
+        set_name="{set}",
+    wildcard_constraints:
+        set=one_of(COMPARE_SETS),
+    log:
+        "logs/tables/compare_{set}.log",
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
+    conda:
+        "../envs/rodimpact.yaml"
+    script:
+        "../scripts/compare_table.py"
+
+
+rule compare_figure:
+    """One case set's measured and computed values against the impactor's mass."""
+    input:
+        runs=lambda w: compare_runs(w.set),
+        histories=lambda w: compare_histories(w.set),
+        code=SRC_COMPARE,
+    output:
+        pdf=report(
+            "results/figures/compare_{set}.pdf",
+            caption="../report/compare_figure.rst",
+            category="Comparison with measurements",
+            subcategory="{set}",
+            labels={"set": "{set}", "artifact": "Measured and computed against the mass", "format": "PDF"},
+        ),
+        png="results/figures/compare_{set}.png",
+        provenance="results/figures/compare_{set}.provenance.json",
+    params:
+        set_name="{set}",
+        title=lambda w: f"Case set {w.set} against its measurements",
+        descriptions=lambda w: PROJECT.variants.get(w.set, {}) and {v: d.get("description", v)
+                                                                   for v, d in PROJECT.variants[w.set].items()},
+    wildcard_constraints:
+        set=one_of(COMPARE_SETS),
+    log:
+        "logs/figures/compare_{set}.log",
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
+    conda:
+        "../envs/rodimpact.yaml"
+    script:
+        "../scripts/compare_figure.py"
+
+
+rule compare_history:
+    """One case's measured force history against each of its methods' forces, and their difference."""
+    input:
+        runs=lambda w: compare_case_runs(w.set, w.case),
+        history=lambda w: PROJECT.cases[w.case]["measured"]["force_history"]["path"],
+        code=SRC_COMPARE,
+    output:
+        pdf=report(
+            "results/figures/compare_{set}_{case}.pdf",
+            caption="../report/compare_history.rst",
+            category="Comparison with measurements",
+            subcategory="{set}",
+            labels={"set": "{set}", "artifact": "Force history: {case}", "format": "PDF"},
+        ),
+        png="results/figures/compare_{set}_{case}.png",
+        provenance="results/figures/compare_{set}_{case}.provenance.json",
+    wildcard_constraints:
+        set=one_of(COMPARE_SETS),
+        case=one_of(HISTORY_CASES),
+    log:
+        "logs/figures/compare_{set}_{case}.log",
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
+    conda:
+        "../envs/rodimpact.yaml"
+    script:
+        "../scripts/compare_history.py"
