@@ -135,8 +135,9 @@ def expected(built: Path) -> dict:
     variants = sorted(project.variants["table2"])
     by_variant = {v: [run_path(c["id"], m) for c in project.cases_in("table2", v) for m in c["methods"]]
                   for v in variants}
-    runs = [run_path(c["id"], m) for name in ("model", "table2")
+    runs = [run_path(c["id"], m) for name in ("model", "table2", "example")
             for c in project.cases_in(name) for m in c["methods"]]  # fmt: skip
+    example = [run_path(c["id"], m) for c in project.cases_in("example") for m in c["methods"]]
     plain = [v for v in variants if "contact" not in project.variants["table2"][v]]
     calibrated = [v for v in variants if (project.variants["table2"][v].get("contact") or {}).get("law") == "tabulated"]
     # What the checks below need of the configuration: 'model' by the four methods, the text's
@@ -146,7 +147,7 @@ def expected(built: Path) -> dict:
     assert {"r10_l30", FILM_VARIANT} <= set(variants) and "r10_l30" in plain
     assert all(len(project.cases_in("table2", v)) >= 2 for v in variants)
     assert tuple(c for c, case in project.cases.items() if "strain_field" in case["outputs"]) == WAVE_CASES
-    assert len(runs) == sum(len(r) for r in by_variant.values()) + 4
+    assert len(runs) == sum(len(r) for r in by_variant.values()) + 4 + len(example) and example
     return {
         "project": project,
         "variants": variants,
@@ -349,6 +350,27 @@ def test_figures_carry_provenance(
         assert stored_hashes[run].encode() in raw, f"{figure}.pdf lacks the hash of {run}"
     from_pdf = json.loads(pdf_info_string(raw, "Subject"))
     assert_inputs_match([e for e in from_pdf["inputs"] if e not in sweeps], runs, stored_hashes)
+
+
+def test_every_set_with_measurements_is_compared(built: Path, expected: dict) -> None:
+    """The sets of targets.sets whose cases carry measurements (table2, the worked example), and
+    only they, get their comparison: a table with a row per case, method and quantity, its
+    summary, a figure, and a figure per measured force history."""
+    project = expected["project"]
+    tables = sorted(p.name for p in (built / "results/tables").glob("compare_*.csv"))
+    assert tables == ["compare_example.csv", "compare_example_summary.csv", "compare_table2.csv",
+                      "compare_table2_summary.csv"]
+    example = pd.read_csv(built / "results/tables/compare_example.csv")
+    cases = project.sets["example"]
+    assert sorted(set(example["case_id"])) == sorted(cases)
+    for case_id in cases:
+        assert (built / f"results/figures/compare_example_{case_id}.png").stat().st_size > 10_000
+        runs = project.cases[case_id]["methods"]
+        assert set(example[example["case_id"] == case_id]["method"]) == set(runs)
+    table2 = pd.read_csv(built / "results/tables/compare_table2.csv")
+    measured = [c for c in project.sets["table2"] if (project.cases[c]["measured"] or {}).get("contact_time_us")]
+    assert set(table2["case_id"]) == set(measured) and set(table2["quantity"]) == {"contact_time_us"}
+    assert not list((built / "results/figures").glob("compare_table2_*.png"))  # no history measured there
 
 
 def test_sweep_points_are_runs_and_a_table(built: Path, expected: dict) -> None:

@@ -13,6 +13,7 @@ import json
 import math
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import pytest
 import yaml
@@ -152,6 +153,41 @@ def test_new_case_file_is_picked_up(tmp_path: Path) -> None:
 
 
 
+def test_a_new_experiment_with_measurements_gets_its_comparison(tmp_path: Path) -> None:
+    """A new case file with measured values and a force history, its set added to targets.sets:
+    its comparison table, figure and history figure are built, with no code change."""
+    project = copy_project(tmp_path / "project")
+    cases = project / "config/cases"
+    (cases / "my_lab").mkdir()
+    t = np.arange(-10.0, 80.0, 0.5)  # µs: a half-sine of 60 µs and 300 N
+    force = np.where((t > 0) & (t < 60.0), 300.0 * np.sin(np.pi * np.clip(t, 0, 60) / 60.0), 0.0)
+    (cases / "my_lab/ball_a.csv").write_text("time_us,force_N\n" + "".join(f"{a},{b}\n" for a, b in zip(t, force)))
+    (cases / "my_lab.yaml").write_text(NEW_CASE_FILE.replace("my_experiment", "my_lab").replace(
+        'measured: {contact_time_us: 50.0, source: "lab notebook, page 1"}',
+        'methods: [sem]\n    measured: {contact_time_us: 50.0, peak_force_n: 250.0, source: "lab notebook, page 1",\n'
+        '               force_history: {file: my_lab/ball_a.csv, note: "piezo film, 1 MOhm"}}'), encoding="utf-8")
+    config_file = project / "config/config.yaml"
+    config = yaml.safe_load(config_file.read_text(encoding="utf-8"))
+    config["targets"]["sets"] = ["my_lab"]
+    config_file.write_text(yaml.safe_dump(config, sort_keys=False), encoding="utf-8")
+    targets = ["results/tables/compare_my_lab.csv", "results/figures/compare_my_lab.png",
+               "results/figures/compare_my_lab_my_ball.png"]
+    run = snakemake(project, "-j2", *targets, timeout=BUILD_TIMEOUT_S)
+    assert run.returncode == 0, run.describe()
+    assert job_stats(run.output) == {"case_file": 1, "solve": 1, "compare_table": 1, "compare_figure": 1,
+                                     "compare_history": 1}, run.describe()
+    table = pd.read_csv(project / targets[0])
+    assert set(table["quantity"]) == {"contact_time_us", "peak_force_n", "signal_contact_time_us",
+                                      "history_l2_pct", "history_max_pct"}
+    assert (table["source"] == "lab notebook, page 1").all()
+    time = table[table["quantity"] == "contact_time_us"].iloc[0]
+    assert time["error_pct"] == pytest.approx(100 * (time["computed"] - 50.0) / 50.0, rel=1e-12)
+    signal = table[table["quantity"] == "signal_contact_time_us"].iloc[0]
+    assert signal["measured"] == pytest.approx(60.0 * (1 - 2 * math.asin(0.05) / math.pi), rel=1e-3)
+    provenance = json.loads((project / "results/tables/compare_my_lab.provenance.json").read_text())
+    assert "config/cases/my_lab/ball_a.csv" in [entry["path"] for entry in provenance["input_files"]]
+
+
 # --------------------------------------------------------------------------------------------
 # a change reruns what depends on it
 # --------------------------------------------------------------------------------------------
@@ -191,8 +227,8 @@ def test_code_change_reruns_the_solvers(changed: DotTestBuild) -> None:
     assert run.returncode == 0, run.describe()
     stats = job_stats(run.output)
     project = project_cases(changed.workdir)
-    runs = [c for name in ("model", "table2") for c in project.cases_in(name) for _ in c["methods"]]
-    assert stats.get("solve") == len(runs), run.describe()  # every run of 'model' and Table 2
+    runs = [c for name in ("model", "table2", "example") for c in project.cases_in(name) for _ in c["methods"]]
+    assert stats.get("solve") == len(runs), run.describe()  # every run of the target sets
     # the sources are inputs relative to the working directory .test/
     assert "Updated input files: ../src/rodimpact/contact/hertz.py" in run.output, run.describe()
     rows = summary(changed.project, workdir=DOTTEST)
@@ -217,8 +253,14 @@ def test_a_methods_code_change_reruns_only_its_runs(changed: DotTestBuild) -> No
         run_path(case, m) for case, c in calibrated.items() for m in c["methods"]}
     assert pending(rows, "indentation") == {f"results/indentation/{case}.h5" for case in calibrated}
     assert pending(rows, "sensor_band") == {f"results/studies/sensor_band/{case}.h5" for case in calibrated}
+    # and the calibrated sweeps' points, whose batches indent each point with fem_axi's code
+    sweeps = {s for s, c in project_cases(changed.workdir).sweeps.items()
+              if (c.get("contact") or {}).get("law") == "tabulated"}
+    assert sweeps and {p for p in reruns if p.startswith("results/sweeps/")} == {
+        p.relative_to(changed.workdir).as_posix() for s in sweeps for p in (changed.workdir / "results/sweeps" / s).rglob("*.h5")}
     assert reruns and all("fem_axi" in path or Path(path).parent.name in calibrated
                           or path.startswith(("results/indentation/", "results/studies/sensor_band/"))
+                          or Path(path).parts[2:3] and Path(path).parts[2] in sweeps
                           for path in reruns), sorted(reruns)
 
 

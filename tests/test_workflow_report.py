@@ -13,6 +13,7 @@ from pathlib import Path
 
 import pytest
 
+from rodimpact.analysis.measured import measured_cases
 from rodimpact.config.load import load_global_config, load_project
 from rodimpact.solvers.registry import METHODS as REGISTRY
 
@@ -23,7 +24,7 @@ from helpers.snakemake_cli import snakemake
 REPORT_TIMEOUT_S = 120
 REPORT_MAX_BYTES = 20 * 2**20
 REPORT_CATEGORIES = {"Paper, Table 2", "Paper, Fig. 2 and Fig. 4", "Error against run time", "Stability",
-                     "The force handed on"}
+                     "The force handed on", "Comparison with measurements"}
 REPORT_MIME = {".csv": "text/csv", ".png": "image/png", ".pdf": "application/pdf"}
 #: The attribute through which each tag makes a browser fetch something as the page renders.
 FETCHING = {"script": "src", "link": "href", "img": "src", "iframe": "src", "frame": "src",
@@ -119,6 +120,17 @@ def _expected_report(workdir: Path) -> dict[str, list[str]]:
             expected[f"results/tables/sweep_{name}.csv"] = [
                 f"Parameter sweeps of the case set {name}", *(c["id"] for c in swept),
                 *(settings[m] for m in sorted({m for c in swept for m in c["sweep"]["methods"]}))]
+    for name in config["targets"]["sets"]:  # every set with measurements, compared (compare.smk)
+        cases = measured_cases(project.cases_in(name))
+        if not cases:
+            continue
+        expected[f"results/tables/compare_{name}.csv"] = ["A case set against its measurements", "What to see",
+                                                          "Comparing with your experiment"]
+        for ext in ("png", "pdf"):
+            expected[f"results/figures/compare_{name}.{ext}"] = ["measured values (black", "What to see"]
+            for case in (c for c in cases if c["measured"].get("force_history")):
+                expected[f"results/figures/compare_{name}_{case['id']}.{ext}"] = [
+                    "measured contact force against time", "What to see"]
     for ext in ("png", "pdf"):
         expected[f"results/figures/table2_contact_time.{ext}"] = [
             "Contact time against ball mass", *plain, *sweep_text, "41.66 % to 57.93 %",

@@ -124,6 +124,13 @@ SRC_BATCH = ("rodimpact.jobs.batch", "rodimpact.jobs.logs")
 BATCH_SOURCES = {name: sources(*SRC_BATCH, spec.solver_module) for name, spec in METHOD_REGISTRY.items()}
 
 
+def sweep_sources(case_id):
+    """Input function: the sources of a batch of a sweep's points by the method of the wildcard,
+    and, for a calibrated law, the code that computes each point's curve in the batch (CURVE_CODE)."""
+    builder = curve_rule_of(PROJECT.sweeps[case_id])
+    return lambda wildcards: [*BATCH_SOURCES[wildcards.method], *(CURVE_CODE[builder] if builder else [])]
+
+
 def batch_sources(method=None):
     """Input function: the sources of a batch of runs of the method ``method(wildcards)`` (default:
     the wildcard)."""
@@ -137,6 +144,8 @@ SRC_PRESENT = sources("rodimpact.present.artifacts", "rodimpact.jobs.logs")
 SRC_BENCH = sources("rodimpact.tools.bench", "rodimpact.tools.bench_scaling", "rodimpact.storage.atomic",
                     "rodimpact.jobs.logs")
 SRC_INDENTATION = sources("rodimpact.jobs.indentation", "rodimpact.jobs.logs")
+# the code that computes each kind of curve (a calibrated sweep's batch runs it too)
+CURVE_CODE = {"indentation": SRC_INDENTATION}
 SRC_BAND = sources("rodimpact.jobs.band", "rodimpact.jobs.logs")
 TABLE2_VARIANTS = list(PROJECT.variants.get("table2", {}))
 # The readings whose cases' law needs a film (the law declares it: needs.film): each gets its

@@ -53,7 +53,13 @@ rule compare_figure:
             subcategory="{set}",
             labels={"set": "{set}", "artifact": "Measured and computed against the mass", "format": "PDF"},
         ),
-        png="results/figures/compare_{set}.png",
+        png=report(
+            "results/figures/compare_{set}.png",
+            caption="../report/compare_figure.rst",
+            category="Comparison with measurements",
+            subcategory="{set}",
+            labels={"set": "{set}", "artifact": "Measured and computed against the mass", "format": "PNG"},
+        ),
         provenance="results/figures/compare_{set}.provenance.json",
     params:
         set_name="{set}",
@@ -87,7 +93,13 @@ rule compare_history:
             subcategory="{set}",
             labels={"set": "{set}", "artifact": "Force history: {case}", "format": "PDF"},
         ),
-        png="results/figures/compare_{set}_{case}.png",
+        png=report(
+            "results/figures/compare_{set}_{case}.png",
+            caption="../report/compare_history.rst",
+            category="Comparison with measurements",
+            subcategory="{set}",
+            labels={"set": "{set}", "artifact": "Force history: {case}", "format": "PNG"},
+        ),
         provenance="results/figures/compare_{set}_{case}.provenance.json",
     wildcard_constraints:
         set=one_of(COMPARE_SETS),

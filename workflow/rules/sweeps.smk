@@ -19,7 +19,7 @@ for case_id, names, k in ((c, n, k) for c, space in SWEEPS.items()
             f"solve_sweep_{rule_name(case_id)}_{k}"
         input:
             case=f"results/cases/{case_id}.yaml",
-            code=batch_sources(),
+            code=sweep_sources(case_id),
         output:
             **{f"p{i}": f"results/sweeps/{case_id}/{{method}}/{name}.h5" for i, name in enumerate(names)},
         params:

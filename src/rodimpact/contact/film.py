@@ -241,7 +241,7 @@ class HertzFilmLaw(ContactLaw):
     sphere_radius_m: float | None = None
     thickness_m: float | None = None
     name = "hertz_film"
-    label = "Hertz with a thin film"
+    label = "Hertz with a thin film (approximation)"
     reading = "Hertz contact in series with the film"
     settings = HertzFilmSettings
     needs = Needs(film=True)

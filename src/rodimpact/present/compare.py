@@ -20,10 +20,12 @@ import pandas as pd
 
 from rodimpact.analysis.history_compare import HistoryComparison, compare_force_histories
 from rodimpact.analysis.measured import MeasuredHistory
+from rodimpact.contact.laws import law_of
 from rodimpact.storage.runs import RunRecord
 from rodimpact.solvers.registry import METHODS
 
-__all__ = ["HISTORY_QUANTITIES", "QUANTITIES", "compare_frame", "compare_summary", "history_comparison"]
+__all__ = ["HISTORY_QUANTITIES", "QUANTITIES", "X_AXES", "compare_frame", "compare_summary", "history_comparison",
+           "model_label", "x_axis"]
 
 #: Measured scalars a case may give (:data:`rodimpact.analysis.measured.MEASURED_KEYS`): key ->
 #: (words, unit, the computed value from a run's summary).
@@ -40,6 +42,17 @@ HISTORY_QUANTITIES = {
 }
 
 
+def model_label(config: Mapping[str, Any], method: str) -> str:
+    """The model in words: the method, and for a method that takes a contact law, the law
+    (the thin-layer film law is an approximation, and a reader must see which law drew a line)."""
+    spec = METHODS.get(method)
+    if spec is None:
+        return method
+    if spec.contact != "law":
+        return spec.label
+    return f"{spec.label}; contact law: {law_of(config.get('contact')).label}"
+
+
 def history_comparison(record: RunRecord, history: MeasuredHistory, threshold: float) -> HistoryComparison:
     """The run's contact force against the measured history (needs the run's ``contact_force``)."""
     if "contact_force" not in record.series:
@@ -51,8 +64,13 @@ def history_comparison(record: RunRecord, history: MeasuredHistory, threshold: f
 def _row(config: Mapping[str, Any], method: str, quantity: str, words: str, unit: str, measured: float,
          computed: float, error_pct: float) -> dict[str, Any]:
     return {"case_id": config["id"], "row": config.get("row", config["id"]), "variant": config.get("variant"),
-            "mass_g": 1000.0 * float(config["impactor"]["mass_kg"]), "method": method,
-            "method_label": METHODS[method].label if method in METHODS else method,
+            "mass_g": 1000.0 * float(config["impactor"]["mass_kg"]),
+            "velocity_m_s": float(config["impactor"].get("velocity_m_s", math.nan)),
+            "diameter_mm": 2000.0 * float(config["impactor"].get("radius_m", math.nan)),
+            "rod_length_mm": 1000.0 * float(config.get("rod", {}).get("length_m", math.nan)),
+            "method": method,
+            "method_label": model_label(config, method),
+            "contact_law": law_of(config.get("contact")).name,
             "quantity": quantity, "quantity_words": words, "unit": unit, "measured": measured,
             "computed": computed, "error_pct": error_pct,
             "source": str((config.get("measured") or {}).get("source", ""))}
@@ -72,9 +90,9 @@ def compare_frame(records: Sequence[RunRecord],
     Returns
     -------
     DataFrame
-        Columns ``case_id, row, variant, mass_g, method, method_label, quantity,
-        quantity_words, unit, measured, computed, error_pct, source``, sorted by mass, case,
-        quantity and the registry's method order.
+        Columns ``case_id, row, variant, mass_g, velocity_m_s, diameter_mm, rod_length_mm,
+        method, method_label, contact_law, quantity, quantity_words, unit, measured, computed, error_pct,
+        source``, sorted by mass, case, quantity and the registry's method order.
     """
     histories = dict(histories or {})
     rows = []
@@ -105,12 +123,28 @@ def compare_frame(records: Sequence[RunRecord],
     return frame.sort_values(["mass_g", "case_id", "_q", "_m"], kind="stable").drop(columns=["_m", "_q"]).reset_index(drop=True)
 
 
+#: What a set's figure may draw its values against, in this order: the first that varies along
+#: the set (frame column -> axis label).
+X_AXES = {"mass_g": "impactor mass $m$ (g)", "velocity_m_s": "impact velocity $V_0$ (m/s)",
+          "diameter_mm": "impactor diameter (mm)", "rod_length_mm": "rod length (mm)"}
+
+
+def x_axis(frame: pd.DataFrame) -> tuple[str, str]:
+    """The column a set's figure is drawn against, and its label: the first of :data:`X_AXES`
+    that takes more than one value (the mass when nothing varies)."""
+    for column, label in X_AXES.items():
+        if column in frame and frame[column].nunique() > 1:
+            return column, label
+    return "mass_g", X_AXES["mass_g"]
+
+
 def compare_summary(frame: pd.DataFrame) -> pd.DataFrame:
-    """Per method and quantity: the cases compared, the mean and max of |error|, the mean signed error, %."""
+    """Per variant, model and quantity: the cases compared, the mean and max of |error|, the mean
+    signed error, %."""
+    keys = ["variant", "method", "method_label", "quantity", "quantity_words"]
     if frame.empty:
-        return pd.DataFrame(columns=["method", "method_label", "quantity", "quantity_words", "cases",
-                                     "mean_abs_error_pct", "max_abs_error_pct", "mean_signed_error_pct"])
-    grouped = frame.groupby(["method", "method_label", "quantity", "quantity_words"], sort=False)["error_pct"]
+        return pd.DataFrame(columns=[*keys, "cases", "mean_abs_error_pct", "max_abs_error_pct", "mean_signed_error_pct"])
+    grouped = frame.groupby(keys, sort=False, dropna=False)["error_pct"]
     summary = grouped.agg(cases="count", mean_abs_error_pct=lambda e: float(np.mean(np.abs(e))),
                           max_abs_error_pct=lambda e: float(np.max(np.abs(e))),
                           mean_signed_error_pct="mean").reset_index()

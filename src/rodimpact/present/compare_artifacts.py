@@ -10,7 +10,7 @@ from typing import Any, Mapping, Sequence
 
 from rodimpact.analysis.history_compare import DEFAULT_THRESHOLD
 from rodimpact.analysis.measured import read_force_history
-from rodimpact.present.compare import compare_frame, compare_summary, history_comparison
+from rodimpact.present.compare import compare_frame, compare_summary, history_comparison, x_axis
 from rodimpact.present.film_tables import write_provenance_with_files
 from rodimpact.present.table_formats import markdown_table, panels
 from rodimpact.present.tables import write_table
@@ -68,14 +68,16 @@ def make_compare_table(runs: Sequence[str | Path], set_name: str, *, csv: str | 
 
 def make_compare_figure(runs: Sequence[str | Path], set_name: str, title: str, *, pdf: str | Path, png: str | Path,
                         provenance: str | Path, descriptions: Mapping[str, str] | None = None) -> None:
-    """The set's figure (:func:`~rodimpact.present.compare_figures.plot_compare_set`)."""
+    """The set's figure (:func:`~rodimpact.present.compare_figures.plot_compare_set`), against
+    what varies along the set (:func:`~rodimpact.present.compare.x_axis`)."""
     from rodimpact.present.compare_figures import plot_compare_set
     from rodimpact.present.figures import save_figure
     from rodimpact.storage.sidecar import provenance_record
 
     records = [read_run(p) for p in runs]
     frame = compare_frame(records, _histories(records))
-    save_figure(plot_compare_set(frame, title, descriptions=descriptions), pdf=pdf, png=png,
+    x, x_label = x_axis(frame)
+    save_figure(plot_compare_set(frame, title, x=x, x_label=x_label, descriptions=descriptions), pdf=pdf, png=png,
                 provenance=provenance_record(records, [pdf, png]), title=f"Set {set_name} against its measurements")
     write_provenance_with_files(provenance, records, [pdf, png], {"measured force history": _history_files(records)})
 

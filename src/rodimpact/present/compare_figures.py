@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import textwrap
 from typing import Mapping, Sequence
 
@@ -10,6 +11,7 @@ import matplotlib
 matplotlib.use("Agg")  # headless: the workflow's figures never open a window
 
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 import pandas as pd  # noqa: E402
 
 from rodimpact.analysis.history_compare import HistoryComparison  # noqa: E402
@@ -21,6 +23,10 @@ __all__ = ["plot_compare_set", "plot_history_overlay"]
 #: The measured scalars drawn, in this order, each in its row of panels.
 _DRAWN = ("contact_time_us", "peak_force_n", "rebound_velocity_m_s")
 _MARKERS = ("s", "D", "P", "X", "h")
+#: The markers of a method's lines, one per contact law met in the set.
+_LAW_MARKERS = ("o", "^", "v", "D", "s")
+#: The most panels side by side; more variants wrap to further rows.
+_MAX_COLUMNS = 4
 
 
 def _method_style(method: str) -> dict:
@@ -47,34 +53,48 @@ def plot_compare_set(frame: pd.DataFrame, title: str, x: str = "mass_g", x_label
     descriptions = dict(descriptions or {})
     quantities = [q for q in _DRAWN if q in set(frame["quantity"])]
     variants = list(dict.fromkeys(frame["variant"].fillna("")))
-    fig, axes = plt.subplots(len(quantities), len(variants), figsize=(5.0 * len(variants), 3.2 * len(quantities) + 1.4),
-                             squeeze=False, sharex=True, layout="constrained")
+    cols = min(len(variants), _MAX_COLUMNS)
+    per_quantity = math.ceil(len(variants) / cols)  # rows of panels each quantity takes
+    fig, axes = plt.subplots(len(quantities) * per_quantity, cols,
+                             figsize=(4.6 * cols, 3.2 * len(quantities) * per_quantity + 1.4), squeeze=False,
+                             layout="constrained")
+    for ax in axes.flat[len(quantities) * len(variants):]:
+        ax.set_visible(False)
     sources = list(dict.fromkeys(frame["source"]))
+    laws = list(dict.fromkeys(frame["contact_law"]))  # a method's models differ by their marker
+    values = frame[x].to_numpy(float)
+    logarithmic = values.min() > 0 and values.max() > 3.0 * values.min()  # over a decade or so
     for i, quantity in enumerate(quantities):
         for j, variant in enumerate(variants):
-            ax = axes[i, j]
+            ax = axes[i * per_quantity + j // cols, j % cols]
             rows = frame[(frame["quantity"] == quantity) & (frame["variant"].fillna("") == variant)]
             measured = rows.drop_duplicates("case_id").sort_values(x)
             for source, points in measured.groupby("source", sort=False):
                 ax.plot(points[x], points["measured"], _MARKERS[sources.index(source) % len(_MARKERS)], color="k",
                         ms=6, ls="none", zorder=5, label=f"measured ({short_source(source)})" if source else "measured")
-            for method, computed in rows.groupby("method", sort=False):
+            for (method, _, law), computed in rows.groupby(["method", "method_label", "contact_law"], sort=False):
                 computed = computed.sort_values(x)
-                ax.plot(computed[x], computed["computed"], marker="o", ms=4, lw=1.2, label=computed["method_label"].iloc[0],
-                        **_method_style(method))
+                takes_law = method in METHODS and METHODS[method].contact == "law"  # a continuum resolves the bodies
+                marker = _LAW_MARKERS[laws.index(law) % len(_LAW_MARKERS)] if takes_law else "o"
+                ax.plot(computed[x], computed["computed"], marker=marker, ms=4, lw=1.2,
+                        label=computed["method_label"].iloc[0], **_method_style(method))
             words, unit = rows["quantity_words"].iloc[0], rows["unit"].iloc[0]
             ax.set_ylabel(f"{words} ({unit})")
+            ax.set_xlabel(x_label)
             ax.grid(alpha=0.3)
-            if i == 0:
-                ax.set_title(textwrap.fill(descriptions.get(variant, variant) or title, 60), fontsize=9)
-            if i == len(quantities) - 1:
-                ax.set_xlabel(x_label)
+            if logarithmic:
+                ax.set_xscale("log")
+                ax.xaxis.set_major_locator(matplotlib.ticker.LogLocator(base=10.0, subs=(1.0, 2.0, 5.0)))
+                ax.xaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda value, _: f"{value:g}"))
+                ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+            if variant:
+                ax.set_title(textwrap.fill(descriptions.get(variant, variant), 55), fontsize=8.5)
     handles: dict[str, object] = {}
     for ax in axes.flat:
         for handle, label in zip(*ax.get_legend_handles_labels()):
             handles.setdefault(label, handle)
     fig.legend(list(handles.values()), [textwrap.fill(label, 70) for label in handles], loc="outside lower center",
-               ncol=min(2, len(variants)) or 1, fontsize=8, frameon=False)
+               ncol=min(2, cols), fontsize=8, frameon=False)
     fig.suptitle(textwrap.fill(title, 90), fontsize=10)
     return fig
 
