@@ -46,6 +46,18 @@ _GX, _GW = 0.5 * (_GX + 1.0), 0.5 * _GW
 CURVE_SOURCES = {"fem_axi_indentation": "indentation"}
 
 
+def _hermite(x, x0, x1, y0, y1, d0, d1):
+    """The cubic Hermite piece through (x0, y0) and (x1, y1) with slopes d0 and d1, and its
+    slope, at ``x``: one formula for arrays (numpy) and for Python floats (the steppers' scalar
+    path), so both give the same numbers."""
+    h = x1 - x0
+    t = (x - x0) / h
+    t2, t3 = t * t, t * t * t
+    y = (2 * t3 - 3 * t2 + 1) * y0 + (t3 - 2 * t2 + t) * h * d0 + (-2 * t3 + 3 * t2) * y1 + (t3 - t2) * h * d1
+    dy = (6 * t2 - 6 * t) * y0 / h + (3 * t2 - 4 * t + 1) * d0 + (-6 * t2 + 6 * t) * y1 / h + (3 * t2 - 2 * t) * d1
+    return y, dy
+
+
 @dataclass(frozen=True, kw_only=True)
 class TabulatedSettings(LawSettings):
     """The ``tabulated`` law's settings: where its curve comes from, and the case's film or stack."""
@@ -192,13 +204,7 @@ class TabulatedLaw(ContactLaw):
         """ln P and its slope n = d ln P / d ln alpha at ln alpha = ``x`` (any shape)."""
         xs, ys, ds = self._x, self._y, self._d
         i = np.clip(np.searchsorted(xs, x, side="right") - 1, 0, len(xs) - 2)
-        h = xs[i + 1] - xs[i]
-        t = (x - xs[i]) / h
-        t2, t3 = t * t, t * t * t
-        y = ((2 * t3 - 3 * t2 + 1) * ys[i] + (t3 - 2 * t2 + t) * h * ds[i]
-             + (-2 * t3 + 3 * t2) * ys[i + 1] + (t3 - t2) * h * ds[i + 1])
-        dy = ((6 * t2 - 6 * t) * ys[i] / h + (3 * t2 - 4 * t + 1) * ds[i]
-              + (-6 * t2 + 6 * t) * ys[i + 1] / h + (3 * t2 - 2 * t) * ds[i + 1])
+        y, dy = _hermite(x, xs[i], xs[i + 1], ys[i], ys[i + 1], ds[i], ds[i + 1])
         below, above = x < xs[0], x > xs[-1]
         y = np.where(below, ys[0] + ds[0] * (x - xs[0]), np.where(above, ys[-1] + ds[-1] * (x - xs[-1]), y))
         dy = np.where(below, ds[0], np.where(above, ds[-1], dy))
@@ -218,14 +224,7 @@ class TabulatedLaw(ContactLaw):
         if x > xs[-1]:
             return ys[-1] + ds[-1] * (x - xs[-1]), ds[-1]
         i = min(max(bisect_right(xs, x) - 1, 0), len(xs) - 2)
-        h = xs[i + 1] - xs[i]
-        t = (x - xs[i]) / h
-        t2, t3 = t * t, t * t * t
-        y = ((2 * t3 - 3 * t2 + 1) * ys[i] + (t3 - 2 * t2 + t) * h * ds[i]
-             + (-2 * t3 + 3 * t2) * ys[i + 1] + (t3 - t2) * h * ds[i + 1])
-        dy = ((6 * t2 - 6 * t) * ys[i] / h + (3 * t2 - 4 * t + 1) * ds[i]
-              + (-6 * t2 + 6 * t) * ys[i + 1] / h + (3 * t2 - 2 * t) * ds[i + 1])
-        return y, dy
+        return _hermite(x, xs[i], xs[i + 1], ys[i], ys[i + 1], ds[i], ds[i + 1])
 
     def force(self, approach_m: float) -> float:
         if approach_m <= 0.0:
