@@ -13,7 +13,7 @@ import pytest
 from rodimpact.analysis.history_compare import compare_force_histories
 from rodimpact.analysis.measured import read_force_history
 from rodimpact.jobs.runner import run_to_file
-from rodimpact.present.compare import compare_frame, compare_summary
+from rodimpact.present.compare import COLUMNS, compare_frame, compare_summary
 from rodimpact.storage.runs import read_run
 from rodimpact.tools.synthetic_history import SyntheticRecord, synthetic_history
 
@@ -72,6 +72,7 @@ def test_the_alignment_finds_the_trigger_and_the_norms_the_noise(example) -> Non
 
 def test_the_table_sets_each_measured_value_against_each_method(example) -> None:
     frame = compare_frame(example["records"], example["histories"])
+    assert tuple(frame.columns) == COLUMNS and frame[["case_id", "method", "quantity", "unit"]].notna().all().all()
     per_case = {"contact_time_us", "peak_force_n", "rebound_velocity_m_s", "signal_contact_time_us",
                 "history_l2_pct", "history_max_pct"}
     for (case_id, method), rows in frame.groupby(["case_id", "method"]):

@@ -24,7 +24,7 @@ from rodimpact.contact.laws import law_of
 from rodimpact.storage.runs import RunRecord
 from rodimpact.solvers.registry import METHODS
 
-__all__ = ["HISTORY_QUANTITIES", "QUANTITIES", "X_AXES", "compare_frame", "compare_summary", "history_comparison",
+__all__ = ["COLUMNS", "HISTORY_QUANTITIES", "QUANTITIES", "X_AXES", "compare_frame", "compare_summary", "history_comparison",
            "model_label", "x_axis"]
 
 #: Measured scalars a case may give (:data:`rodimpact.analysis.measured.MEASURED_KEYS`): key ->
@@ -59,6 +59,12 @@ def history_comparison(record: RunRecord, history: MeasuredHistory, threshold: f
         raise ValueError(f"run {record.path}: no contact_force series to compare with the measured history")
     return compare_force_histories(history.time_s, history.force_N, record.series["time"],
                                    record.series["contact_force"], threshold)
+
+
+#: The comparison table's columns, in order (each row: :func:`_row`).
+COLUMNS = ("case_id", "row", "variant", "mass_g", "velocity_m_s", "diameter_mm", "rod_length_mm", "method",
+           "method_label", "contact_law", "quantity", "quantity_words", "unit", "measured", "computed", "error_pct",
+           "source")
 
 
 def _row(config: Mapping[str, Any], method: str, quantity: str, words: str, unit: str, measured: float,
@@ -114,7 +120,7 @@ def compare_frame(records: Sequence[RunRecord],
             for key, value in (("history_l2_pct", result.l2_error), ("history_max_pct", result.max_error)):
                 words, unit = HISTORY_QUANTITIES[key]
                 rows.append(_row(config, record.method, key, words, unit, math.nan, math.nan, 100.0 * value))
-    frame = pd.DataFrame(rows, columns=list(_row({"id": "", "impactor": {"mass_kg": 0}}, "", "", "", "", 0, 0, 0)))
+    frame = pd.DataFrame(rows, columns=list(COLUMNS))
     if frame.empty:
         return frame
     order = {m: k for k, m in enumerate(METHODS)}
