@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+import json
 import re
 import tomllib
 from pathlib import Path
@@ -70,3 +71,14 @@ def test_pyproject_declares_the_direct_dependencies_and_the_command() -> None:
     runtime = [p for p in pinned if p and re.split(r"[=<>]", p)[0] not in tools]
     assert project["dependencies"] == runtime
     assert project["scripts"]["rodimpact"] == "rodimpact.tools.cli:main"
+
+
+def test_audit_takes_its_options_after_the_command(tmp_path: Path, capsys) -> None:
+    """``rodimpact audit --root DIR --no-workflow --json FILE``, as its help lists them: an empty
+    project has nothing to audit, and the options reach the audit."""
+    (tmp_path / "results").mkdir()
+    report = tmp_path / "audit.json"
+    status = main(["audit", "--root", str(tmp_path), "--no-workflow", "--json", str(report)])
+    out = capsys.readouterr().out
+    assert status == 0 and out == "0 files audited: 0 resolve to their config and code, 0 do not; code versions: none\n"
+    assert json.loads(report.read_text(encoding="utf-8")) == {"success": True, "findings": []}

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import multiprocessing
 import shutil
+import time
 from pathlib import Path
 
 import pytest
@@ -104,3 +106,32 @@ def test_the_fingerprint_follows_the_sources(tmp_path: Path) -> None:
     (package / "a.py").write_text("x = 2\n")
     assert code_fingerprint(tmp_path) != first
     assert code_fingerprint(ROOT / "src") == code_fingerprint(ROOT / "src")
+
+
+def _add_and_save(path: str, start: str, key: int) -> None:
+    """A cluster job's snakemake: reads the cache when its workflow is parsed, waits for the
+    others to have read it too, adds its own estimate and saves at once with them."""
+    cache = PlanCache(path, "code")
+    while not Path(start).exists():
+        pass
+    cache.remember((key,), lambda k: k * k)
+    cache.save()
+
+
+def test_processes_saving_at_once_keep_each_others_additions(tmp_path: Path) -> None:
+    path, start = tmp_path / "plan.pickle", tmp_path / "start"
+    cache = PlanCache(path, "code")
+    cache.remember((0,), lambda k: k * k)
+    cache.save()
+    context = multiprocessing.get_context("fork")
+    jobs = [context.Process(target=_add_and_save, args=(str(path), str(start), key)) for key in range(1, 9)]
+    for job in jobs:
+        job.start()
+    time.sleep(0.5)  # every process has read the file with key 0 only
+    start.touch()
+    for job in jobs:
+        job.join(timeout=60)
+        assert job.exitcode == 0
+    merged = PlanCache(path, "code")
+    assert [merged.remember((key,), lambda k: -1) for key in range(9)] == [key * key for key in range(9)]
+    assert not merged._changed  # every key was in the file: nothing recomputed

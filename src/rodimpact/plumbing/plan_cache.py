@@ -16,7 +16,9 @@ keyed on SHA-256 digests of everything they read:
 
 A change of any of those misses the cache and redoes the work, so a bad input still gets its one
 error before any job; only a project that passed the check is kept. The file is written whole or
-not at all (:func:`rodimpact.storage.atomic.atomic_output`); an unreadable file is ignored. It is
+not at all (:func:`rodimpact.storage.atomic.atomic_output`), only by a process that added to it,
+and under a lock (``plan.lock``) inside which the file's entries are merged with the process's:
+cluster jobs that save at once keep each other's additions. An unreadable file is ignored. It is
 a pickle because the checked project is a tree of frozen dataclasses, not plain data; it is
 read only from the workflow's own ``.snakemake/`` and only with the same sources and Python.
 
@@ -41,6 +43,7 @@ If snakemake's internals change
 
 from __future__ import annotations
 
+import fcntl
 import hashlib
 import json
 import logging
@@ -131,17 +134,22 @@ class PlanCache:
         self._changed = False
         self._read()
 
-    def _read(self) -> None:
+    def _stored(self) -> tuple[dict[str, Any], dict[str, Any]]:
+        """The projects and estimates in the file (none when it is missing, damaged, or of other sources)."""
         try:
             with open(self.path, "rb") as handle:
                 stored = pickle.load(handle)
         except FileNotFoundError:
-            return
+            return {}, {}
         except Exception as error:  # noqa: BLE001 (a damaged or foreign file is only a miss)
             log.warning("ignoring the plan cache %s: %s", self.path, error)
-            return
+            return {}, {}
         if isinstance(stored, dict) and stored.get("format") == _FORMAT and stored.get("fingerprint") == self.fingerprint:
-            self._projects, self._estimates = dict(stored["projects"]), dict(stored["estimates"])
+            return dict(stored["projects"]), dict(stored["estimates"])
+        return {}, {}
+
+    def _read(self) -> None:
+        self._projects, self._estimates = self._stored()
 
     def project(self, config: Mapping[str, Any], root: str | Path, load: Callable[[], T],
                 schema_dir: str | Path | None = None) -> T:
@@ -170,16 +178,26 @@ class PlanCache:
         return self._estimates[key]
 
     def save(self) -> None:
-        """Write the cache file if anything was added (atomically; a failure is only logged)."""
+        """Write the cache file if anything was added: under an exclusive lock of its lock file, the
+        file's entries merged with this process's (so that processes saving at once, as cluster
+        jobs do, keep each other's additions), then written atomically. A failure is only logged."""
         if not self._changed:
             return
-        while len(self._estimates) > MAX_ESTIMATES:
-            del self._estimates[next(iter(self._estimates))]
-        stored = {"format": _FORMAT, "fingerprint": self.fingerprint, "projects": self._projects,
-                  "estimates": self._estimates}
         try:
-            with atomic_output(self.path) as tmp:
-                tmp.write_bytes(pickle.dumps(stored, protocol=pickle.HIGHEST_PROTOCOL))
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            with open(self.path.with_suffix(".lock"), "a+b") as lock:
+                fcntl.flock(lock, fcntl.LOCK_EX)
+                projects, estimates = self._stored()
+                self._projects = {**{k: v for k, v in projects.items() if k not in self._projects}, **self._projects}
+                self._estimates = {**estimates, **self._estimates}
+                while len(self._projects) > MAX_PROJECTS:
+                    del self._projects[next(iter(self._projects))]
+                while len(self._estimates) > MAX_ESTIMATES:
+                    del self._estimates[next(iter(self._estimates))]
+                stored = {"format": _FORMAT, "fingerprint": self.fingerprint, "projects": self._projects,
+                          "estimates": self._estimates}
+                with atomic_output(self.path) as tmp:
+                    tmp.write_bytes(pickle.dumps(stored, protocol=pickle.HIGHEST_PROTOCOL))
         except OSError as error:
             log.warning("could not write the plan cache %s: %s", self.path, error)
             return

@@ -295,13 +295,22 @@ def _merged(finding: Finding, problems: Sequence[str]) -> Finding:
                    finding.config_sha256)
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m rodimpact.tools.audit [--root DIR] [--no-workflow] [--json FILE]``; exit 1 on failure."""
-    parser = argparse.ArgumentParser(prog="python -m rodimpact.tools.audit", description=__doc__.split("\n")[0])
+def add_arguments(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
+    """The audit's options, on ``parser`` (this module's command and ``rodimpact audit``)."""
     parser.add_argument("--root", default=".", help="project directory (default: .)")
     parser.add_argument("--no-workflow", action="store_true", help="skip snakemake's up-to-date check")
     parser.add_argument("--json", help="also write every finding to this JSON file")
-    args = parser.parse_args(argv)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """``python -m rodimpact.tools.audit [--root DIR] [--no-workflow] [--json FILE]``; exit 1 on failure."""
+    parser = argparse.ArgumentParser(prog="python -m rodimpact.tools.audit", description=__doc__.split("\n")[0])
+    return run(add_arguments(parser).parse_args(argv))
+
+
+def run(args: argparse.Namespace) -> int:
+    """The audit with parsed options (:func:`add_arguments`): prints its findings; exit status 1 on failure."""
     result = audit(args.root, workflow=not args.no_workflow)
     for finding in result.findings:
         for problem in finding.problems:

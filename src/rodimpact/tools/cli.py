@@ -42,9 +42,7 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--method", action="append", help="only this method (repeatable; default: the case's)")
     run.add_argument("--root", type=Path, default=Path("."),
                      help="project directory whose config/config.yaml and materials apply (default: .)")
-    audit_parser = commands.add_parser("audit", help="audit results/: every file resolves to its config and code")
-    audit_parser.add_argument("rest", nargs=argparse.REMAINDER, help="the audit's options (--root, --no-workflow, "
-                              "--json FILE)")
+    audit.add_arguments(commands.add_parser("audit", help="audit results/: every file resolves to its config and code"))
     return parser
 
 
@@ -88,7 +86,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     logging.basicConfig(level=logging.WARNING, format="%(levelname)s %(name)s: %(message)s")
     if args.command == "audit":
-        return audit.main(args.rest)
+        return audit.run(args)
     return run_file(args.case_file, args.root, args.case, args.method, sys.stdout)
 
 
