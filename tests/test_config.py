@@ -180,6 +180,40 @@ def test_global_config_defaults_are_filled(tmp_path: Path) -> None:
     assert config["numerics"]["sem_paper"]["steps_per_contact"] == 20000
 
 
+_EXTRA = ("cases:\n"
+          "  - id: steel_ball\n"
+          "    impactor: {mass_kg: 0.01, radius_m: 0.005, velocity_m_s: 2.0, material: steel}\n"
+          "    rod: {length_m: 1.0, radius_m: 0.002, material: steel}\n")
+
+
+def test_a_sets_compare_options_are_read_and_checked(project_dir: Path, shipped: Project) -> None:
+    assert shipped.compare["table2"] == {"x": "mass", "title": "Table 2", "reference": "Belyaev, Shurpatov and Ma (2018)"}
+    assert "model" not in shipped.compare  # a set with no compare block: the defaults
+    extra = project_dir / "config" / "cases" / "extra.yaml"
+    extra.write_text("set: table2\ncompare: {x: velocity}\n" + _EXTRA)
+    assert error_of(project_dir) == ("config/cases/table2.yaml: field 'compare': set 'table2' is compared differently "
+                                     "in another file")
+    extra.write_text("compare: {x: speed}\n" + _EXTRA)
+    assert "extra.yaml: field 'compare.x'" in error_of(project_dir)
+
+
+def test_a_variant_name_is_unique_over_all_sets(project_dir: Path) -> None:
+    (project_dir / "config" / "cases" / "extra.yaml").write_text(
+        "variants: {r10_l30: {description: a long rod, source: none, rod: {length_m: 2.0}}}\n" + _EXTRA)
+    assert error_of(project_dir) == ("config/cases/table2.yaml: field 'variants.r10_l30': variant name already used by "
+                                     "case set 'extra'; a variant's name is unique over all sets")
+
+
+def test_the_film_table_is_one_sets(project_dir: Path) -> None:
+    (project_dir / "config" / "cases" / "extra.yaml").write_text(
+        "variants: {long: {description: a long rod, source: none, rod: {length_m: 2.0}}}\n" + _EXTRA)
+    edit(project_dir / "config/config.yaml", lambda d: d["sensor"]["film_table"].update(no_film="long"))
+    assert error_of(project_dir).startswith("config/config.yaml: field 'sensor.film_table': the readings are of several "
+                                            "case sets (extra, table2)")
+    edit(project_dir / "config/config.yaml", lambda d: d["sensor"]["film_table"].update(no_film="short"))
+    assert "field 'sensor.film_table.no_film': unknown reading 'short'" in error_of(project_dir)
+
+
 def test_new_case_file_is_picked_up(project_dir: Path) -> None:
     (project_dir / "config" / "cases" / "extra.yaml").write_text(
         "cases:\n"
@@ -217,6 +251,9 @@ def test_case_variants_list_selects_variants(project_dir: Path) -> None:
     # the work-precision sweep names ball_3.16mm-r1_l30, which this edit removes
     assert "unknown case 'ball_3.16mm-r1_l30'" in error_of(project_dir)
     edit(project_dir / "config/config.yaml", lambda d: d.pop("work_precision"))
+    # ... and the film's force figure names it on r10_l30
+    assert "field 'sensor.film_force': no case 'ball_3.16mm' on the reading 'r10_l30'" in error_of(project_dir)
+    edit(project_dir / "config/config.yaml", lambda d: d["sensor"].pop("film_force"))
     project = load(project_dir)
     assert [c["id"] for c in project.cases_in("table2")][:2] == ["ball_3.16mm-r1_l301", "ball_4.75mm-r10_l30"]
     assert len(project.cases_in("table2")) == 6 * len(VARIANTS) - (len(VARIANTS) - 1)

@@ -26,7 +26,7 @@ from rodimpact.analysis.sweeps import sweep_point_case, sweep_points  # noqa: E4
 from rodimpact.storage.bands import BAND_PARAMETERS, CaseBand, write_band  # noqa: E402
 from rodimpact.storage.runs import read_run, read_summary  # noqa: E402
 from rodimpact.present.artifacts import (  # noqa: E402
-    make_fig2, make_fig4, make_fig_film_force, make_fig_force_fit, make_fig_table2, make_stability_map,
+    make_fig2, make_fig4, make_fig_film_force, make_fig_force_fit, make_fig_readings, make_stability_map,
     make_work_precision_figure
 )
 from rodimpact.present.forces import export_forces  # noqa: E402
@@ -164,9 +164,9 @@ def table2_figure(table2, tmp_path_factory: pytest.TempPathFactory):
     real = figures.save_figure
     figures.save_figure = lambda fig, **kwargs: (kept.append(fig), real(fig, **kwargs))
     try:
-        make_fig_table2(table2["runs"], [*READINGS, *SENSORS], sweep_runs=table2["sweeps"],
+        make_fig_readings(table2["runs"], [*READINGS, *SENSORS], sweep_runs=table2["sweeps"],
                         film_variants=["r10_l30_film"], band_files=[table2["band"]], descriptions=table2["descriptions"],
-                        sensors=SENSORS, sensor_band_files=table2["sensor_bands"],
+                        sensors=SENSORS, sensor_band_files=table2["sensor_bands"], title="Table 2",
                         **(out := outputs(tmp_path_factory.mktemp("fig"), "table2_contact_time")))
     finally:
         figures.save_figure = real

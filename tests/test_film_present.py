@@ -14,11 +14,11 @@ import pytest
 from rodimpact.storage.bands import BAND_PARAMETERS, CaseBand, read_band, write_band
 from rodimpact.storage.curves import ContactCurve, read_contact_curve, write_contact_curve
 from rodimpact.storage.runs import read_run, read_summary, write_run
-from rodimpact.present.artifacts import make_fig_film_force, make_table2_film
+from rodimpact.present.artifacts import make_fig_film_force, make_film_indentation_table, make_film_table
 from rodimpact.present.film_figures import plot_film_force
 from rodimpact.present.columns import headers_with_units
 from rodimpact.present.film_tables import (
-    film_band_frame, film_indentation_frame, film_table_frame, readings_frame, table2_panels
+    INDENTATION_COLUMNS, film_band_frame, film_indentation_frame, film_table_frame, readings_frame, table2_panels
 )
 from rodimpact.present.table2_figures import plot_table2_contact_time
 from rodimpact.present.tables import table2_frame, variants_summary
@@ -169,6 +169,13 @@ def test_film_indentation_frame(tmp_path: Path) -> None:
     assert bare_rows["radius_to_film_thickness"].isna().all() and set(bare_rows["law"]) == {"hertz"}
 
 
+def test_no_indentation_curve_is_a_table_of_its_header_alone(tmp_path: Path) -> None:
+    out = {k: tmp_path / f"film_indentation.{k}" for k in ("csv", "md", "html", "provenance.json")}
+    make_film_indentation_table([], csv=out["csv"], md=out["md"], html=out["html"], provenance=out["provenance.json"])
+    assert out["csv"].read_text(encoding="utf-8") == ",".join(INDENTATION_COLUMNS) + "\n"
+    assert list(pd.read_csv(out["csv"]).columns) == list(INDENTATION_COLUMNS)
+
+
 def test_readings_variants_summary_and_panels(store: dict) -> None:
     records = [read_summary(p) for p in store["runs"]]
     readings = readings_frame(records)
@@ -215,7 +222,7 @@ def test_film_force_figure_renders(store: dict, tmp_path: Path) -> None:
 
 def test_table2_film_artifact_and_sidecar(store: dict, tmp_path: Path) -> None:
     out = {k: tmp_path / f"table2_film.{k}" for k in ("csv", "md", "html", "provenance.json")}
-    make_table2_film(store["runs"], ROLES, store["band"], csv=out["csv"], md=out["md"], html=out["html"],
+    make_film_table(store["runs"], ROLES, store["band"], csv=out["csv"], md=out["md"], html=out["html"],
                      provenance=out["provenance.json"])
     table = pd.read_csv(out["csv"])
     assert len(table) == 2 and "model_form_pct" in table
@@ -227,7 +234,7 @@ def test_table2_film_artifact_and_sidecar(store: dict, tmp_path: Path) -> None:
     assert [f["kind"] for f in record["input_files"]] == ["band"]
     assert set(record["sha256"]) == {str(out["csv"]), str(out["md"]), str(out["html"])}
     with pytest.raises(ValueError, match="not of the film reading"):
-        make_table2_film(store["runs"], {**ROLES, "film": "rod"}, store["band"], csv=out["csv"], md=out["md"],
+        make_film_table(store["runs"], {**ROLES, "film": "rod"}, store["band"], csv=out["csv"], md=out["md"],
                          provenance=out["provenance.json"])
 
 
@@ -242,7 +249,7 @@ def test_table2_figure_draws_the_film_on_its_rod(store: dict) -> None:
         "film_modulus_pa": [2e9, 2e9, 3e9, 3e9, 4e9, 4e9], "diameter_mm": [3.0, 12.0] * 3,
         "mass_g": [0.11, 7.1] * 3, "contact_time_us": [40.0, 120.0, 36.0, 110.0, 34.0, 104.0]})
     fig = plot_table2_contact_time(frames, sweeps, panels=table2_panels(readings, ["rod_film"]), readings=readings,
-                                   bands=band_frame)
+                                   bands=band_frame, set_title="Table 2")
     visible = [ax for ax in fig.axes if ax.get_visible()]
     assert len(visible) == 1 and "µs" in visible[0].get_ylabel() and "g" in visible[0].get_xlabel()
     labels = [" ".join(t.get_text().split()) for t in fig.legends[0].get_texts()]  # unwrapped

@@ -32,7 +32,7 @@ needs_chromium = pytest.mark.skipif(
 #: The report's title (workflow/report/workflow.rst).
 TITLE = "rodimpact: the axial impact of a rigid body on an elastic rod"
 #: The categories of the full report (and Benchmarks, after make bench): the description lists each.
-CATEGORIES = ("Paper, Table 2", "Paper, Fig. 2 and Fig. 4", "Error against run time", "Parameter sweeps",
+CATEGORIES = ("Comparison with measurements", "The experiment's sensor", "Paper, Fig. 2 and Fig. 4", "Error against run time", "Parameter sweeps",
               "Stability", "The force handed on", "Benchmarks")
 
 

@@ -67,7 +67,7 @@ def table2(tmp_path_factory) -> dict:
     records = _records(("sem", "fem1d", "fem_axi"))
     frame = table2_frame(records)
     paths = {ext: out / f"table2_r10_l30.{ext}" for ext in ("csv", "md", "html", "tex")}
-    write_table(frame, **paths, caption="Table 2", views=table_views.table2_views(frame, "r10_l30", records))
+    write_table(frame, **paths, caption="Table 2", views=table_views.reading_views(frame, "r10_l30", records, "Table 2", "Belyaev, Shurpatov and Ma (2018)"))
     return {"frame": frame, "records": records, **{ext: p.read_text(encoding="utf-8") for ext, p in paths.items()},
             "paths": paths}
 
@@ -333,7 +333,7 @@ def _check_latex(tex: str, frame: pd.DataFrame, shown: list[Panel]) -> None:
 
 def test_table2_latex_is_journal_ready(table2: dict) -> None:
     tex, frame = table2["tex"], table2["frame"]
-    shown = table_views.table2_views(frame, "r10_l30", table2["records"])
+    shown = table_views.reading_views(frame, "r10_l30", table2["records"], "Table 2")
     _check_latex(tex, frame, shown)
     assert r"\label{tab:table2-r10-l30-times}" in tex and r"\label{tab:table2-r10-l30-errors}" in tex
     assert r"\ref{tab:table2-r10-l30-times}" in tex
@@ -347,7 +347,7 @@ def test_table2_latex_is_journal_ready(table2: dict) -> None:
 def test_table2_of_four_methods_splits_within_a_page() -> None:
     records = _records(("sem", "sem_paper", "fem1d", "fem_axi"), variant="r1_l30")
     frame = table2_frame(records)
-    shown = table_views.table2_views(frame, "r1_l30", records)
+    shown = table_views.reading_views(frame, "r1_l30", records, "Table 2")
     assert len(shown) == 4  # the times and the errors, each in two parts
     assert all(p.columns[:2] == ("diameter_mm", "mass_g") for p in shown)
     _check_latex(latex_tables(frame, shown), frame, shown)

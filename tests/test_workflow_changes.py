@@ -45,17 +45,17 @@ def test_target_plans_only_its_jobs(tmp_path: Path) -> None:
     target = "results/tables/table2_r1_l30.csv"
     run = snakemake(project, "-n", "-j2", target)
     assert run.returncode == 0, run.describe()
-    assert job_stats(run.output) == {"case_file": 6, "solve": 18, "table2": 1}, run.describe()
+    assert job_stats(run.output) == {"case_file": 6, "solve": 18, "readings_table": 1}, run.describe()
     # Which files: the six r1_l30 balls' case files, their runs by the three methods and the
     # five outputs of the table2 job.
     rows = summary(project, target)
     balls = [c["id"] for c in project_cases(project).cases_in("table2", "r1_l30")]
     assert pending(rows, "solve") == {run_path(ball, m) for ball in balls for m in ("sem", "fem1d", "fem_axi")}
-    assert pending(rows, "table2") == {
+    assert pending(rows, "readings_table") == {
         f"results/tables/table2_r1_l30.{ext}" for ext in ("csv", "md", "html", "tex", "provenance.json")
     }
     assert pending(rows, "case_file") == {f"results/cases/{ball}.yaml" for ball in balls}
-    assert pending(rows) == pending(rows, "case_file") | pending(rows, "solve") | pending(rows, "table2")
+    assert pending(rows) == pending(rows, "case_file") | pending(rows, "solve") | pending(rows, "readings_table")
     assert not (project / "results").exists(), "a dry run must not write results"
 
 
@@ -110,7 +110,7 @@ def test_new_row_in_table2_yaml_is_computed(changed: DotTestBuild) -> None:
                     workdir=DOTTEST)
     assert run.returncode == 0, run.describe()
     # The existing runs are reused: the new ball's case file, its three runs, then the table.
-    assert job_stats(run.output) == {"case_file": 1, "solve": 3, "table2": 1}, run.describe()
+    assert job_stats(run.output) == {"case_file": 1, "solve": 3, "readings_table": 1}, run.describe()
 
     record = read_run(changed.workdir / run_path(new_case, "sem"))
     assert record.config["measured"]["contact_time_us"] == 75.0
@@ -186,6 +186,61 @@ def test_a_new_experiment_with_measurements_gets_its_comparison(tmp_path: Path) 
     assert signal["measured"] == pytest.approx(60.0 * (1 - 2 * math.asin(0.05) / math.pi), rel=1e-3)
     provenance = json.loads((project / "results/tables/compare_my_lab.provenance.json").read_text())
     assert "config/cases/my_lab/ball_a.csv" in [entry["path"] for entry in provenance["input_files"]]
+
+
+READINGS_CASE_FILE = """\
+set: drops
+description: Two balls on a steel rod read two ways (its length measured twice), added by a test.
+compare: {title: Drop tests}
+variants:
+  short: {description: "Rod 0.20 m long", source: tape, rod: {length_m: 0.20}}
+  long: {description: "Rod 0.21 m long", source: calliper, rod: {length_m: 0.21}}
+defaults:
+  rod: {radius_m: 5.0e-3, material: steel}
+  methods: [sem]
+cases:
+  - id: ball_a
+    impactor: {mass_kg: 1.0e-3, radius_m: 3.0e-3, velocity_m_s: 0.5, material: steel}
+    measured: {contact_time_us: 30.0, source: "lab notebook, page 2"}
+  - id: ball_b
+    impactor: {mass_kg: 8.0e-3, radius_m: 6.0e-3, velocity_m_s: 0.5, material: steel}
+    measured: {contact_time_us: 60.0, source: "lab notebook, page 2"}
+"""
+
+
+def test_a_new_experiment_with_readings_gets_the_tables_of_table2(tmp_path: Path) -> None:
+    """A new set with variants and measured times, no published results: the tables and the
+    figure Table 2 gets, built by the same rules with no code change, and without the paper's
+    columns, which its cases do not declare."""
+    project = copy_project(tmp_path / "project")
+    (project / "config/cases/drops.yaml").write_text(READINGS_CASE_FILE, encoding="utf-8")
+    config_file = project / "config/config.yaml"
+    config = yaml.safe_load(config_file.read_text(encoding="utf-8"))
+    config["targets"]["sets"] = ["drops"]
+    config_file.write_text(yaml.safe_dump(config, sort_keys=False), encoding="utf-8")
+    targets = [*(f"results/tables/drops_{v}.md" for v in ("short", "long")), "results/tables/drops_variants.csv",
+               "results/figures/drops_contact_time.png", "results/tables/compare_drops.csv"]
+    run = snakemake(project, "-j2", *targets, timeout=BUILD_TIMEOUT_S)
+    assert run.returncode == 0, run.describe()
+    stats = job_stats(run.output)
+    assert {k: stats.get(k) for k in ("readings_table", "readings_summary", "fig_readings", "compare_table",
+                                      "film_table", "sensor_band", "indentation")} == {
+        "readings_table": 2, "readings_summary": 1, "fig_readings": 1, "compare_table": 1, "film_table": None,
+        "sensor_band": None, "indentation": None}, run.describe()
+    for variant, length in (("short", 0.20), ("long", 0.21)):
+        table = pd.read_csv(project / f"results/tables/drops_{variant}.csv")
+        assert list(table["case_id"]) == [f"ball_a-{variant}", f"ball_b-{variant}"]
+        assert not [c for c in table.columns if "published" in c]
+        assert table["sem_error_pct"].tolist() == pytest.approx(
+            (100 * (table["sem_us"] - table["measured_us"]).abs() / table["measured_us"]).tolist(),
+            rel=1e-8)  # the CSV keeps ten significant digits
+        md = (project / f"results/tables/drops_{variant}.md").read_text(encoding="utf-8")
+        assert md.startswith(f"Drop tests, rod reading {variant}: rod radius 5 mm, length {1000 * length:g} mm")
+        assert "Paper" not in md and "Table~2" not in (project / f"results/tables/drops_{variant}.tex").read_text()
+    summary_table = pd.read_csv(project / "results/tables/drops_variants.csv")
+    assert set(summary_table["variant"]) == {"short", "long"}
+    assert not [c for c in summary_table.columns if c.startswith("paper_")]
+    assert (project / "results/figures/drops_contact_time.png").stat().st_size > 0
 
 
 # --------------------------------------------------------------------------------------------
@@ -293,4 +348,4 @@ def test_figure_code_change_reruns_no_solver(changed: DotTestBuild) -> None:
     assert run.returncode == 0, run.describe()
     stats = job_stats(run.output)
     assert "solve" not in stats, run.describe()
-    assert stats.get("fig2") == 1 and stats.get("fig_table2") == 1, run.describe()
+    assert stats.get("fig2") == 1 and stats.get("fig_readings") == 1, run.describe()

@@ -23,7 +23,7 @@ from helpers.snakemake_cli import snakemake
 
 REPORT_TIMEOUT_S = 120
 REPORT_MAX_BYTES = 20 * 2**20
-REPORT_CATEGORIES = {"Paper, Table 2", "Paper, Fig. 2 and Fig. 4", "Error against run time", "Stability",
+REPORT_CATEGORIES = {"The experiment's sensor", "Paper, Fig. 2 and Fig. 4", "Error against run time", "Stability",
                      "The force handed on", "Comparison with measurements"}
 REPORT_MIME = {".csv": "text/csv", ".png": "image/png", ".pdf": "application/pdf"}
 #: The attribute through which each tag makes a browser fetch something as the page renders.

@@ -147,11 +147,52 @@ SRC_INDENTATION = sources("rodimpact.jobs.indentation", "rodimpact.jobs.logs")
 # the code that computes each kind of curve (a calibrated sweep's batch runs it too)
 CURVE_CODE = {"indentation": SRC_INDENTATION}
 SRC_BAND = sources("rodimpact.jobs.band", "rodimpact.jobs.logs")
-TABLE2_VARIANTS = list(PROJECT.variants.get("table2", {}))
+# The case sets compared with their measurements (compare.smk): every target set that has cases
+# with something measured, whatever its name.
+COMPARE_SETS = [name for name in config["targets"]["sets"] if measured_cases(PROJECT.cases_in(name))]
+# Those with variants (readings of one experiment) -> their readings: each set gets its readings'
+# tables and figure (tables.smk, figures.smk: results/tables/{set}_{variant}.*, {set}_variants.*,
+# results/figures/{set}_contact_time.*); the columns a case declares (published results, a film's
+# law) are the ones these show. A reading's name is unique over all sets (the loader checks).
+READING_SETS = {name: list(PROJECT.variants[name]) for name in COMPARE_SETS if PROJECT.variants.get(name)}
+READING_SET_OF = {v: name for name, variants in READING_SETS.items() for v in variants}
+# the names that end the other files of a set ({set}_variants, {set}_film, {set}_contact_time)
+_TAKEN = sorted(set(READING_SET_OF) & {"variants", "film", "contact_time"})
+if _TAKEN:
+    sys.exit(f"rodimpact: case set {READING_SET_OF[_TAKEN[0]]!r}: a variant may not be named {_TAKEN[0]!r} "
+             "(the name of another of its set's files)")
+
+
+def reading_cases(variant):
+    """The cases of one reading (a variant of a set of READING_SETS)."""
+    return PROJECT.cases_in(READING_SET_OF[variant], variant)
+
+
+def reading_runs(variant):
+    return runs_of(reading_cases(variant))
+
+
+def set_reading_runs(set_name):
+    """The runs of every reading of a set, reading by reading."""
+    return [run for v in READING_SETS[set_name] for run in reading_runs(v)]
+
+
+def set_title(set_name):
+    """A set as captions name it: its compare.title, else "case set <name>"."""
+    return PROJECT.compare.get(set_name, {}).get("title", f"case set {set_name}")
+
+
+def set_published(set_name):
+    """Whether a set's cases declare published results (the paper's: its captions say so)."""
+    return any(c.get("published") for c in PROJECT.cases_in(set_name))
+
+
+# each reading in words (its case file's description): the panels' titles
+READING_DESCRIPTIONS = {v: spec.get("description", "") for name in READING_SETS
+                        for v, spec in PROJECT.variants[name].items()}
 # The readings whose cases' law needs a film (the law declares it: needs.film): each gets its
 # prediction band over the film's ranges.
-FILM_VARIANTS = [v for v in TABLE2_VARIANTS
-                 if all(law_of(c.get("contact")).needs.film for c in PROJECT.cases_in("table2", v))]
+FILM_VARIANTS = [v for v in READING_SET_OF if all(law_of(c.get("contact")).needs.film for c in reading_cases(v))]
 # The rules that compute a law's curve per case (a law declares its rule: needs.curve_rule) -> the
 # curve file of a case; a law that names another rule is refused here, before any job.
 CURVE_FILES = {"indentation": "results/indentation/{case}.h5"}
@@ -178,7 +219,7 @@ def one_of(names):
 wildcard_constraints:
     case="[A-Za-z0-9][A-Za-z0-9_.\-]*",
     method=one_of(METHOD_REGISTRY),
-    variant=one_of(TABLE2_VARIANTS),
+    variant=one_of(READING_SET_OF),
     row="[0-9]+",
     map_method=one_of(["sem", "sem_paper", "reference"]),
 
@@ -293,10 +334,6 @@ def force_files(cases, ext):
     return [f"results/forces/{c['id']}/{m}.{ext}" for c in cases for m in c["methods"]]
 
 
-def table2_runs(variant):
-    return runs_of(PROJECT.cases_in("table2", variant))
-
-
 def default_targets():
     sets = config["targets"]["sets"]
     targets = []
@@ -304,18 +341,8 @@ def default_targets():
         targets += expand("results/figures/fig2_contact_force.{ext}", ext=["pdf", "png"])
         targets += expand("results/figures/fig4_midrod_displacement.{ext}", ext=["pdf", "png"])
         targets += expand("results/tables/fig2_comparison.{ext}", ext=["csv", "md", "provenance.json"])
-    if "table2" in sets:
-        targets += expand("results/tables/table2_{variant}.{ext}", variant=TABLE2_VARIANTS,
-                          ext=["csv", "md", "tex", "provenance.json"])
-        targets += expand("results/tables/table2_variants.{ext}", ext=["csv", "md", "provenance.json"])
-        targets += expand("results/figures/table2_contact_time.{ext}", ext=["pdf", "png"])
-        targets += expand("results/studies/film_band_{variant}.h5", variant=FILM_VARIANTS)
-        # the sensor film's tables and figure (rules in tables.smk and figures.smk)
-        targets += expand("results/tables/{name}.{ext}", name=["table2_film", "film_band", "film_indentation"],
-                          ext=["csv", "md", "provenance.json"])
-        targets += expand("results/figures/film_force.{ext}", ext=["pdf", "png"])
-        # the sensor as built: its band and the fit (sensor.smk)
-        targets += sensor_targets()
+    targets += readings_targets()
+    targets += sensor_targets()
     if "model" in sets:
         targets += expand("results/figures/force_fit_model.{ext}", ext=["pdf", "png"])
     for name in sets:
@@ -366,10 +393,11 @@ SENSOR_READING_OF = {c["id"]: v for v in SENSOR_READINGS for c in PROJECT.cases.
 SENSOR_GRID = {f"{SENSOR_FIT['layer']}: thickness_m": SENSOR_FIT["thickness_grid_m"]} if SENSOR_FIT else {}
 
 
-# The Table 2 readings with the sensor as built (a stack on the rod) -> whether their law is
-# calibrated by the continuum: the Table 2 figure draws them on their rod's panel.
-SENSOR_VARIANTS = {v: curve_rule_of(PROJECT.cases_in("table2", v)[0]) == "indentation" for v in TABLE2_VARIANTS
-                   if all((c.get("contact") or {}).get("stack") for c in PROJECT.cases_in("table2", v))}
+def sensor_variants(set_name):
+    """A set's readings with the sensor as built (a stack on the rod) -> whether their law is
+    calibrated by the continuum: its figure draws them on their rod's panel."""
+    return {v: curve_rule_of(reading_cases(v)[0]) == "indentation" for v in READING_SETS[set_name]
+            if all((c.get("contact") or {}).get("stack") for c in reading_cases(v))}
 
 
 def sensor_band_files(variants):
@@ -378,8 +406,10 @@ def sensor_band_files(variants):
 
 
 def sensor_targets():
-    """The sensor's tables, when the configuration asks for them."""
+    """The sensor's tables, when the configuration asks for them and their readings are built."""
     targets = []
+    if not all(v in READING_SET_OF for v in SENSOR_READINGS):
+        return targets
     if any(SENSOR_READINGS.values()):
         targets += expand("results/tables/sensor_band.{ext}", ext=["csv", "md", "provenance.json"])
     if SENSOR_FIT:
@@ -388,10 +418,42 @@ def sensor_targets():
     return targets
 
 
-# The case sets compared with their measurements (compare.smk): every target set that has cases
-# with something measured, whatever its name; and the cases with a measured force history.
+# The sensor film (tables.smk, figures.smk): config["sensor"]'s film_table (one rod's readings by
+# role, results/tables/{set}_film.*) and film_force (rows on readings, results/figures/film_force.*),
+# when their readings are built; the cases whose law the continuum calibrates (one indentation
+# curve each, results/tables/film_indentation.*).
+FILM_TABLE = SENSOR.get("film_table") or {}
+FILM_TABLE_SETS = sorted({READING_SET_OF[v] for v in FILM_TABLE.values()}) \
+    if all(v in READING_SET_OF for v in FILM_TABLE.values()) else []
+FILM_FORCE = SENSOR.get("film_force") or {}
+# its runs: each row on each reading, by each of the methods the case runs
+FILM_FORCE_RUNS = [f"results/runs/{case['id']}/{method}.h5"
+                   for case in (PROJECT.cases[f"{row}-{variant}"] for row in FILM_FORCE.get("rows", [])
+                                for variant in FILM_FORCE.get("variants", []))
+                   for method in FILM_FORCE["methods"] if method in case["methods"]] \
+    if all(v in READING_SET_OF for v in FILM_FORCE.get("variants", [])) else []
+CALIBRATED_CASES = [c["id"] for name in READING_SETS for c in PROJECT.cases_in(name) if curve_rule_of(c) == "indentation"]
+
+
+def readings_targets():
+    """Every reading set's tables and figure; the film's and the continuum's curves, where built."""
+    targets = []
+    for name, variants in READING_SETS.items():
+        targets += expand("results/tables/{set}_{variant}.{ext}", set=name, variant=variants,
+                          ext=["csv", "md", "tex", "provenance.json"])
+        targets += expand("results/tables/{set}_variants.{ext}", set=name, ext=["csv", "md", "provenance.json"])
+        targets += expand("results/figures/{set}_contact_time.{ext}", set=name, ext=["pdf", "png"])
+    targets += expand("results/studies/film_band_{variant}.h5", variant=FILM_VARIANTS)
+    tables = [*(f"{name}_film" for name in FILM_TABLE_SETS), *(["film_band"] if FILM_VARIANTS else []),
+              *(["film_indentation"] if CALIBRATED_CASES else [])]
+    targets += expand("results/tables/{name}.{ext}", name=tables, ext=["csv", "md", "provenance.json"])
+    if FILM_FORCE_RUNS:
+        targets += expand("results/figures/film_force.{ext}", ext=["pdf", "png"])
+    return targets
+
+
+# The cases of the compared sets (COMPARE_SETS) with a measured force history (compare.smk).
 SRC_COMPARE = sources("rodimpact.present.compare_artifacts", "rodimpact.jobs.logs")
-COMPARE_SETS = [name for name in config["targets"]["sets"] if measured_cases(PROJECT.cases_in(name))]
 HISTORY_CASES = {c["id"]: name for name in COMPARE_SETS for c in measured_cases(PROJECT.cases_in(name))
                  if c["measured"].get("force_history")}
 

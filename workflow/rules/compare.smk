@@ -40,7 +40,7 @@ rule compare_table:
 
 
 rule compare_figure:
-    """One case set's measured and computed values against the impactor's mass."""
+    """One case set's measured and computed values against the impactor's mass (or its compare.x)."""
     input:
         runs=lambda w: compare_runs(w.set),
         histories=lambda w: compare_histories(w.set),
@@ -63,7 +63,8 @@ rule compare_figure:
         provenance="results/figures/compare_{set}.provenance.json",
     params:
         set_name="{set}",
-        title=lambda w: f"Case set {w.set} against its measurements",
+        title=lambda w: f"{set_title(w.set)[:1].upper()}{set_title(w.set)[1:]}: measured and computed",
+        x=lambda w: PROJECT.compare.get(w.set, {}).get("x", ""),
         descriptions=lambda w: PROJECT.variants.get(w.set, {}) and {v: d.get("description", v)
                                                                    for v, d in PROJECT.variants[w.set].items()},
     wildcard_constraints:

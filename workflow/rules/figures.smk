@@ -67,60 +67,55 @@ rule fig4:
         "../scripts/fig4.py"
 
 
-rule fig_table2:
-    """Contact time against ball mass: measured, published and ours, one panel per rod (a grid by
-    rod radius and length), with the curves of the table2 set's sweeps, and the readings with the
-    film and their bands."""
+rule fig_readings:
+    """Contact time against ball mass for a set with variants: measured, published (where its cases
+    declare it) and ours, one panel per rod (a grid by rod radius and length), with the curves of
+    the set's sweeps, and the readings with the film and their bands."""
     input:
-        runs=[run for v in TABLE2_VARIANTS for run in table2_runs(v)],
-        sweep_runs=sweep_point_runs(PROJECT.sweeps_in("table2")),
-        bands=expand("results/studies/film_band_{variant}.h5", variant=FILM_VARIANTS),
-        sensor_bands=sensor_band_files([v for v, band in SENSOR_READINGS.items() if band and v in SENSOR_VARIANTS]),
+        runs=lambda w: set_reading_runs(w.set),
+        sweep_runs=lambda w: sweep_point_runs(PROJECT.sweeps_in(w.set)),
+        bands=lambda w: expand("results/studies/film_band_{variant}.h5",
+                               variant=[v for v in FILM_VARIANTS if READING_SET_OF[v] == w.set]),
+        sensor_bands=lambda w: sensor_band_files([v for v, band in SENSOR_READINGS.items()
+                                                  if band and v in sensor_variants(w.set)]),
         code=SRC_PRESENT,
     output:
         pdf=report(
-            "results/figures/table2_contact_time.pdf",
+            "results/figures/{set}_contact_time.pdf",
             caption="../report/table2_contact_time.rst",
-            category="Paper, Table 2",
-            subcategory="All readings",
-            labels={"artifact": "Contact time against ball mass", "format": "PDF"},
+            category="Comparison with measurements",
+            subcategory="{set}",
+            labels={"set": "{set}", "artifact": "Contact time against ball mass, every reading", "format": "PDF"},
         ),
         png=report(
-            "results/figures/table2_contact_time.png",
+            "results/figures/{set}_contact_time.png",
             caption="../report/table2_contact_time.rst",
-            category="Paper, Table 2",
-            subcategory="All readings",
-            labels={"artifact": "Contact time against ball mass", "format": "PNG"},
+            category="Comparison with measurements",
+            subcategory="{set}",
+            labels={"set": "{set}", "artifact": "Contact time against ball mass, every reading", "format": "PNG"},
         ),
-        provenance="results/figures/table2_contact_time.provenance.json",
+        provenance="results/figures/{set}_contact_time.provenance.json",
     params:
-        variants=TABLE2_VARIANTS,
-        film_variants=FILM_VARIANTS,
-        sensors=SENSOR_VARIANTS,
-        # each reading in words (the case file's description): the panels' titles
-        descriptions={v: spec.get("description", "") for v, spec in PROJECT.variants.get("table2", {}).items()},
+        variants=lambda w: READING_SETS[w.set],
+        film_variants=lambda w: [v for v in FILM_VARIANTS if READING_SET_OF[v] == w.set],
+        sensors=lambda w: sensor_variants(w.set),
+        descriptions=lambda w: {v: READING_DESCRIPTIONS[v] for v in READING_SETS[w.set]},
+        title=lambda w: set_title(w.set),
+        published=lambda w: set_published(w.set),
+    wildcard_constraints:
+        set=one_of(READING_SETS),
     log:
-        "logs/figures/table2_contact_time.log",
+        "logs/figures/{set}_contact_time.log",
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
     conda:
         "../envs/rodimpact.yaml"
     script:
-        "../scripts/fig_table2.py"
+        "../scripts/fig_readings.py"
 
 
-# The contact force with and without the film: the lightest and the heaviest ball on the text's
-# rod, by the SEM and the continuum.
-FILM_FORCE = {"rows": ["ball_3.16mm", "ball_12.73mm"], "variants": ["r10_l30", "r10_l30_film"],
-              "methods": ["sem", "fem_axi"]}
-# its runs: each row on each reading, by each of the methods the case runs
-FILM_FORCE_RUNS = [f"results/runs/{case['id']}/{method}.h5"
-                   for case in (PROJECT.cases[f"{row}-{variant}"] for row in FILM_FORCE["rows"]
-                                for variant in FILM_FORCE["variants"])
-                   for method in FILM_FORCE["methods"] if method in case["methods"]]
-
-
+# The contact force with and without the film: config["sensor"]["film_force"] (common.smk).
 rule fig_film_force:
     """The contact force P(t) with and without the sensor film, lightest and heaviest ball."""
     input:
@@ -130,14 +125,14 @@ rule fig_film_force:
         pdf=report(
             "results/figures/film_force.pdf",
             caption="../report/film_force.rst",
-            category="Paper, Table 2",
+            category="The experiment's sensor",
             subcategory="The sensor film",
             labels={"artifact": "Contact force with and without the film", "format": "PDF"},
         ),
         png=report(
             "results/figures/film_force.png",
             caption="../report/film_force.rst",
-            category="Paper, Table 2",
+            category="The experiment's sensor",
             subcategory="The sensor film",
             labels={"artifact": "Contact force with and without the film", "format": "PNG"},
         ),

@@ -27,15 +27,15 @@ rule indentation:
 
 
 rule film_band:
-    """The film's prediction band for one Table 2 reading with a film: the SEM's contact time
+    """The film's prediction band for one reading with a film (of a set with variants): the SEM's contact time
     at the corners of the film constants' ranges, and along each range (monotonicity)."""
     input:
-        cases=lambda w: [f"results/cases/{c['id']}.yaml" for c in PROJECT.cases_in("table2", w.variant)],
+        cases=lambda w: [f"results/cases/{c['id']}.yaml" for c in reading_cases(w.variant)],
         code=SRC_BAND,
     output:
         h5="results/studies/film_band_{variant}.h5",
     params:
-        cases=lambda w: PROJECT.cases_in("table2", w.variant),
+        cases=lambda w: reading_cases(w.variant),
         variant="{variant}",
     log:
         "logs/studies/film_band_{variant}.log",

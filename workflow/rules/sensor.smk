@@ -40,7 +40,7 @@ rule sensor_band_table:
         csv=report(
             "results/tables/sensor_band.csv",
             caption="../report/sensor_band.rst",
-            category="Paper, Table 2",
+            category="The experiment's sensor",
             subcategory="The sensor as built",
             labels={"artifact": "The sensor's prediction band", "format": "CSV"},
         ),
@@ -69,7 +69,7 @@ rule sensor_fit:
         csv=report(
             "results/tables/sensor_fit.csv",
             caption="../report/sensor_fit.rst",
-            category="Paper, Table 2",
+            category="The experiment's sensor",
             subcategory="The sensor as built",
             labels={"artifact": "A fit of the bond line", "format": "CSV"},
         ),
@@ -101,21 +101,21 @@ rule fig_sensor_fit:
         pdf=report(
             "results/figures/sensor_fit.pdf",
             caption="../report/sensor_fit_figure.rst",
-            category="Paper, Table 2",
+            category="The experiment's sensor",
             subcategory="The sensor as built",
             labels={"artifact": "A fit of the bond line (figure)", "format": "PDF"},
         ),
         png=report(
             "results/figures/sensor_fit.png",
             caption="../report/sensor_fit_figure.rst",
-            category="Paper, Table 2",
+            category="The experiment's sensor",
             subcategory="The sensor as built",
             labels={"artifact": "A fit of the bond line (figure)", "format": "PNG"},
         ),
         provenance="results/figures/sensor_fit.provenance.json",
     params:
         layer=SENSOR_FIT["layer"] if SENSOR_FIT else "",
-        descriptions={v: spec.get("description", "") for v, spec in PROJECT.variants.get("table2", {}).items()},
+        descriptions=READING_DESCRIPTIONS,
     log:
         "logs/figures/sensor_fit.log",
     threads: 1

@@ -1,63 +1,72 @@
 # Tables: read HDF5 runs only.
 
 
-rule table2:
-    """Table 2 of the paper for one reading of the experiment's rod geometry."""
+rule readings_table:
+    """One reading of a set with variants against its measurements (for the paper's set: Table 2
+    for one reading of the experiment's rod, with the published results its cases declare)."""
     input:
-        runs=lambda w: table2_runs(w.variant),
+        runs=lambda w: reading_runs(w.variant),
         code=SRC_PRESENT,
     output:
         csv=report(
-            "results/tables/table2_{variant}.csv",
+            "results/tables/{set}_{variant}.csv",
             caption="../report/table2.rst",
-            category="Paper, Table 2",
-            subcategory="{variant}",
-            labels={"artifact": "Table 2, rod reading {variant}", "format": "CSV"},
+            category="Comparison with measurements",
+            subcategory="{set}",
+            labels={"set": "{set}", "artifact": "Reading {variant}", "format": "CSV"},
         ),
-        md="results/tables/table2_{variant}.md",
-        html="results/tables/table2_{variant}.html",
-        tex="results/tables/table2_{variant}.tex",
-        provenance="results/tables/table2_{variant}.provenance.json",
+        md="results/tables/{set}_{variant}.md",
+        html="results/tables/{set}_{variant}.html",
+        tex="results/tables/{set}_{variant}.tex",
+        provenance="results/tables/{set}_{variant}.provenance.json",
     params:
         variant="{variant}",
+        title=lambda w: set_title(w.set),
+        reference=lambda w: PROJECT.compare.get(w.set, {}).get("reference", ""),
+        published=lambda w: set_published(w.set),
+    wildcard_constraints:
+        set=one_of(READING_SETS),
     log:
-        "logs/tables/table2_{variant}.log",
+        "logs/tables/{set}_{variant}.log",
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
     conda:
         "../envs/rodimpact.yaml"
     script:
-        "../scripts/table2.py"
+        "../scripts/readings_table.py"
 
 
-rule table2_variants:
-    """Mean and max error against the measurements per geometry variant and method."""
+rule readings_summary:
+    """Mean and max error against the measurements per reading and method of a set with variants."""
     input:
-        runs=[run for v in TABLE2_VARIANTS for run in table2_runs(v)],
+        runs=lambda w: set_reading_runs(w.set),
         code=SRC_PRESENT,
     output:
         csv=report(
-            "results/tables/table2_variants.csv",
+            "results/tables/{set}_variants.csv",
             caption="../report/table2_variants.rst",
-            category="Paper, Table 2",
-            subcategory="All readings",
-            labels={"artifact": "Error per reading and method", "format": "CSV"},
+            category="Comparison with measurements",
+            subcategory="{set}",
+            labels={"set": "{set}", "artifact": "Error per reading and method", "format": "CSV"},
         ),
-        md="results/tables/table2_variants.md",
-        html="results/tables/table2_variants.html",
-        provenance="results/tables/table2_variants.provenance.json",
+        md="results/tables/{set}_variants.md",
+        html="results/tables/{set}_variants.html",
+        provenance="results/tables/{set}_variants.provenance.json",
     params:
-        variants=TABLE2_VARIANTS,
+        variants=lambda w: READING_SETS[w.set],
+        published=lambda w: set_published(w.set),
+    wildcard_constraints:
+        set=one_of(READING_SETS),
     log:
-        "logs/tables/table2_variants.log",
+        "logs/tables/{set}_variants.log",
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
     conda:
         "../envs/rodimpact.yaml"
     script:
-        "../scripts/table2_variants.py"
+        "../scripts/readings_summary.py"
 
 
 rule fig2_comparison:
@@ -87,61 +96,53 @@ rule fig2_comparison:
         "../scripts/fig2_comparison.py"
 
 
-# The sensor film. The text's rod by role: without the film (Hertz), with it (the thin-layer law;
-# fem_axi's bonded film), with the law calibrated by the continuum, with and without the film,
-# and with the sensor as built (fem_axi's bonded layers; the law calibrated on them).
-TEXT_ROD_READINGS = {role: variant for role, variant in (
-    ("no_film", "r10_l30"), ("film", "r10_l30_film"), ("film_calibrated", "r10_l30_film_cal"),
-    ("no_film_calibrated", "r10_l30_cal"), ("sensor", "r10_l30_sensor"),
-    ("sensor_calibrated", "r10_l30_sensor_cal")) if variant in TABLE2_VARIANTS}
-# The Table 2 cases whose law the continuum calibrates: one indentation curve each.
-CALIBRATED_CASES = [c["id"] for c in PROJECT.cases_in("table2") if curve_rule_of(c) == "indentation"]
-
-
-rule table2_film:
-    """Table 2 on the text's rod without and with the film: every method, the calibrated law,
-    the film's prediction band and the model-form error of the quasi-static contact."""
+# The sensor film: one rod's readings by role (config["sensor"]["film_table"]), side by side.
+rule film_table:
+    """One rod without and with the film (for the paper's set: Table 2 on the text's rod): every
+    method, the calibrated law, the film's prediction band and the model-form error of the
+    quasi-static contact."""
     input:
-        runs=[run for v in TEXT_ROD_READINGS.values() for run in table2_runs(v)],
-        band=f"results/studies/film_band_{TEXT_ROD_READINGS.get('film')}.h5",
-        sensor_bands=sensor_band_files([v for v in [TEXT_ROD_READINGS.get("sensor_calibrated")]
-                                        if SENSOR_READINGS.get(v)]),
+        runs=[run for v in FILM_TABLE.values() for run in reading_runs(v)] if FILM_TABLE_SETS else [],
+        band=f"results/studies/film_band_{FILM_TABLE.get('film')}.h5",
+        sensor_bands=sensor_band_files([v for v in [FILM_TABLE.get("sensor_calibrated")] if SENSOR_READINGS.get(v)]),
         code=SRC_PRESENT,
     output:
         csv=report(
-            "results/tables/table2_film.csv",
+            "results/tables/{set}_film.csv",
             caption="../report/table2_film.rst",
-            category="Paper, Table 2",
-            subcategory="The sensor film",
-            labels={"artifact": "Table 2 with and without the film", "format": "CSV"},
+            category="Comparison with measurements",
+            subcategory="{set}",
+            labels={"set": "{set}", "artifact": "With and without the film", "format": "CSV"},
         ),
-        md="results/tables/table2_film.md",
-        html="results/tables/table2_film.html",
-        provenance="results/tables/table2_film.provenance.json",
+        md="results/tables/{set}_film.md",
+        html="results/tables/{set}_film.html",
+        provenance="results/tables/{set}_film.provenance.json",
     params:
-        variants=TEXT_ROD_READINGS,
+        variants=FILM_TABLE,
+    wildcard_constraints:
+        set=one_of(FILM_TABLE_SETS),
     log:
-        "logs/tables/table2_film.log",
+        "logs/tables/{set}_film.log",
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
     conda:
         "../envs/rodimpact.yaml"
     script:
-        "../scripts/table2_film.py"
+        "../scripts/film_table.py"
 
 
 rule film_band_table:
     """The film's prediction band of every case of every reading with the film."""
     input:
         bands=expand("results/studies/film_band_{variant}.h5", variant=FILM_VARIANTS),
-        cases=[f"results/cases/{c['id']}.yaml" for v in FILM_VARIANTS for c in PROJECT.cases_in("table2", v)],
+        cases=[f"results/cases/{c['id']}.yaml" for v in FILM_VARIANTS for c in reading_cases(v)],
         code=SRC_PRESENT,
     output:
         csv=report(
             "results/tables/film_band.csv",
             caption="../report/film_band.rst",
-            category="Paper, Table 2",
+            category="The experiment's sensor",
             subcategory="The sensor film",
             labels={"artifact": "The film's prediction bands", "format": "CSV"},
         ),
@@ -170,7 +171,7 @@ rule film_indentation_table:
         csv=report(
             "results/tables/film_indentation.csv",
             caption="../report/film_indentation.rst",
-            category="Paper, Table 2",
+            category="The experiment's sensor",
             subcategory="The sensor film",
             labels={"artifact": "Indentation by the continuum against the analytic laws", "format": "CSV"},
         ),

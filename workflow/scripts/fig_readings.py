@@ -1,10 +1,10 @@
-"""Snakemake adapter: contact time against ball mass, per rod, with and without the film."""
+"""Snakemake adapter: a set's readings, contact time against ball mass, per rod, with and without the film."""
 
-from rodimpact.present.artifacts import make_fig_table2
+from rodimpact.present.artifacts import make_fig_readings
 from rodimpact.jobs.logs import script_logging
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
-    make_fig_table2(snakemake.input.runs, snakemake.params.variants,  # noqa: F821
+    make_fig_readings(snakemake.input.runs, snakemake.params.variants,  # noqa: F821
                     pdf=snakemake.output.pdf, png=snakemake.output.png,  # noqa: F821
                     provenance=snakemake.output.provenance,  # noqa: F821
                     sweep_runs=snakemake.input.sweep_runs,  # noqa: F821
@@ -12,4 +12,5 @@ with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (
                     band_files=snakemake.input.bands,  # noqa: F821
                     descriptions=snakemake.params.descriptions,  # noqa: F821
                     sensors=snakemake.params.sensors,  # noqa: F821
-                    sensor_band_files=snakemake.input.sensor_bands)  # noqa: F821
+                    sensor_band_files=snakemake.input.sensor_bands,  # noqa: F821
+                    title=snakemake.params.title)  # noqa: F821

@@ -1,9 +1,9 @@
-"""Snakemake adapter: the per-variant error summary of Table 2."""
+"""Snakemake adapter: the per-reading error summary of a set with variants."""
 
-from rodimpact.present.artifacts import make_table2_variants
+from rodimpact.present.artifacts import make_readings_summary
 from rodimpact.jobs.logs import script_logging
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821
-    make_table2_variants(snakemake.input.runs, snakemake.params.variants,  # noqa: F821
+    make_readings_summary(snakemake.input.runs, snakemake.params.variants,  # noqa: F821
                          csv=out.csv, md=out.md, html=out.html, provenance=out.provenance)

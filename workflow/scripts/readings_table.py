@@ -1,9 +1,10 @@
-"""Snakemake adapter: Table 2 for one rod geometry variant."""
+"""Snakemake adapter: one reading of a set with variants (for the paper's set: Table 2 for one reading of the rod)."""
 
-from rodimpact.present.artifacts import make_table2
+from rodimpact.present.artifacts import make_readings_table
 from rodimpact.jobs.logs import script_logging
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
-    out = snakemake.output  # noqa: F821
-    make_table2(snakemake.input.runs, snakemake.params.variant,  # noqa: F821
-                csv=out.csv, md=out.md, html=out.html, tex=out.tex, provenance=out.provenance)
+    out, params = snakemake.output, snakemake.params  # noqa: F821
+    make_readings_table(snakemake.input.runs, params.variant, title=params.title,  # noqa: F821
+                        reference=params.reference, csv=out.csv, md=out.md, html=out.html, tex=out.tex,
+                        provenance=out.provenance)

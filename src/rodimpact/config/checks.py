@@ -15,7 +15,8 @@ from rodimpact.solvers.field import FIELD_OUTPUT
 from rodimpact.solvers.options import OptionError
 from rodimpact.solvers.registry import METHODS
 
-__all__ = ["check_outputs", "check_run", "check_sensor", "check_stability", "check_work_precision"]
+__all__ = ["check_outputs", "check_run", "check_sensor", "check_set_declarations", "check_stability",
+           "check_work_precision"]
 
 
 def check_run(case: Mapping[str, Any], method: str) -> None:
@@ -132,3 +133,40 @@ def check_sensor(study: Mapping[str, Any] | None, cases: Mapping[str, dict], err
             if fit and fit["layer"] not in [layer["name"] for layer in contact["stack"]["layers"]]:
                 raise error(f"case {case['id']!r}: its stack has no layer named {fit['layer']!r}",
                             field="sensor.fit.layer")
+    _check_film_readings(study, cases, readings, error)
+
+
+def _check_film_readings(study: Mapping[str, Any], cases: Mapping[str, dict], readings: list[str],
+                         error: Callable[..., Exception]) -> None:
+    """``sensor.film_table``: readings of one set; ``sensor.film_force``: rows on readings, as cases."""
+    table = study.get("film_table") or {}
+    sets = {}
+    for role, variant in table.items():
+        members = [c for c in cases.values() if c.get("variant") == variant]
+        if not members:
+            raise error(f"unknown reading {variant!r}; readings: {', '.join(readings)}", field=f"sensor.film_table.{role}")
+        sets.setdefault(members[0]["set"], role)
+    if len(sets) > 1:
+        raise error(f"the readings are of several case sets ({', '.join(sorted(sets))}); one table is one set's",
+                    field="sensor.film_table")
+    force = study.get("film_force")
+    for row in force["rows"] if force else []:
+        for variant in force["variants"]:
+            if f"{row}-{variant}" not in cases:
+                raise error(f"no case {row!r} on the reading {variant!r} (no case {row}-{variant})",
+                            field="sensor.film_force")
+
+
+def check_set_declarations(set_name: str, variants: Mapping[str, Any], compare: Mapping[str, Any] | None,
+                           known_variants: Mapping[str, Mapping], known_compare: Mapping[str, Mapping],
+                           error: Callable[..., Exception]) -> None:
+    """Check one case file's set-level declarations against the files read before it (``error``
+    as above, the file's): a variant's name is unique over all sets (it names a reading: its band
+    file, the sensor block's readings), and a set's ``compare`` is the same in all its files."""
+    for name in variants:
+        other = next((s for s, named in known_variants.items() if s != set_name and name in named), None)
+        if other is not None:
+            raise error(f"variant name already used by case set {other!r}; a variant's name is unique over all sets",
+                        field=f"variants.{name}")
+    if compare is not None and known_compare.get(set_name, compare) != compare:
+        raise error(f"set {set_name!r} is compared differently in another file", field="compare")

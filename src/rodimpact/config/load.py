@@ -28,7 +28,9 @@ from rodimpact.analysis.sweeps import SweepError, sweep_point_case, sweep_points
 from rodimpact.contact.laws import contact_schema
 from rodimpact.config.bodies import MATERIAL_FIELDS, check_law, check_material_ranges, resolve_contact, resolve_material
 from rodimpact.config.measured import resolve_measured
-from rodimpact.config.checks import check_outputs, check_run, check_sensor, check_stability, check_work_precision
+from rodimpact.config.checks import (
+    check_outputs, check_run, check_sensor, check_set_declarations, check_stability, check_work_precision
+)
 from rodimpact.config.plausible import Budget, check_plausible
 from rodimpact.config.project import ConfigError, Project, _File
 from rodimpact.config.schema import Schemas, deep_merge, format_path, with_floats
@@ -243,6 +245,7 @@ class _ProjectBuilder:
         self.cases: dict[str, dict] = {}
         self.sets: dict[str, list[str]] = {}
         self.variants: dict[str, dict[str, dict]] = {}
+        self.compare: dict[str, dict] = {}
         self.sweeps: dict[str, dict] = {}
         self.histories: dict[tuple, str] = {}  # measured force histories checked (config.measured)
 
@@ -254,7 +257,11 @@ class _ProjectBuilder:
             document.setdefault("set", source.path.stem)  # checked by the schema like the rest
         source.check(document, schemas, CASES_SCHEMA)
         set_name, variants = document["set"], document.get("variants", {})
+        check_set_declarations(set_name, variants, document.get("compare"), self.variants, self.compare,
+                               source.error)
         self._add_variants(source, set_name, variants)
+        if document.get("compare") is not None:
+            self.compare[set_name] = document["compare"]
         self.sets.setdefault(set_name, [])
         for entry in document["cases"]:
             base = deep_merge(document.get("defaults", {}), entry)
@@ -435,5 +442,5 @@ class _ProjectBuilder:
                              self.config_source.error)
         check_stability(self.config.get("stability"), self.cases, self.sets, self.config_source.error)
         check_sensor(self.config.get("sensor"), self.cases, self.config_source.error)
-        return Project(cases=self.cases, sets=self.sets, variants=self.variants, sweeps=self.sweeps,
-                       config=self.config)
+        return Project(cases=self.cases, sets=self.sets, variants=self.variants, compare=self.compare,
+                       sweeps=self.sweeps, config=self.config)

@@ -110,6 +110,9 @@ class Project:
         Case set name -> case ids, in file order.
     variants
         Case set name -> {variant name -> variant mapping as written}.
+    compare
+        Case set name -> its ``compare`` options as written (``x``, ``title``, ``reference``;
+        empty when its files give none).
     sweeps
         Resolved sweep cases keyed by id (not in ``cases`` nor ``sets``): a case with its
         ``sweep`` (``description``, ``methods``, ``parameters``: name -> sorted values).
@@ -120,6 +123,7 @@ class Project:
     cases: dict[str, dict]
     sets: dict[str, list[str]]
     variants: dict[str, dict]
+    compare: dict[str, dict] = dataclass_field(default_factory=dict)
     sweeps: dict[str, dict] = dataclass_field(default_factory=dict)
     config: dict[str, Any] = dataclass_field(default_factory=dict)
 

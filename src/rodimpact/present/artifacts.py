@@ -24,21 +24,21 @@ from rodimpact.present.film_tables import (
 )
 from rodimpact.present.table_views import (
     comparison_views, film_band_views, film_indentation_views, film_table_views, orders_views, reading_words,
-    stability_views, sweep_views, table2_views, variants_views
+    stability_views, sweep_views, reading_views, variants_views
 )
 from rodimpact.present.tables import (
     comparison_frame, load_records, sweep_results_frame, table2_frame, variants_summary, write_table
 )
 
-__all__ = ["make_comparison", "make_fig2", "make_fig4", "make_fig_film_force", "make_fig_table2",
+__all__ = ["make_comparison", "make_fig2", "make_fig4", "make_fig_film_force", "make_fig_readings",
            "make_film_band_table", "make_film_indentation_table", "make_stability", "make_stability_map",
-           "make_sweep_table", "make_table2", "make_table2_film", "make_table2_variants", "make_work_precision",
+           "make_sweep_table", "make_readings_table", "make_film_table", "make_readings_summary", "make_work_precision",
            "make_work_precision_figure", "make_fig_force_fit", "case_in_words"]
 
 log = logging.getLogger(__name__)
 
-TABLE2_CAPTION = ("Table 2, rod reading {variant}: {reading}. Contact times in µs; errors "
-                  "|model − measured| / measured in %.")
+READING_CAPTION = ("{title}, rod reading {variant}: {reading}. Contact times in µs; errors "
+                   "|model − measured| / measured in %.")
 
 
 def _by_variant(runs: Sequence[str | Path], variants: Sequence[str]):
@@ -51,23 +51,26 @@ def _outputs(*paths: str | Path | None) -> list[str | Path]:
     return [p for p in paths if p is not None]
 
 
-def make_table2(runs: Sequence[str | Path], variant: str, *, csv: str | Path, md: str | Path,
-                tex: str | Path, provenance: str | Path, html: str | Path | None = None) -> None:
-    """Table 2 for one geometry variant (the LaTeX and HTML in two panels: the contact times,
-    the errors), with its provenance sidecar."""
+def make_readings_table(runs: Sequence[str | Path], variant: str, *, title: str, csv: str | Path, md: str | Path,
+                        tex: str | Path, provenance: str | Path, html: str | Path | None = None,
+                        reference: str = "") -> None:
+    """One reading of a set with variants (for the paper's set, ``title`` "Table 2": Table 2 for
+    one reading of the rod), the LaTeX and HTML in two panels: the contact times, the errors; with
+    its provenance sidecar. ``reference``: the work the set comes from, in the LaTeX caption."""
     records = load_records(runs)
     wrong = sorted({r.case_id for r in records if r.config.get("variant") != variant})
     if wrong:
         raise ValueError(f"runs: cases {wrong} do not belong to variant {variant!r}")
     frame = table2_frame(records)
-    caption = TABLE2_CAPTION.format(variant=variant, reading=reading_words(records[0].config) if records else "")
+    caption = READING_CAPTION.format(title=title, variant=variant,
+                                     reading=reading_words(records[0].config) if records else "")
     write_table(frame, csv=csv, md=md, html=html, tex=tex, caption=caption,
-                views=table2_views(frame, variant, records))
+                views=reading_views(frame, variant, records, title, reference))
     write_provenance(provenance, records, _outputs(csv, md, html, tex))
-    log.info("table 2 (%s): %d rows from %d runs", variant, len(frame), len(records))
+    log.info("%s (%s): %d rows from %d runs", title, variant, len(frame), len(records))
 
 
-def make_table2_variants(runs: Sequence[str | Path], variants: Sequence[str], *, csv: str | Path,
+def make_readings_summary(runs: Sequence[str | Path], variants: Sequence[str], *, csv: str | Path,
                          md: str | Path, provenance: str | Path, html: str | Path | None = None) -> None:
     """Per variant and method, the mean and max error against the measurements."""
     records, frames = _by_variant(runs, variants)
@@ -145,11 +148,11 @@ def make_fig4(runs: Sequence[str | Path], fraction: float, *, pdf: str | Path, p
                  title="Fig. 4: displacement of a cross-section of the rod against time")
 
 
-def make_fig_table2(runs: Sequence[str | Path], variants: Sequence[str], *, pdf: str | Path,
+def make_fig_readings(runs: Sequence[str | Path], variants: Sequence[str], *, pdf: str | Path,
                     png: str | Path, provenance: str | Path, sweep_runs: Sequence[str | Path] = (),
                     film_variants: Sequence[str] = (), band_files: Sequence[str | Path] = (),
                     descriptions: Mapping[str, str] | None = None, sensors: Mapping[str, bool] | None = None,
-                    sensor_band_files: Sequence[str | Path] = ()) -> None:
+                    sensor_band_files: Sequence[str | Path] = (), title: str) -> None:
     """Contact time against ball mass, one panel per rod, with the sweeps' curves; the readings
     with the film (``film_variants``) on the panel of their rod, with their bands (``band_files``).
 
@@ -157,7 +160,7 @@ def make_fig_table2(runs: Sequence[str | Path], variants: Sequence[str], *, pdf:
     the panels; the measured points are grouped by their source, and the runs with more than
     one contact ringed, both read from the runs. ``sensors`` (variant -> calibrated by the
     continuum) are the readings with the sensor as built, drawn on their rod's panel with the
-    bands of ``sensor_band_files``."""
+    bands of ``sensor_band_files``. ``title``: the set in words (its ``compare.title``)."""
     from rodimpact.present.figures import save_figure
     from rodimpact.present.table2_figures import plot_table2_contact_time
 
@@ -173,10 +176,10 @@ def make_fig_table2(runs: Sequence[str | Path], variants: Sequence[str], *, pdf:
     fig = plot_table2_contact_time(frames, sweep_results_frame(sweeps),
                                    panels=table2_panels(readings, [*film_variants, *sensors]),
                                    readings=readings, bands=bands, descriptions=descriptions, sources=sources,
-                                   contacts=contacts, sensors=sensors, sensor_bands=sensor_bands)
+                                   contacts=contacts, sensors=sensors, sensor_bands=sensor_bands, set_title=title)
     artifacts = [pdf, png]
     save_figure(fig, pdf=pdf, png=png, provenance=provenance_record([*records, *sweeps], artifacts),
-                title="Table 2: contact time against ball mass")
+                title=f"{title}: contact time against ball mass")
     write_provenance_with_files(provenance, [*records, *sweeps], artifacts,
                                 {"band": band_files, "sensor band": sensor_band_files})
 
@@ -192,7 +195,7 @@ FILM_TABLE_CAPTION = (
     "quasi-static contact: (calibrated SEM - continuum) / continuum, with the film and with the sensor.")
 
 
-def make_table2_film(runs: Sequence[str | Path], variants: Mapping[str, str], band: str | Path, *,
+def make_film_table(runs: Sequence[str | Path], variants: Mapping[str, str], band: str | Path, *,
                      csv: str | Path, md: str | Path, provenance: str | Path, html: str | Path | None = None,
                      sensor_bands: Sequence[str | Path] = ()) -> None:
     """Table 2 on one rod without and with the film and the sensor as built

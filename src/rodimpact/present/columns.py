@@ -87,6 +87,8 @@ COLUMNS: dict[str, Column] = {
     "quantity": Column("Quantity", fmt=_TEXT), "film": Column("Film", fmt=_TEXT),
     "contact_law": Column("Contact law", fmt=_TEXT), "law": Column("Law", fmt=_TEXT),
     "paper_method": Column("Paper's method", fmt=_TEXT), "n_cases": Column("Cases", fmt=_TEXT),
+    # a comparison's measured and computed values, each in its row's unit (column "unit")
+    "measured": Column("Measured", fmt=".5g"), "computed": Column("Computed", fmt=".5g"),
     # the balls and the rod
     "diameter_mm": Column("Diameter", "mm"), "mass_g": Column("Mass", "g", ".3g"),
     "ball_diameter_m": Column("Ball diameter", "m", ".5f"), "velocity_m_s": Column("Velocity", "m/s", ".4f"),

@@ -24,7 +24,7 @@ from rodimpact.contact.laws import law_of
 from rodimpact.storage.runs import RunRecord
 from rodimpact.solvers.registry import METHODS
 
-__all__ = ["COLUMNS", "HISTORY_QUANTITIES", "QUANTITIES", "X_AXES", "compare_frame", "compare_summary", "history_comparison",
+__all__ = ["COLUMNS", "HISTORY_QUANTITIES", "QUANTITIES", "X_AXES", "X_NAMES", "compare_frame", "compare_summary", "history_comparison",
            "model_label", "x_axis"]
 
 #: Measured scalars a case may give (:data:`rodimpact.analysis.measured.MEASURED_KEYS`): key ->
@@ -133,11 +133,23 @@ def compare_frame(records: Sequence[RunRecord],
 #: the set (frame column -> axis label).
 X_AXES = {"mass_g": "impactor mass $m$ (g)", "velocity_m_s": "impact velocity $V_0$ (m/s)",
           "diameter_mm": "impactor diameter (mm)", "rod_length_mm": "rod length (mm)"}
+#: The names a case file's ``compare: {x: ...}`` gives them (workflow/schemas/cases.schema.yaml).
+X_NAMES = {"mass": "mass_g", "velocity": "velocity_m_s", "diameter": "diameter_mm", "rod_length": "rod_length_mm"}
 
 
-def x_axis(frame: pd.DataFrame) -> tuple[str, str]:
-    """The column a set's figure is drawn against, and its label: the first of :data:`X_AXES`
-    that takes more than one value (the mass when nothing varies)."""
+def x_axis(frame: pd.DataFrame, named: str | None = None) -> tuple[str, str]:
+    """The column a set's figure is drawn against, and its label: the one ``named`` (a key of
+    :data:`X_NAMES`, the set's ``compare.x``), else the first of :data:`X_AXES` that takes more
+    than one value (the mass when nothing varies).
+
+    Raises
+    ------
+    KeyError
+        ``named`` is not a key of :data:`X_NAMES`.
+    """
+    if named is not None:
+        column = X_NAMES[named]
+        return column, X_AXES[column]
     for column, label in X_AXES.items():
         if column in frame and frame[column].nunique() > 1:
             return column, label

@@ -67,17 +67,19 @@ def make_compare_table(runs: Sequence[str | Path], set_name: str, *, csv: str | 
 
 
 def make_compare_figure(runs: Sequence[str | Path], set_name: str, title: str, *, pdf: str | Path, png: str | Path,
-                        provenance: str | Path, descriptions: Mapping[str, str] | None = None) -> None:
+                        provenance: str | Path, descriptions: Mapping[str, str] | None = None,
+                        x: str | None = None) -> None:
     """The set's figure (:func:`~rodimpact.present.compare_figures.plot_compare_set`), against
-    what varies along the set (:func:`~rodimpact.present.compare.x_axis`)."""
+    ``x`` (the set's ``compare.x``) or what varies along the set
+    (:func:`~rodimpact.present.compare.x_axis`)."""
     from rodimpact.present.compare_figures import plot_compare_set
     from rodimpact.present.figures import save_figure
     from rodimpact.storage.sidecar import provenance_record
 
     records = [read_run(p) for p in runs]
     frame = compare_frame(records, _histories(records))
-    x, x_label = x_axis(frame)
-    save_figure(plot_compare_set(frame, title, x=x, x_label=x_label, descriptions=descriptions), pdf=pdf, png=png,
+    column, x_label = x_axis(frame, x)
+    save_figure(plot_compare_set(frame, title, x=column, x_label=x_label, descriptions=descriptions), pdf=pdf, png=png,
                 provenance=provenance_record(records, [pdf, png]), title=f"Set {set_name} against its measurements")
     write_provenance_with_files(provenance, records, [pdf, png], {"measured force history": _history_files(records)})
 

@@ -31,8 +31,8 @@ from rodimpact.storage.sidecar import provenance_record
 from rodimpact.storage.runs import RunRecord
 from rodimpact.present.tables import METHOD_ORDER, table2_frame
 
-__all__ = ["FILM_ROLES", "film_band_frame", "film_indentation_frame", "film_table_frame", "reading_of",
-           "readings_frame", "table2_panels", "write_provenance_with_files"]
+__all__ = ["FILM_ROLES", "INDENTATION_COLUMNS", "film_band_frame", "film_indentation_frame", "film_table_frame",
+           "reading_of", "readings_frame", "table2_panels", "write_provenance_with_files"]
 
 log = logging.getLogger(__name__)
 
@@ -181,6 +181,7 @@ def film_table_frame(records: Sequence[RunRecord], variants: Mapping[str, str], 
         model_columns += [f"{m}_{role}_us" for m in methods]
     if not parts:
         raise ValueError("records: no run of any of the variants")
+    base = [c for c in base if all(c in part for part in parts)]  # the published results, where declared
     frame = pd.concat([part[base] for part in parts]).drop_duplicates("row").reset_index(drop=True)
     for part in parts:
         frame = frame.merge(part[["row", *(c for c in part.columns if c in model_columns)]], on="row", how="left")
@@ -249,6 +250,12 @@ def film_band_frame(bands: Mapping[str, Sequence[CaseBand]], cases: Mapping[str,
     return frame[columns]
 
 
+#: The columns of :func:`film_indentation_frame`, in order.
+INDENTATION_COLUMNS = ("case_id", "variant", "row", "point", "force_N", "continuum_approach_um", "law_approach_um",
+                       "law", "law_error_pct", "contact_radius_um", "film_thickness_um", "radius_to_film_thickness",
+                       "interpolation_error_half")
+
+
 def film_indentation_frame(curves: Sequence[ContactCurve]) -> pd.DataFrame:
     """Every point of every indentation curve: the continuum's approach against the analytic law's.
 
@@ -258,7 +265,8 @@ def film_indentation_frame(curves: Sequence[ContactCurve]) -> pd.DataFrame:
         ``case_id, variant, row, point, force_N, continuum_approach_um, law_approach_um, law,
         law_error_pct`` (= (law - continuum) / continuum x 100), ``contact_radius_um``,
         ``film_thickness_um`` and ``radius_to_film_thickness`` (NaN without a film),
-        ``interpolation_error_half`` (the curve's); by case, then force.
+        ``interpolation_error_half`` (the curve's); by case, then force
+        (:data:`INDENTATION_COLUMNS`; with no curve, these columns and no row).
     """
     rows = []
     for curve in curves:
@@ -278,9 +286,8 @@ def film_indentation_frame(curves: Sequence[ContactCurve]) -> pd.DataFrame:
                 "radius_to_film_thickness": float(radius[i]) / thickness,
                 "interpolation_error_half": float(curve.summary.get("interpolation_error_half", math.nan)),
             })
-    frame = pd.DataFrame(rows)
-    if frame.empty:
-        return frame
+    # no curve (no calibrated case): the header alone
+    frame = pd.DataFrame(rows, columns=list(INDENTATION_COLUMNS))
     return frame.sort_values(["case_id", "force_N"], kind="stable").reset_index(drop=True)
 
 

@@ -202,8 +202,9 @@ def _sensor_overlay(ax: matplotlib.axes.Axes, variant: str, frame: pd.DataFrame 
 
 
 def _rows(ax: matplotlib.axes.Axes, frame: pd.DataFrame, sources: Mapping[str, str],
-          contacts: Mapping[tuple[str, str], int]) -> None:
-    """A reading's rows: measured (one marker per source), the paper's FEM and SEM, ours."""
+          contacts: Mapping[tuple[str, str], int], set_title: str) -> None:
+    """A reading's rows: measured (one marker per source), the paper's FEM and SEM where the
+    cases declare them, ours."""
     mass = frame["mass_g"]
     measured = frame.assign(_source=[sources.get(c, "") for c in frame["case_id"]])
     measured = measured[np.isfinite(measured["measured_us"].to_numpy(float))]
@@ -212,10 +213,11 @@ def _rows(ax: matplotlib.axes.Axes, frame: pd.DataFrame, sources: Mapping[str, s
         marker = _SOURCE_MARKERS[every.index(source) % len(_SOURCE_MARKERS)] if source in every else "s"
         ax.plot(rows["mass_g"], rows["measured_us"], marker, color="k", ms=6, ls="none", zorder=4,
                 label=f"measured ({short_source(source)})" if source else "measured")
-    ax.plot(mass, frame["published_fem_us"], "^", mfc="none", color="tab:gray", ls="none",
-            label="the paper's FEM (its Table 2)")
-    ax.plot(mass, frame["published_sem_us"], "v", mfc="none", color="tab:brown", ls="none",
-            label="the paper's SEM (its Table 2)")
+    for family, marker, colour in (("fem", "^", "tab:gray"), ("sem", "v", "tab:brown")):
+        column = f"published_{family}_us"
+        if column in frame and frame[column].notna().any():
+            ax.plot(mass, frame[column], marker, mfc="none", color=colour, ls="none",
+                    label=f"the paper's {family.upper()} (its {set_title})")
     for method in METHOD_ORDER:
         if f"{method}_us" in frame:
             ax.plot(mass, frame[f"{method}_us"], "o" + METHODS[method].style, ms=4, color=METHODS[method].color,
@@ -271,7 +273,8 @@ def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame], sweeps: pd.Data
                              sources: Mapping[str, str] | None = None,
                              contacts: Mapping[tuple[str, str], int] | None = None,
                              film_method: str = "sem", sensors: Mapping[str, bool] | None = None,
-                             sensor_bands: pd.DataFrame | None = None) -> matplotlib.figure.Figure:
+                             sensor_bands: pd.DataFrame | None = None,
+                             set_title: str) -> matplotlib.figure.Figure:
     """Contact time against ball mass per rod: measured, published and ours, with the film.
 
     Parameters
@@ -298,6 +301,8 @@ def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame], sweeps: pd.Data
         Case id -> the source of its measured value: measured points are grouped by source.
     contacts : mapping, optional
         (case id, method) -> the run's number of contacts: rows with more than one are ringed.
+    set_title : str
+        The set in words (its ``compare.title``, e.g. ``Table 2``): the published points' labels.
     film_method : str
         The method whose film runs are drawn.
     sensors : mapping, optional
@@ -323,7 +328,7 @@ def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame], sweeps: pd.Data
             ax.set_visible(False)
             continue
         drawn.append(ax)
-        _rows(ax, frames[variant], sources, contacts)
+        _rows(ax, frames[variant], sources, contacts, set_title)
         _sweep_curves(ax, variant, sweeps)
         for film in panels[variant]:
             if film in sensors:

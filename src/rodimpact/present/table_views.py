@@ -3,11 +3,12 @@
 Each function takes a table's frame (the CSV's columns, see :mod:`.tables` and
 :mod:`.film_tables`) and returns its :class:`~rodimpact.present.table_formats.Panel` list, at
 most :data:`~rodimpact.present.table_formats.MAX_COLUMNS` columns each: the report shows them
-as HTML, and Table 2 is also written as LaTeX from them. The CSV keeps every column.
+as HTML, and a reading's table (Table 2's) is also written as LaTeX from them. The CSV keeps every column.
 """
 
 from __future__ import annotations
 
+import re
 from typing import Any, Mapping, Sequence
 
 import pandas as pd
@@ -19,7 +20,7 @@ from rodimpact.present.table_formats import Panel, latex_escape, panels
 from rodimpact.solvers.registry import METHODS
 
 __all__ = ["comparison_views", "film_band_views", "film_indentation_views", "film_table_views", "orders_views",
-           "reading_words", "stability_views", "sweep_views", "table2_views", "variants_views"]
+           "latex_title", "reading_views", "reading_words", "stability_views", "sweep_views", "variants_views"]
 
 _ERROR = " error"
 
@@ -48,49 +49,66 @@ def reading_words(config: Mapping[str, Any]) -> str:
     return ", ".join(words)
 
 
-def table2_views(frame: pd.DataFrame, variant: str, records: Sequence[RunRecord]) -> list[Panel]:
-    """Table 2 of one reading: the contact times, then the errors against the measurements.
+#: The columns of a reading's table that hold the published results its cases declare.
+PUBLISHED_COLUMNS = ("published_fem_us", "published_sem_us", "published_fem_error_pct", "published_sem_error_pct",
+                     "sem_vs_published_sem_pct")
+
+
+def latex_title(title: str) -> str:
+    """A set's title in LaTeX: escaped, with a tie before a number (``Table 2`` -> ``Table~2``)."""
+    return re.sub(r" (?=\d)", "~", latex_escape(title))
+
+
+def reading_views(frame: pd.DataFrame, variant: str, records: Sequence[RunRecord], title: str,
+                  reference: str = "") -> list[Panel]:
+    """One reading of a set: the contact times, then the errors against the measurements; the
+    published results where its cases declare them.
 
     Parameters
     ----------
     frame : DataFrame
         :func:`rodimpact.present.tables.table2_frame` of the reading's runs.
     variant : str
-        The reading (the LaTeX labels are ``tab:table2-{variant}-times`` and ``-errors``, with
-        ``-`` for ``_``).
+        The reading (the LaTeX labels are ``tab:{title}-{variant}-times`` and ``-errors``, the
+        title's letters and digits in lower case, ``-`` for ``_``).
     records : sequence of RunRecord
         The runs: the caption's materials, speed and reading.
+    title, reference : str
+        The set in captions (e.g. ``Table 2``), and the work its measurements come from.
     """
     config = records[0].config if records else {}
-    slug = variant.replace("_", "-")
+    slug = f"{re.sub(r'[^a-z0-9]', '', title.lower())}-{variant.replace('_', '-')}"
+    published = [c for c in PUBLISHED_COLUMNS if c in frame.columns and frame[c].notna().any()]
     methods = _methods(frame, "{}_us")
     key = ["diameter_mm", "mass_g"]
     ours = ", ".join(f"{method_header(m)} ({METHODS[m].label})" for m in methods)
     ours_tex = latex_escape(ours).replace(". (", ".\\ (")  # an abbreviation's point ends no sentence
+    of = latex_title(title) + (f" of {latex_escape(reference)}" if reference else "")
     if config:
         speed = float(config["impactor"]["velocity_m_s"])
         ball = str(config["impactor"]["material"].get("name", "")).split("_")[0]
         rod = str(config["rod"]["material"].get("name", "")).split("_")[0]
-        setting = (f"Contact time of the {len(frame)} {ball} balls of Table~2 of Belyaev, Shurpatov and Ma (2018) "
+        setting = (f"Contact time of the {len(frame)} {ball} balls of {of} "
                    f"striking the {rod} rod at "
                    f"{speed:g}~m/s; rod reading \\texttt{{{latex_escape(variant)}}}: "
                    f"{latex_escape(reading_words(config))}.")
     else:
-        setting = (f"Contact time of the balls of Table~2 of Belyaev, Shurpatov and Ma (2018), rod reading "
-                   f"\\texttt{{{latex_escape(variant)}}}.")
-    times = panels(frame, "Contact time: measured, printed by the paper, and ours", key,
-                   ["measured_us", "published_fem_us", "published_sem_us", *(f"{m}_us" for m in methods)],
-                   label=f"tab:table2-{slug}-times",
-                   latex_caption=(f"{setting} Measured, printed by the paper (its FEM and SEM), and computed by "
+        setting = f"Contact time of the balls of {of}, rod reading \\texttt{{{latex_escape(variant)}}}."
+    printed = ", printed by the paper (its FEM and SEM)," if published else ","
+    times = panels(frame, f"Contact time: measured{', printed by the paper' if published else ''}, and ours", key,
+                   ["measured_us", *(c for c in published if c.endswith("_us")), *(f"{m}_us" for m in methods)],
+                   label=f"tab:{slug}-times",
+                   latex_caption=(f"{setting} Measured{printed} and computed by "
                                   f"our methods: {ours_tex}."))
     errors = panels(frame, "Error against the measurement, |model − measured| / measured", key,
-                    ["published_fem_error_pct", "published_sem_error_pct", *(f"{m}_error_pct" for m in methods),
-                     "sem_vs_published_sem_pct"],
-                    label=f"tab:table2-{slug}-errors", drop=_ERROR,
+                    [*(c for c in published if c.endswith("_error_pct")), *(f"{m}_error_pct" for m in methods),
+                     *(c for c in published if c.endswith("_vs_published_sem_pct"))],
+                    label=f"tab:{slug}-errors", drop=_ERROR,
                     latex_caption=(f"Error of the contact times of Table~\\ref{{{times[0].label}}} against the "
-                                   r"measured time $t_\mathrm{m}$, $|t - t_\mathrm{m}|/t_\mathrm{m}$ in per cent: the "
-                                   r"paper's as printed, and ours. SEM vs paper SEM: our SEM's time over the "
-                                   r"paper's, $t_\mathrm{SEM}/t_\mathrm{paper} - 1$, in per cent."))
+                                   r"measured time $t_\mathrm{m}$, $|t - t_\mathrm{m}|/t_\mathrm{m}$ in per cent: " +
+                                   (r"the paper's as printed, and ours. SEM vs paper SEM: our SEM's time over the "
+                                    r"paper's, $t_\mathrm{SEM}/t_\mathrm{paper} - 1$, in per cent." if published
+                                    else "ours.")))
     return [*times, *errors]
 
 

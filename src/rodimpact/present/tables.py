@@ -70,8 +70,9 @@ def table2_frame(records: Sequence[RunRecord]) -> pd.DataFrame:
     DataFrame
         Columns ``case_id, row, variant, diameter_mm, mass_g, measured_us,
         published_fem_us, published_sem_us, published_fem_error_pct,
-        published_sem_error_pct``, then ``{method}_us, {method}_error_pct`` for each
-        method present, and ``sem_vs_published_sem_pct`` when ``sem`` is present.
+        published_sem_error_pct`` (the published columns only when a case declares
+        ``published``), then ``{method}_us, {method}_error_pct`` for each method present, and
+        ``sem_vs_published_sem_pct`` when ``sem`` is present (and published).
     """
     by_case: dict[str, dict[str, RunRecord]] = {}
     for rec in records:
@@ -102,6 +103,8 @@ def table2_frame(records: Sequence[RunRecord]) -> pd.DataFrame:
             row["sem_vs_published_sem_pct"] = (row["sem_us"] / row["published_sem_us"] - 1.0) * 100.0
         rows.append(row)
     frame = pd.DataFrame(rows)
+    if not any(rec.config.get("published") for rec in records):  # no case declares the paper's results
+        frame = frame.drop(columns=[c for c in frame.columns if "published" in c])
     return frame.sort_values("mass_g", kind="stable").reset_index(drop=True)
 
 
@@ -152,7 +155,8 @@ def sweep_results_frame(records: Sequence[RunRecord]) -> pd.DataFrame:
 def variants_summary(frames: dict[str, pd.DataFrame],
                      readings: Mapping[str, Mapping[str, Any]] | None = None) -> pd.DataFrame:
     """Per variant and method: mean, max and mean signed error against the measurements,
-    next to the paper's own errors for the same family of method (SEM or FEM).
+    next to the paper's own errors for the same family of method (SEM or FEM) when a case
+    declares them (else no ``paper_*`` columns).
 
     Parameters
     ----------
@@ -174,7 +178,8 @@ def variants_summary(frames: dict[str, pd.DataFrame],
             family = METHODS[method].family if method in METHODS else None
             ours = frame[column].to_numpy(float)
             signed = (ours - measured) / measured * 100.0
-            paper = frame[f"published_{family}_error_pct"].to_numpy(float) if family else np.array([np.nan])
+            published = f"published_{family}_error_pct"
+            paper = frame[published].to_numpy(float) if family and published in frame else np.array([np.nan])
             rows.append({
                 "variant": variant,
                 **reading,
@@ -187,7 +192,10 @@ def variants_summary(frames: dict[str, pd.DataFrame],
                 "paper_mean_error_pct": float(np.nanmean(paper)),
                 "paper_max_error_pct": float(np.nanmax(paper)),
             })
-    return pd.DataFrame(rows)
+    summary = pd.DataFrame(rows)
+    if not any("published_fem_us" in frame for frame in frames.values()):
+        summary = summary.drop(columns=[c for c in summary.columns if c.startswith("paper_")])
+    return summary
 
 
 def _first_contact_maxima(rec: RunRecord) -> np.ndarray:
