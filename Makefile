@@ -2,6 +2,9 @@
 #   make paper   build .venv from environment.lock if missing or stale, then snakemake -j2
 #   make test    same environment; snakemake --lint, a dry run, the small configuration in .test/
 #                built end to end (.test/results), pytest
+#   make test-cluster  .test/ built through profiles/slurm on a one-node SLURM scheduler of this
+#                machine and checked against the local build (as root: installs Debian's
+#                slurm-wlm and munge when missing); after make test, its .test/ is reused
 #   make bench   benchmarks -> results/benchmarks/*.csv (one job at a time, for clean timings), and
 #                results/benchmarks/build.csv: the last build's time per rule (jobs, solvers, overhead)
 #                from snakemake's job records; run make paper first
@@ -22,7 +25,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-from-lock
 CORES  ?= 2
 
-.PHONY: paper test bench convergence stability report report-check readme-images provenance env clean distclean
+.PHONY: paper test test-cluster bench convergence stability report report-check readme-images provenance env clean distclean
 
 $(STAMP): environment.lock pyproject.toml
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info[:2] == (3, 11) else "rodimpact needs Python 3.11 (environment.lock is for 3.11), found " + sys.version.split()[0])'
@@ -42,6 +45,9 @@ test: $(STAMP)
 	$(BIN)/snakemake -n --quiet rules
 	$(BIN)/snakemake -j$(CORES) --directory .test
 	$(BIN)/python -m pytest
+
+test-cluster: $(STAMP)
+	$(BIN)/python tests/cluster/check_cluster.py
 
 bench: $(STAMP)
 	$(BIN)/snakemake -j1 --forcerun bench_sem bench_sem_scaling bench_fem -- results/benchmarks/sem.csv \

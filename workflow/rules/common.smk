@@ -53,12 +53,16 @@ from rodimpact.plumbing.sources import module_sources
 # What planning computes (the checked project, each job's estimate) is kept in
 # .snakemake/rodimpact/, keyed on the digests of all it reads (rodimpact.plumbing.plan_cache).
 # Written when the jobs start (a cluster job parses this file again and finds it) and at exit.
+# A cluster job's snakemake (--mode remote) only reads it: its one job's estimate is cheap, and
+# every job of a build rewriting the file would only contend for it.
 PLAN = PlanCache(CACHE_FILE, code_fingerprint(SRC_DIR))
-atexit.register(PLAN.save)
+if not workflow.remote_exec:
+    atexit.register(PLAN.save)
 
 
 onstart:
-    PLAN.save()
+    if not workflow.remote_exec:
+        PLAN.save()
     register_run(WORKDIR)  # a live run here: no other snakemake releases its lock
 
 
