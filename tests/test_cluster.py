@@ -12,10 +12,12 @@ when the job is over works. No SLURM here: the stand-in proves what a real submi
 from __future__ import annotations
 
 import json
+import re
 import sys
 from pathlib import Path
 
 import pytest
+import yte
 
 from rodimpact.jobs.resources import PRESENTATION, estimate_resources
 
@@ -44,21 +46,50 @@ def test_every_job_is_submitted_with_its_estimated_resources(tmp_path: Path) -> 
     for path in (*runs, TABLE):
         assert (project / path).is_file(), f"{path} was not built\n{run.describe()}"
     entries = [json.loads(line) for line in record.read_text(encoding="utf-8").splitlines()]
-    submitted = sorted((e["rule"], e["wildcards"].get("method", "")) for e in entries)
-    assert submitted == sorted([("solve", m) for m in model["methods"]] + [("fig2_comparison", "")]), submitted
+    # every rule of a cluster run is in a group (workflow/rules/common.smk): with no
+    # group-components (the stand-in has none), each job is a group of its own, sized as the job
+    expected_of = {run: estimate_resources(model, Path(run).stem) for run in runs}
+    expected_of[TABLE] = PRESENTATION
+    group_of = {**{run: "solvers" for run in runs}, TABLE: "tables"}
+    submitted = sorted(next(o for o in entry["output"] if o in expected_of) for entry in entries)
+    assert submitted == sorted(expected_of), entries
     for entry in entries:
         assert entry["returncode"] == 0, entry
-        if entry["rule"] == "solve":
-            expected = estimate_resources(model, entry["wildcards"]["method"])
-        else:
-            expected = PRESENTATION
+        target = next(o for o in entry["output"] if o in expected_of)
+        expected = expected_of[target]
+        assert (entry["type"], entry["groupid"]) == ("group", group_of[target]), entry
         options = dict(arg.lstrip("-").split("=", 1) for arg in entry["argv"])
         assert options == {"mem": str(expected.mem_mb), "time": str(expected.runtime_min),
-                           "cpus": str(expected.threads), "name": entry["rule"]}, entry
+                           "cpus": str(expected.threads), "name": "GROUP"}, entry
         # what the command line carried is what snakemake holds for the job (its jobscript)
         assert entry["resources"]["mem_mb"] == expected.mem_mb, entry
         assert entry["resources"]["runtime"] == expected.runtime_min, entry
         assert entry["threads"] == expected.threads, entry
     # the estimate follows the case: the continuum model asks for more than the SEM
-    by_method = {e["wildcards"]["method"]: e["resources"] for e in entries if e["rule"] == "solve"}
+    by_method = {Path(e["output"][0]).stem: e["resources"] for e in entries if e["groupid"] == "solvers"}
     assert by_method["fem_axi"]["mem_mb"] > by_method["sem"]["mem_mb"]
+
+
+def test_every_submitted_rule_is_in_a_group_the_slurm_profile_sizes() -> None:
+    """Every rule a cluster runs declares its group (the case files are local rules, the
+    benchmarks want a node of their own), and the profile sizes exactly the declared groups."""
+    rules_dir = Path(__file__).resolve().parents[1] / "workflow" / "rules"
+    common = (rules_dir / "common.smk").read_text(encoding="utf-8")
+    groups = dict(re.findall(r'^(GROUP_\w+) = "(\w+)"$', common, re.M))
+    ungrouped = {"case_file", "bench_sem", "bench_fem", "bench_sem_scaling"}
+    missing, unknown = [], []
+    for path in sorted(rules_dir.glob("*.smk")):
+        blocks = re.split(r"^\s*rule(?= |:)", path.read_text(encoding="utf-8"), flags=re.M)[1:]
+        for block in blocks:
+            name = re.match(r"\s*(\w*):", block).group(1) or re.search(r'name:\s*\n\s*f"(\w+?)_?\{', block).group(1)
+            if "script:" not in block or name in ungrouped:
+                continue
+            declared = re.search(r"^\s+group: (\w+)$", block, re.M)
+            if declared is None:
+                missing.append(f"{path.name}: {name}")
+            elif declared.group(1) not in groups:
+                unknown.append(f"{path.name}: {name}: {declared.group(1)}")
+    assert not missing and not unknown, (missing, unknown)
+    with open(rules_dir.parents[1] / "profiles" / "slurm" / "config.yaml", encoding="utf-8") as handle:
+        profile = yte.process_yaml(handle, require_use_yte=True)
+    assert set(profile["group-components"]) == set(groups.values())

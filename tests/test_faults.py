@@ -9,6 +9,7 @@ small studies); the configuration's own refusals are tested in tests/test_config
 from __future__ import annotations
 
 import os
+import shlex
 import shutil
 import signal
 import subprocess
@@ -18,11 +19,13 @@ from pathlib import Path
 import h5py
 import pytest
 
+from rodimpact.plumbing.locks import RUNS_DIR
+from rodimpact.plumbing.plan_cache import CACHE_FILE
 from rodimpact.storage.faults import REBUILD_HINT
 from rodimpact.storage.runs import read_run
 
 from helpers.copies import clone_built, copy_project
-from helpers.snakemake_cli import Run, snakemake, start
+from helpers.snakemake_cli import Run, snakemake, snakemake_command, snakemake_environment, start
 
 pytestmark = pytest.mark.workflow
 
@@ -107,10 +110,27 @@ def test_a_broken_config_yaml_is_one_line(project: Path, text: str, expected: st
         assert ", column " in last_line(run)
 
 
+def test_a_directory_among_the_case_files_is_refused_also_with_the_plan_cache(project: Path) -> None:
+    """The first dry run leaves the plan cache; the second must still read config/cases/ anew."""
+    assert snakemake(project, "-n", SOLVE).returncode == 0
+    assert (project / CACHE_FILE).is_file()
+    odd = project / "config" / "cases" / "dir.yaml"
+    odd.mkdir()
+    try:
+        run = snakemake(project, "-n", SOLVE)
+    finally:
+        odd.rmdir()
+    assert_one_line_refusal(run, "rodimpact: invalid configuration: ")
+    assert "dir.yaml" in last_line(run), run.describe()
+
+
 # ------------------------------------------------------------------ kills and concurrent builds
 
 
-def test_a_killed_build_leaves_a_lock_that_the_next_run_releases(tmp_path: Path) -> None:
+@pytest.mark.parametrize("wrapper", [(), ("timeout", "500"), ("/usr/bin/time",)], ids=["plain", "timeout", "time"])
+def test_a_killed_build_leaves_a_lock_that_the_next_run_releases(tmp_path: Path, wrapper: tuple[str, ...]) -> None:
+    """The same command again releases the killed run's lock, also under a wrapper whose own
+    command line names snakemake (it is no live run)."""
     path = copy_project(tmp_path / "project")
     build = start(path, "-j1", SOLVE)
     try:
@@ -125,7 +145,7 @@ def test_a_killed_build_leaves_a_lock_that_the_next_run_releases(tmp_path: Path)
     target.parent.mkdir(parents=True, exist_ok=True)
     stale = target.with_name("sem.tmp-0123abcd.h5")
     stale.write_bytes(b"\x89HDF\r\n\x1a\n" + bytes(64))
-    rerun = snakemake(path, "-j1", SOLVE, timeout=BUILD_TIMEOUT_S)
+    rerun = snakemake(path, "-j1", SOLVE, timeout=BUILD_TIMEOUT_S, wrapper=wrapper)
     assert rerun.returncode == 0, rerun.describe()
     assert "rodimpact: released snakemake's lock of " in rerun.output
     assert not stale.exists() and read_run(target).case_id == "model"
@@ -148,6 +168,47 @@ def test_a_second_build_under_a_live_one_is_refused_and_the_lock_kept(tmp_path: 
     assert "LockException" in second.output or "IncompleteFilesException" in second.output, second.describe()
     assert "released snakemake's lock" not in second.output
     assert (path / LONG).is_file()
+
+
+def _on_another_host(project: Path, *args: str) -> list[str]:
+    """A snakemake command run as on a compute node sharing this file system: its own host name
+    and process namespace (``unshare``, as root), so that it sees none of this machine's runs."""
+    if os.geteuid() != 0 or shutil.which("unshare") is None:
+        pytest.skip("needs root and unshare to give snakemake a host of its own")
+    probe = subprocess.run(["unshare", "--uts", "--pid", "--fork", "--mount-proc", "true"], capture_output=True,
+                           check=False)
+    if probe.returncode != 0:
+        pytest.skip(f"unshare refused here: {probe.stderr.decode(errors='replace').strip()}")
+    inner = " ".join(shlex.quote(part) for part in snakemake_command(args, None))
+    return ["unshare", "--uts", "--pid", "--fork", "--mount-proc", "sh", "-c", f"hostname node7 && exec {inner}"]
+
+
+def test_a_job_parsing_the_workflow_on_another_host_keeps_a_live_builds_lock(tmp_path: Path) -> None:
+    """Every cluster job parses the workflow on its node, where the build's process is not
+    visible: the run registry (the build's record) keeps the lock."""
+    path = copy_project(tmp_path / "project")
+    build = start(path, "-j1", LONG)
+    try:
+        wait_for(lambda: (locks(path) and registered(path)) or build.poll() is not None, 120,
+                 "the build to lock the directory and register itself")
+        held = locks(path)
+        assert held and build.poll() is None, "the build ended before the node's parse: nothing was tested"
+        node = subprocess.run(_on_another_host(path, "-n", SOLVE), cwd=path, env=snakemake_environment(), capture_output=True,
+                              text=True, timeout=BUILD_TIMEOUT_S, check=False)
+        still_live = build.poll() is None
+        kept = all(lock.exists() for lock in held)
+    finally:
+        if build.poll() is None:
+            os.killpg(build.pid, signal.SIGKILL)
+        build.wait(30)
+    assert still_live, "the build ended during the node's parse: nothing was tested"
+    assert "released snakemake's lock" not in node.stdout + node.stderr, node.stdout + node.stderr
+    assert kept
+
+
+def registered(project: Path) -> list[Path]:
+    directory = project / RUNS_DIR
+    return sorted(directory.iterdir()) if directory.is_dir() else []
 
 
 # ------------------------------------------------------------------ damaged and edited inputs

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from rodimpact.plumbing.locks import LOCK_DIR, release_stale_lock
+from rodimpact.plumbing.locks import LOCK_DIR, RUNS_DIR, release_stale_lock, runs_snakemake
 from rodimpact.plumbing.plan_cache import CACHE_FILE, code_fingerprint
 from rodimpact.plumbing.targets import command_line_targets
 
@@ -80,6 +80,48 @@ def test_the_lock_of_a_live_snakemake_is_kept(tmp_path: Path) -> None:
     locks = _snakemakes_locks(project)
     proc = _fake_proc(tmp_path, {4242: ([sys.executable, "-m", "snakemake", "-j2"], project)})
     assert release_stale_lock(project, proc=proc) is None
+    assert all(lock.exists() for lock in locks)
+
+
+@pytest.mark.parametrize("command, is_snakemake", [
+    (["/env/bin/python3.11", "/env/bin/snakemake", "-j2"], True),  # the console script, by its #! line
+    (["snakemake", "-n"], True),
+    (["python", "-m", "snakemake", "-j2"], True),
+    (["python3", "-u", "-X", "dev", "-m", "snakemake"], True),
+    (["python", "/env/lib/python3.11/site-packages/snakemake/__main__.py", "-n"], True),
+    (["timeout", "500", "snakemake", "-j2"], False),
+    (["/usr/bin/time", "/env/bin/snakemake", "-j2"], False),
+    (["bash", "-c", "snakemake -j2 && echo done"], False),
+    (["python", "-c", "import snakemake"], False),
+    (["python", "-m", "pytest", "tests/snakemake"], False),
+    ([], False),
+], ids=["console script", "snakemake", "python -m", "python options", "__main__.py", "timeout", "time",
+        "shell", "python -c", "another module", "no command line"])
+def test_a_process_is_a_snakemake_run_by_what_it_executes(command: list[str], is_snakemake: bool) -> None:
+    assert runs_snakemake(command) is is_snakemake
+
+
+@pytest.mark.parametrize("wrapper", [["timeout", "500"], ["/usr/bin/time"]], ids=["timeout", "time"])
+def test_a_wrapper_whose_arguments_name_snakemake_holds_no_lock(tmp_path: Path, wrapper: list[str]) -> None:
+    """``timeout 500 snakemake ...`` rerunning a killed build: the wrapper (in the project, its
+    arguments naming snakemake) is not a live run; the rerun itself is the caller."""
+    project = tmp_path / "project"
+    project.mkdir()
+    locks = _snakemakes_locks(project)
+    proc = _fake_proc(tmp_path, {4242: ([*wrapper, "/env/bin/snakemake", "-j2"], project)})
+    assert release_stale_lock(project, proc=proc) is not None
+    assert not any(lock.exists() for lock in locks)
+
+
+def test_a_run_registered_by_another_host_keeps_its_lock(tmp_path: Path) -> None:
+    """A compute node sees none of the login node's processes: the run registry alone keeps the
+    live run's lock (tests/test_faults.py runs it with a real build and a separate host)."""
+    project = tmp_path / "project"
+    project.mkdir()
+    locks = _snakemakes_locks(project)
+    (project / RUNS_DIR).mkdir(parents=True)
+    (project / RUNS_DIR / "login7-4242").write_text("login7 4242\n", encoding="utf-8")
+    assert release_stale_lock(project, proc=_fake_proc(tmp_path, {})) is None
     assert all(lock.exists() for lock in locks)
 
 

@@ -11,9 +11,9 @@ What it does, in order:
    build (``snakemake -j2 --directory .test``) in a copy;
 4. starts the cluster (``slurm.conf``, ``munged``, ``slurmctld``, ``slurmd``: all under a
    temporary directory; ``SLURM_CONF`` for every SLURM command and for snakemake), and runs two
-   copies through it at once, each with what docs/cluster.md tells a user (the partition
-   exported as a user would), under ``timeout -s INT`` (on SIGTERM snakemake would wait for the
-   jobs it believes run):
+   copies through it, one after the other (the build has the scheduler to itself: it is timed),
+   each with what docs/cluster.md tells a user (the partition exported as a user would), under
+   ``timeout -s INT`` (on SIGTERM snakemake would wait for the jobs it believes run):
 
    - the build: ``snakemake --workflow-profile profiles/slurm --directory .test``;
    - a failing job: the same command for one run, ``results/runs/model/sem.h5``, in a copy
@@ -22,7 +22,9 @@ What it does, in order:
 5. checks the build: exit status 0, the sbatch submissions (the scheduler's own list, which
    keeps every job of the run: ``MinJobAge`` is long), the same files as the local build,
    every HDF5 dataset and attribute and every table equal but for the timings (:mod:`compare`),
-   and the provenance audit (``python -m rodimpact.tools.audit --root .test``);
+   and the provenance audit (``python -m rodimpact.tools.audit --root .test``); writes its jobs,
+   submissions and wall time against the local build's to ``results/benchmarks/cluster.csv``
+   (:mod:`timing`);
 6. checks the failing job: the run ends with a non-zero status before its timeout, its output
    names the failed job's SLURM log (``.snakemake/slurm_logs/...``, which holds the error) and
    the rule's own log, after one submission per attempt (``retries``), each asking for more
@@ -63,6 +65,7 @@ from helpers.repo import ROOT  # noqa: E402
 from helpers.snakemake_cli import BUILD_TIMEOUT_S as LOCAL_BUILD_TIMEOUT_S  # noqa: E402
 from helpers.snakemake_cli import DRY_RUN_TIMEOUT_S, job_stats, snakemake  # noqa: E402
 from local_slurm import LocalSlurm, SlurmError, install  # noqa: E402
+from timing import CLUSTER_CSV, BuildTiming, recorded_build, write_cluster_csv  # noqa: E402
 
 #: The profile under test, and what docs/cluster.md tells a user to run.
 PROFILE = Path("profiles") / "slurm"
@@ -72,7 +75,7 @@ PARTITION = "debug"
 #: How long the scheduler shows a finished job (s): the whole run, so that squeue lists every
 #: submission at the end (the plugin needs at least 3 times its first status check's delay).
 MIN_JOB_AGE_S = 3600
-#: Bounds of the runs through SLURM (s), on the 2-core machine with another build beside.
+#: Bounds of the runs through SLURM (s), on the 2-core machine (a loaded one may double them).
 BUILD_TIMEOUT_S = 1500
 FAILURE_TIMEOUT_S = 900
 #: A single target, planned through the profile and locally.
@@ -242,7 +245,7 @@ def stop(processes: list[SnakemakeProcess]) -> None:
         process.finish(deadline)
 
 
-def run_together(processes: dict[str, SnakemakeProcess], watch: PlanCacheWatch | None = None) -> None:
+def wait_until_done(processes: dict[str, SnakemakeProcess], watch: PlanCacheWatch | None = None) -> None:
     """Wait until every process has ended, saying when each does; stop those left on any
     exception (an interrupt included)."""
     try:
@@ -332,7 +335,7 @@ def check_build(run: SnakemakeRun, jobs: list[dict[str, str]], project: Path, re
                  f"snakemake: {run.submitted}\nsqueue: {jobs}")
     report.check(all(job["state"] == "COMPLETED" for job in jobs), "every SLURM job completed",
                  "\n".join(str(job) for job in jobs if job["state"] != "COMPLETED"))
-    kinds = submission_kinds(jobs, set(profile_settings().get("groups", {}).values()))
+    kinds = submission_kinds(jobs, set(profile_settings().get("group-components", {})))
     say(f"     {len(jobs)} submissions: " + ", ".join(f"{kind} {n}" for kind, n in sorted(kinds.items())))
     counts, problems = compare_builds(reference, project / DOTTEST)
     report.check(not problems, f"the SLURM build equals the local build {reference}: {counts['files']} files, "
@@ -385,45 +388,62 @@ def check_single_target(cluster: LocalSlurm, project: Path, report: Report) -> N
                                                  f"profile as locally: {local}", f"{slurm} != {local}")
 
 
-def check_cluster_runs(cluster: LocalSlurm, pristine: Path, scratch: Path, reference: Path, report: Report) -> None:
-    """Start the build and the failing run at once (copies of ``pristine``), wait for both, check both."""
+def check_cluster_runs(cluster: LocalSlurm, pristine: Path, scratch: Path, reference: Path,
+                       local: BuildTiming | None, report: Report) -> None:
+    """The build, then the failing run (each in a copy of ``pristine``, the scheduler to itself:
+    the build is timed), then one target's plan; check each, and write the benchmark."""
     env = user_environment(cluster)
     built, failing = clone_built(pristine, scratch / "slurm"), clone_built(pristine, scratch / "failing")
     (failing / "workflow" / "scripts" / "solve.py").write_text(FAILING_SCRIPT, encoding="utf-8")
     watch = PlanCacheWatch(built / PLAN_CACHE)
     say(f"through SLURM, with SBATCH_PARTITION={PARTITION} (each in a fresh copy of the project):")
     say(f"     the build: snakemake {' '.join(USER_COMMAND)}  ({built})")
+    build_process = SnakemakeProcess(built, USER_COMMAND, env, BUILD_TIMEOUT_S, scratch / "build.log")
+    wait_until_done({"the build": build_process}, watch)
+    build = build_process.result()
+    report.timings["build through SLURM"] = build.seconds
+    jobs = jobs_of(build, scheduler_jobs(cluster))
+    check_build(build, jobs, built, reference, report)
+    say(f"     {PLAN_CACHE} written {watch.writes} times during the build (at least)")
+    if build.returncode == 0:
+        slurm = BuildTiming(build="slurm", jobs=sum(job_stats(build.output).values()), submissions=len(jobs),
+                            wall_s=build.seconds, measured="timed by the check (planning included)")
+        path = write_cluster_csv(ROOT / CLUSTER_CSV, local, slurm, ROOT)
+        ratio = f", {slurm.wall_s / local.wall_s:.2f} times the local build's {local.wall_s:.0f} s" if local else ""
+        say(f"     {slurm.jobs} jobs in {slurm.submissions} submissions, {slurm.wall_s:.0f} s{ratio} -> {path}")
+
     say(f"     a failing job: snakemake {' '.join(USER_COMMAND)} {FAILING_TARGET}  ({failing}: "
         f"workflow/scripts/solve.py raises)")
-    processes = {"the build": SnakemakeProcess(built, USER_COMMAND, env, BUILD_TIMEOUT_S, scratch / "build.log"),
-                 "the failing run": SnakemakeProcess(failing, (*USER_COMMAND, FAILING_TARGET), env,
-                                                     FAILURE_TIMEOUT_S, scratch / "failing_run.log")}
-    run_together(processes, watch)
-    build, failure = processes["the build"].result(), processes["the failing run"].result()
-    report.timings["build through SLURM"] = build.seconds
+    failure_process = SnakemakeProcess(failing, (*USER_COMMAND, FAILING_TARGET), env, FAILURE_TIMEOUT_S,
+                                       scratch / "failing_run.log")
+    wait_until_done({"the failing run": failure_process})
+    failure = failure_process.result()
     report.timings["failing run through SLURM"] = failure.seconds
-    jobs = scheduler_jobs(cluster)
-    check_build(build, jobs_of(build, jobs), built, reference, report)
-    say(f"     {PLAN_CACHE} written {watch.writes} times during the build (at least)")
-    check_failure(failure, jobs_of(failure, jobs), failing, report)
+    check_failure(failure, jobs_of(failure, scheduler_jobs(cluster)), failing, report)
     check_single_target(cluster, failing, report)
 
 
-def reference_build(pristine: Path, scratch: Path) -> Path:
-    """The ``.test/`` of a local build of the same code and configuration as ``pristine``: the
-    checkout's when it is up to date (``reuse_refusal``), else a build (``snakemake -j2
-    --directory .test``) in a copy of ``pristine``."""
+def reference_build(pristine: Path, scratch: Path) -> tuple[Path, BuildTiming | None]:
+    """The ``.test/`` of a local build of the same code and configuration as ``pristine``, and
+    that build's timing: the checkout's when it is up to date (``reuse_refusal``; timed by its
+    job records), else a build (``snakemake -j2 --directory .test``) in a copy of ``pristine``,
+    timed here."""
     why = reuse_refusal()
     if why is None:
-        say(f"local build to compare with: {ROOT / DOTTEST} (the checkout's, up to date)")
-        return ROOT / DOTTEST
+        timing = recorded_build(ROOT / DOTTEST)
+        spent = f", built in {timing.wall_s:.0f} s by its job records" if timing else ""
+        say(f"local build to compare with: {ROOT / DOTTEST} (the checkout's, up to date{spent})")
+        return ROOT / DOTTEST, timing
     say(f"building {DOTTEST} locally to compare with: {why.splitlines()[0]}")
     project = clone_built(pristine, scratch / "reference")
+    started = time.monotonic()
     run = snakemake(project, "-j2", timeout=LOCAL_BUILD_TIMEOUT_S, workdir=DOTTEST)
+    seconds = time.monotonic() - started
     if run.returncode != 0:
         raise SlurmError(f"the local build of {DOTTEST} failed, nothing to compare with:\n{run.describe()}")
-    say(f"local build to compare with: {project / DOTTEST}")
-    return project / DOTTEST
+    say(f"local build to compare with: {project / DOTTEST} ({seconds:.0f} s)")
+    return project / DOTTEST, BuildTiming(build="local", jobs=sum(job_stats(run.output).values()), submissions=None,
+                                          wall_s=seconds, measured="timed by the check (planning included)")
 
 
 # --------------------------------------------------------------------------------------------
@@ -456,7 +476,8 @@ def main(argv: list[str] | None = None) -> int:
         # configuration of the checkout as they are at this moment
         pristine = slurm_copy(scratch / "pristine")
         started = time.monotonic()
-        reference = args.reference.resolve() if args.reference else reference_build(pristine, scratch)
+        reference, local = ((args.reference.resolve(), recorded_build(args.reference.resolve())) if args.reference
+                            else reference_build(pristine, scratch))
         report.timings["local build to compare with"] = time.monotonic() - started
 
         started = time.monotonic()
@@ -464,7 +485,7 @@ def main(argv: list[str] | None = None) -> int:
             report.timings["cluster start"] = time.monotonic() - started
             say(f"one-node SLURM up: node {cluster.node} idle, partition {PARTITION}, MinJobAge {min_job_age} s, "
                 f"SLURM_CONF={cluster.conf}")
-            check_cluster_runs(cluster, pristine, scratch, reference, report)
+            check_cluster_runs(cluster, pristine, scratch, reference, local, report)
         say("daemons stopped")
     except (SlurmError, subprocess.CalledProcessError, AssertionError) as error:
         report.failures.append(f"{type(error).__name__}: {error}")

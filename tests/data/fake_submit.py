@@ -4,8 +4,9 @@
 snakemake's cluster-generic executor calls ``<submit command> <jobscript>``, the submit
 command being ``--cluster-generic-submit-cmd`` with the job's ``{resources.mem_mb}``,
 ``{threads}``, ``{rule}`` etc. filled in. This script appends what it was given to a JSON
-lines file (``--record=PATH``): its arguments, and the rule, wildcards, threads and
-resources snakemake wrote into the jobscript's ``# properties = {...}`` line. It then runs
+lines file (``--record=PATH``): its arguments, and what snakemake wrote into the jobscript's
+``# properties = {...}`` line: the type (``single`` or ``group``), the group, the rule and
+wildcards (of a single job), the threads, resources and outputs. It then runs
 the jobscript to its end (a synchronous "cluster": the jobscript touches the marker file
 snakemake polls for, ``<jobid>.jobfinished`` or ``.jobfailed``) and prints a job id, as a
 submit command does. It exits 0 even when the job fails: the submission itself succeeded.
@@ -30,7 +31,8 @@ def main(argv: list[str]) -> int:
     match = PROPERTIES.search(jobscript.read_text(encoding="utf-8"))
     properties = json.loads(match.group(1)) if match else {}
     entry = {"argv": argv[1:-1], "jobscript": jobscript.name,
-             **{key: properties.get(key) for key in ("rule", "wildcards", "threads", "resources", "jobid")}}
+             **{key: properties.get(key) for key in ("type", "groupid", "rule", "wildcards", "threads", "resources",
+                                                     "jobid", "output")}}
     done = subprocess.run(["/bin/sh", str(jobscript)], stdout=sys.stderr, stderr=sys.stderr, check=False)
     entry["returncode"] = done.returncode
     with record.open("a", encoding="utf-8") as out:

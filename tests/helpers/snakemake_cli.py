@@ -25,10 +25,10 @@ class Run:
 
     def describe(self) -> str:
         tail = self.output[-6000:]
-        return f"snakemake {' '.join(map(str, self.args[4:]))} -> exit {self.returncode}\n{tail}"
+        return f"{' '.join(map(str, self.args))} -> exit {self.returncode}\n{tail}"
 
 
-def _environment() -> dict[str, str]:
+def snakemake_environment() -> dict[str, str]:
     """This process's environment without snakemake's variables and PYTHONPATH: the workflow
     puts its own checkout's src/ first (workflow/rules/preflight.smk)."""
     env = {key: value for key, value in os.environ.items()
@@ -37,23 +37,26 @@ def _environment() -> dict[str, str]:
     return env
 
 
-def _command(args: tuple[str, ...], workdir: str | None) -> list[str]:
+def snakemake_command(args: tuple[str, ...], workdir: str | None, wrapper: tuple[str, ...] = ()) -> list[str]:
     directory = ["--directory", workdir] if workdir else []
-    return [sys.executable, "-m", "snakemake", "--nocolor", *directory, *args]
+    # under a wrapper, the environment's snakemake program, as a user types it after the wrapper
+    program = [str(Path(sys.executable).parent / "snakemake")] if wrapper else [sys.executable, "-m", "snakemake"]
+    return [*wrapper, *program, "--nocolor", *directory, *args]
 
 
-def snakemake(project: Path, *args: str, timeout: float = DRY_RUN_TIMEOUT_S, workdir: str | None = None) -> Run:
+def snakemake(project: Path, *args: str, timeout: float = DRY_RUN_TIMEOUT_S, workdir: str | None = None,
+              wrapper: tuple[str, ...] = ()) -> Run:
     """Run the snakemake CLI of this interpreter's environment in ``project`` (the directory of
     the Snakefile); ``workdir``: a working directory of its own inside it (``--directory``,
-    such as ``.test``)."""
-    proc = subprocess.run(_command(args, workdir), cwd=project, env=_environment(), capture_output=True,
+    such as ``.test``); ``wrapper``: a command that runs it (``("timeout", "500")``)."""
+    proc = subprocess.run(snakemake_command(args, workdir, wrapper), cwd=project, env=snakemake_environment(), capture_output=True,
                           text=True, timeout=timeout, check=False)
     return Run(proc)
 
 
 def start(project: Path, *args: str) -> subprocess.Popen:
     """snakemake in the background, in its own process group (to kill it with its jobs)."""
-    return subprocess.Popen(_command(args, None), cwd=project, env=_environment(), stdout=subprocess.PIPE,
+    return subprocess.Popen(snakemake_command(args, None), cwd=project, env=snakemake_environment(), stdout=subprocess.PIPE,
                             stderr=subprocess.STDOUT, text=True, start_new_session=True)
 
 

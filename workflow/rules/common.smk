@@ -68,6 +68,14 @@ onstart:
 
 SCHEMA_DIR = os.path.join(workflow.basedir, "workflow", "schemas")
 
+# Job groups, for a cluster: the jobs of a group that a run needs go to the scheduler as one
+# submission (profiles/slurm sets how many independent pieces one takes: group-components) and
+# run one after another on its node, each still its own rule, outputs and log. A local run
+# ignores groups. Every solver rule is in GROUP_SOLVERS, every table and figure in GROUP_TABLES;
+# the case files are local rules, the benchmarks are alone on their node.
+GROUP_SOLVERS = "solvers"
+GROUP_TABLES = "tables"
+
 
 def checked_project():
     """The whole configuration, checked against the schemas and the method registry."""

@@ -30,6 +30,7 @@ rule compare_table:
         set=one_of(COMPARE_SETS),
     log:
         "logs/tables/compare_{set}.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
@@ -71,6 +72,7 @@ rule compare_figure:
         set=one_of(COMPARE_SETS),
     log:
         "logs/figures/compare_{set}.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
@@ -107,6 +109,7 @@ rule compare_history:
         case=one_of(HISTORY_CASES),
     log:
         "logs/figures/compare_{set}_{case}.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,

@@ -24,6 +24,7 @@ rule fig2:
         provenance="results/figures/fig2_contact_force.provenance.json",
     log:
         "logs/figures/fig2_contact_force.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
@@ -58,6 +59,7 @@ rule fig4:
         fraction=0.5,
     log:
         "logs/figures/fig4_midrod_displacement.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
@@ -106,6 +108,7 @@ rule fig_readings:
         set=one_of(READING_SETS),
     log:
         "logs/figures/{set}_contact_time.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
@@ -143,6 +146,7 @@ rule fig_film_force:
         methods=FILM_FORCE["methods"],
     log:
         "logs/figures/film_force.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,

@@ -21,6 +21,7 @@ for set_name in config["targets"]["sets"]:
             provenance=f"results/forces/{set_name}.provenance.json",
         log:
             f"logs/forces/{set_name}.log",
+        group: GROUP_TABLES
         threads: 1
         resources:
             **PRESENTATION_RESOURCES,
@@ -52,6 +53,7 @@ rule fig_force_fit:
         provenance="results/figures/force_fit_model.provenance.json",
     log:
         "logs/figures/force_fit_model.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,

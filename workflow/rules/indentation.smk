@@ -17,6 +17,7 @@ rule indentation:
         numerics=lambda w: config["numerics"]["fem_axi"],
     log:
         "logs/indentation/{case}.log",
+    group: GROUP_SOLVERS
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
@@ -39,6 +40,7 @@ rule film_band:
         variant="{variant}",
     log:
         "logs/studies/film_band_{variant}.log",
+    group: GROUP_SOLVERS
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,

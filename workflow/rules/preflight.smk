@@ -55,7 +55,9 @@ preflight_config(CONFIG_FILE)
 
 
 # A lock left by a killed run (no snakemake process lives in this directory, no run of
-# another machine registered here) is released, with a one-line notice.
-_released = release_stale_lock(WORKDIR)
-if _released:
-    print(_released, file=sys.stderr)
+# another machine registered here) is released, with a one-line notice. A cluster job's
+# snakemake (--mode remote, on a compute node) never releases one: the lock is its run's.
+if not workflow.remote_exec:
+    _released = release_stale_lock(WORKDIR)
+    if _released:
+        print(_released, file=sys.stderr)

@@ -21,6 +21,7 @@ rule sensor_band:
         case=one_of(SENSOR_READING_OF),
     log:
         "logs/studies/sensor_band/{case}.log",
+    group: GROUP_SOLVERS
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
@@ -49,6 +50,7 @@ rule sensor_band_table:
         provenance="results/tables/sensor_band.provenance.json",
     log:
         "logs/tables/sensor_band.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
@@ -81,6 +83,7 @@ rule sensor_fit:
         layer=SENSOR_FIT["layer"] if SENSOR_FIT else "",
     log:
         "logs/tables/sensor_fit.log",
+    group: GROUP_SOLVERS
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
@@ -118,6 +121,7 @@ rule fig_sensor_fit:
         descriptions=READING_DESCRIPTIONS,
     log:
         "logs/figures/sensor_fit.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,

@@ -14,6 +14,7 @@ rule solve:
         method="{method}",
     log:
         "logs/runs/{case}/{method}.log",
+    group: GROUP_SOLVERS
     threads: 1
     resources:
         **solver_resources(case_of_run),
@@ -43,6 +44,7 @@ for method, levels in WORK_PRECISION.get("methods", {}).items():
             timing=WORK_PRECISION.get("timing", {}),
         log:
             f"logs/convergence/{{case}}/{method}.log",
+        group: GROUP_SOLVERS
         threads: 1
         resources:
             **batch_resources(runs_of_levels, timing=WORK_PRECISION.get("timing", {})),
@@ -64,6 +66,7 @@ rule solve_stress:
         method="{method}",
     log:
         "logs/stress/{case}/{method}.log",
+    group: GROUP_SOLVERS
     threads: 1
     resources:
         **solver_resources(case_of_run),
@@ -85,6 +88,7 @@ rule solve_stress_reference:
         method="sem",
     log:
         "logs/stress/{case}/reference.log",
+    group: GROUP_SOLVERS
     threads: 1
     resources:
         **solver_resources(reference_case_of, lambda w: "sem"),
@@ -111,6 +115,7 @@ if MAP:
             timing=None,
         log:
             "logs/stability_map/m{row}/{map_method}.log",
+        group: GROUP_SOLVERS
         threads: 1
         resources:
             **batch_resources(map_row_runs),

@@ -30,6 +30,7 @@ rule work_precision_table:
         fit_levels=WORK_PRECISION.get("fit_levels", 4),
     log:
         "logs/tables/work_precision.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
@@ -65,6 +66,7 @@ rule work_precision_figure:
         fit_levels=WORK_PRECISION.get("fit_levels", 4),
     log:
         "logs/figures/work_precision_{case}.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
@@ -95,6 +97,7 @@ rule stability_table:
         tolerances=STABILITY.get("tolerances", {}),
     log:
         "logs/tables/stability.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
@@ -137,6 +140,7 @@ rule stability_map:
         spec=MAP,
     log:
         "logs/figures/stability_map.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,

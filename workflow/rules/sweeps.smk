@@ -28,6 +28,7 @@ for case_id, names, k in ((c, n, k) for c, space in SWEEPS.items()
             timing=None,
         log:
             f"logs/sweeps/{case_id}/{{method}}/batch{k}.log",
+        group: GROUP_SOLVERS
         threads: 1
         resources:
             **batch_resources(runs_of_batch),
@@ -55,6 +56,7 @@ rule sweep_table:
         provenance="results/tables/sweep_{set}.provenance.json",
     log:
         "logs/tables/sweep_{set}.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,

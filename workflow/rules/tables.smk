@@ -28,6 +28,7 @@ rule readings_table:
         set=one_of(READING_SETS),
     log:
         "logs/tables/{set}_{variant}.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
@@ -60,6 +61,7 @@ rule readings_summary:
         set=one_of(READING_SETS),
     log:
         "logs/tables/{set}_variants.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
@@ -87,6 +89,7 @@ rule fig2_comparison:
         provenance="results/tables/fig2_comparison.provenance.json",
     log:
         "logs/tables/fig2_comparison.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
@@ -123,6 +126,7 @@ rule film_table:
         set=one_of(FILM_TABLE_SETS),
     log:
         "logs/tables/{set}_film.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
@@ -153,6 +157,7 @@ rule film_band_table:
         variants=FILM_VARIANTS,
     log:
         "logs/tables/film_band.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
@@ -182,6 +187,7 @@ rule film_indentation_table:
         cases=CALIBRATED_CASES,
     log:
         "logs/tables/film_indentation.log",
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,

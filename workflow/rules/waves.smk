@@ -34,6 +34,7 @@ rule wave_map:
         "logs/figures/wave_map_{case}.log",
     wildcard_constraints:
         case=one_of(WAVE_CASES),
+    group: GROUP_TABLES
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,

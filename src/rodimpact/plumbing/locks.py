@@ -17,11 +17,18 @@ Why that is not enough here
     parsed: the lock is released, with a one-line notice, only when
 
     * no snakemake process other than the caller runs in this directory on this machine (read
-      from ``/proc``: command line and working directory; without ``/proc`` nothing is
-      released), and
+      from ``/proc``: the program a process runs and its working directory; without ``/proc``
+      nothing is released). A process is a snakemake run by what it executes: the
+      ``snakemake`` program, or a Python interpreter running the ``snakemake`` script or
+      ``-m snakemake`` (:func:`runs_snakemake`). A wrapper whose arguments name snakemake
+      (``timeout 500 snakemake ...``, ``/usr/bin/time snakemake ...``, a shell) is not one: its
+      snakemake child is, and is found on its own; and
     * no run on another machine registered itself here (:func:`register_run`, called when a run
       starts: ``.snakemake/rodimpact/runs/<host>-<pid>``, removed when it ends; a shared file
       system may hold a live run of another node, which this machine cannot see).
+
+    A cluster job (snakemake's ``--mode remote`` on a compute node) never calls it
+    (``workflow/rules/preflight.smk``): the lock belongs to the run that submitted the job.
 
     Snakemake's database persistence (``--persistence-backend db``) keeps its locks in the
     database: none is found here and nothing is released.
@@ -43,11 +50,42 @@ import os
 import socket
 from pathlib import Path
 
-__all__ = ["live_snakemake_pids", "register_run", "release_stale_lock"]
+__all__ = ["live_snakemake_pids", "register_run", "release_stale_lock", "runs_snakemake"]
 
 LOCK_DIR = Path(".snakemake") / "locks"
 RUNS_DIR = Path(".snakemake") / "rodimpact" / "runs"
 _PROC = Path("/proc")
+
+
+#: Options of the Python interpreter that take a value as the next argument.
+_PYTHON_OPTIONS_WITH_VALUE = {"-W", "-X", "--check-hash-based-pycs"}
+
+
+def runs_snakemake(command: list[str]) -> bool:
+    """Whether a process with this command line (``/proc/<pid>/cmdline``, split at NULs) is
+    snakemake itself, not a program that was given snakemake as an argument.
+
+    The program is the command's first word, or for a Python interpreter (``python``,
+    ``python3.11``) the script it runs or the module after ``-m``. A script started by its
+    ``#!`` line shows as ``python /path/bin/snakemake ...``.
+    """
+    if not command:
+        return False
+    program = os.path.basename(command[0])
+    if program == "snakemake":
+        return True
+    if not program.startswith("python"):
+        return False
+    arguments = iter(command[1:])
+    for argument in arguments:
+        if argument == "-m":
+            return next(arguments, "") == "snakemake"
+        if argument in _PYTHON_OPTIONS_WITH_VALUE:
+            next(arguments, None)
+        elif argument == "-c" or not argument.startswith("-"):
+            return argument != "-c" and (os.path.basename(argument) == "snakemake"
+                                         or argument.endswith(os.path.join("snakemake", "__main__.py")))
+    return False
 
 
 def live_snakemake_pids(root: str | Path, proc: Path = _PROC) -> list[int] | None:
@@ -60,8 +98,8 @@ def live_snakemake_pids(root: str | Path, proc: Path = _PROC) -> list[int] | Non
         if not entry.name.isdigit() or int(entry.name) == me:
             continue
         try:
-            command = (entry / "cmdline").read_bytes().split(b"\0")
-            if not any(b"snakemake" in part for part in command[:3]):
+            command = (entry / "cmdline").read_bytes().decode(errors="replace").split("\0")
+            if not runs_snakemake([part for part in command if part]):
                 continue
             if Path(os.readlink(entry / "cwd")).resolve() == here:
                 found.append(int(entry.name))

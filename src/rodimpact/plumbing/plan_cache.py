@@ -77,16 +77,29 @@ def _digest(*parts: bytes) -> str:
     return sha.hexdigest()
 
 
+def _entry_bytes(path: Path) -> bytes:
+    """What the loader would find at ``path``: a file's contents, else a marker of what it is
+    (a directory, a dangling link, an unreadable file), so that an entry that is no readable
+    file (``config/cases/x.yaml/``, a directory) changes the key as a file would."""
+    if path.is_dir():
+        return b"directory"
+    try:
+        return b"file:" + path.read_bytes()
+    except OSError as error:  # a dangling link, no permission, a special file
+        return f"unreadable:{type(error).__name__}".encode()
+
+
 def _tree_bytes(path: Path, pattern: str = "*") -> list[bytes]:
-    """Names and contents of the files matching ``pattern`` under ``path`` (recursively), or of
-    ``path`` itself when it is a file; a marker when it does not exist."""
+    """Names and contents of the entries matching ``pattern`` under ``path`` (recursively: files,
+    and directories and other entries by a marker), or of ``path`` itself when it is a file; a
+    marker when it does not exist."""
     if path.is_file():
-        return [path.name.encode(), path.read_bytes()]
+        return [path.name.encode(), _entry_bytes(path)]
     if not path.is_dir():
         return [b"missing:" + str(path).encode()]
     parts = []
-    for file in sorted(p for p in path.rglob(pattern) if p.is_file() and "__pycache__" not in p.parts):
-        parts += [file.relative_to(path).as_posix().encode(), file.read_bytes()]
+    for entry in sorted(p for p in path.rglob(pattern) if "__pycache__" not in p.parts):
+        parts += [entry.relative_to(path).as_posix().encode(), _entry_bytes(entry)]
     return parts
 
 
