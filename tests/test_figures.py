@@ -12,6 +12,7 @@ read back from their HDF5 files; a band file is written with synthetic numbers b
 from __future__ import annotations
 
 import copy
+import re
 from pathlib import Path
 
 import matplotlib
@@ -30,7 +31,7 @@ from rodimpact.present.artifacts import (  # noqa: E402
     make_work_precision_figure
 )
 from rodimpact.present.forces import export_forces  # noqa: E402
-from rodimpact.present.study_figures import quantity_words  # noqa: E402
+from rodimpact.present.study_figures import order_text, quantity_words  # noqa: E402
 from rodimpact.present.table2_figures import SECOND_CONTACT_LABEL, short_source  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
 from rodimpact.jobs.indentation import indentation_to_file  # noqa: E402
@@ -325,7 +326,8 @@ def test_work_precision_has_a_panel_per_quantity_and_one_legend_of_methods(shipp
             case = level_case(shipped_project.cases["ball_3.16mm-r1_l30"], method, shipped_config["numerics"], overrides)
             runs.append(run_to_file(case, method, tmp_path / f"{method}_level{level}.h5", level=level,
                                     code_version="1.2.3+gdeadbeef"))
-    make_work_precision_figure(runs, methods, 3, **outputs(tmp_path, "work_precision"))
+    make_work_precision_figure(runs, methods, 3, arrival_window=shipped_config["work_precision"]["arrival_window"],
+                               **outputs(tmp_path, "work_precision"))
     (fig,) = rendered
     assert_journal_ready(fig)
     panels = [ax for ax in fig.axes if ax.get_visible()]
@@ -334,13 +336,21 @@ def test_work_precision_has_a_panel_per_quantity_and_one_legend_of_methods(shipp
     assert set(titles) >= {"contact time", "first force maximum", "force history, $L_2$ norm",
                            "force history, max norm"} and len(titles) == len(set(titles))
     (legend,) = fig.legends
-    assert [t.get_text() for t in legend.get_texts()] == [METHODS[m].label for m in methods]
-    for ax in panels:  # each panel's box: the observed orders, one per method, with the theory
+    assert [t.get_text() for t in legend.get_texts()] == [
+        *(METHODS[m].label for m in methods), "level in the fit", "level not in the fit", "expected order (slope guide)"]
+    words = {"contact time": "contact_time", "force history, $L_2$ norm": "history_l2",
+             "force history, max norm": "history_max"}
+    for ax in panels:  # each panel's box: the observed order ± its standard error, the expected in parentheses
         orders = [t.get_text() for t in ax.get_legend().get_texts()]
-        assert len(orders) == 2 and orders[0].endswith("(2)") and orders[1].endswith("(1)"), orders
+        expected = [methods[m]["expected_orders"][words.get(ax.get_title(), "max")] for m in methods]
+        assert [o.rsplit(" (", 1)[1] for o in orders] == [f"{order_text(e)})" for e in expected], orders
+        assert all(re.fullmatch(r"(\d\.\d\d ± \d\.\d\d|–) \(.+\)", o) for o in orders), orders
     (contact,) = [ax for ax in panels if ax.get_title() == "contact time"]
     sem_order = float(contact.get_legend().get_texts()[0].get_text().split()[0])
     assert 1.8 < sem_order < 2.3
+    # a slope guide per method under its fitted levels, labelled with its expected order
+    assert [t.get_text() for t in contact.texts] == ["$h^{2}$", "$h^{1}$"]
+    assert order_text(1.5) == "3/2" and order_text(1.667) == "5/3" and order_text(2.0) == "2"
     assert "Table 2 row 1" in fig._suptitle.get_text() and "rod radius 1 mm, length 30.1 mm" in fig._suptitle.get_text()
 
 

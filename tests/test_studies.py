@@ -76,7 +76,7 @@ def sweep(project, config, tmp_path_factory):
             case = level_case(project.cases["ball_3.16mm-r1_l30"], method, config["numerics"], overrides)
             records.append(read_run(run_to_file(case, method, folder / f"{method}_{level}.h5", level=level)))
     frame = work_precision_frame(records, methods)
-    return frame, observed_orders(frame, methods, fit_levels=4)
+    return frame, observed_orders(frame, methods, fit_levels=4, arrival_window=config["work_precision"]["arrival_window"])
 
 
 def test_work_precision_errors_fall_with_cost(sweep):

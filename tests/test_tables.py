@@ -171,7 +171,9 @@ FRAMES = {
         "sweep", "row", "variant", "method", "ball_diameter_m", "mass_g", "diameter_mm", "velocity_m_s",
         "rod_length_mm", "contact_time_us", "first_peak_force_N", "max_force_N", "n_contacts", "film_modulus_pa"]),
     "work_precision_orders": (table_views.orders_views, [
-        "case_id", "method", "quantity", "observed_order", "theoretical_order", "fitted_levels"]),
+        "case_id", "method", "quantity", "expected_order", "observed_order", "order_stderr", "fitted_levels", "monotone",
+        "sign_change", "within_expected", "asymptotic", "arrival_offset", "gci_order", "gci_pct", "oscillatory",
+        "u_osc_pct"]),
     "stability": (table_views.stability_views, [
         "case_id", "method", "status", "success", "finite", "min_force_N", "energy_error", "energy_tolerance",
         "contact_time_s", "reference_contact_time_s", "contact_time_error", "contact_time_tolerance", "n_contacts",

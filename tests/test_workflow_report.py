@@ -144,6 +144,7 @@ def _expected_report(workdir: Path) -> dict[str, list[str]]:
         for case in config["work_precision"]["cases"]:
             expected[f"results/figures/work_precision_{case}.{ext}"] = [
                 f"Error against run time, case {case}", "The paper has no such study",
+                "Filled markers: the levels the order is fitted on", "p the method's expected order",
                 *(f"{m}: {len(spec['levels'])} levels" for m, spec in config["work_precision"]["methods"].items())]
         spec = config["stability"]["map"]
         expected[f"results/figures/stability_map.{ext}"] = [
@@ -165,7 +166,10 @@ def _expected_report(workdir: Path) -> dict[str, list[str]]:
         "Fig. 2's numbers", "Contact time vs SEM", "11 % and 9 %", *(settings[m] for m in model)]
     levels = [f"{m}: {len(spec['levels'])} levels" for m, spec in config["work_precision"]["methods"].items()]
     expected["results/tables/work_precision.csv"] = ["Every level of the error-against-run-time study", *levels]
-    expected["results/tables/work_precision_orders.csv"] = ["Observed orders of convergence", *levels]
+    expected["results/tables/work_precision_orders.csv"] = [
+        "Orders of convergence", "Observed order against Expected order", "grid convergence index", *levels,
+        *(f"expected orders: contact time {spec['expected_orders']['contact_time']}"
+          for spec in config["work_precision"]["methods"].values())]
     stress = [c for name in config["stability"]["sets"] for c in project.cases_in(name)]
     expected["results/tables/stability.csv"] = [
         "Stability on stiff and extreme cases", "verdict", *(c["id"] for c in stress),

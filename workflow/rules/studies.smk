@@ -3,7 +3,8 @@
 
 
 rule work_precision_table:
-    """Errors of every level against the converged reference, and the fitted orders."""
+    """Errors of every level against the converged reference; the orders, expected and observed,
+    and the uncertainty of a method measured against its own finest level."""
     input:
         runs=sweep_runs(),
         code=SRC_PRESENT,
@@ -28,6 +29,7 @@ rule work_precision_table:
     params:
         methods=WORK_PRECISION.get("methods", {}),
         fit_levels=WORK_PRECISION.get("fit_levels", 4),
+        arrival_window=WORK_PRECISION.get("arrival_window"),
     log:
         "logs/tables/work_precision.log",
     group: GROUP_TABLES
@@ -41,7 +43,8 @@ rule work_precision_table:
 
 
 rule work_precision_figure:
-    """Error against wall time for one case, one panel per error quantity, one line per method."""
+    """Error against wall time for one case, one panel per error quantity, one line per method,
+    with a slope guide of each method's expected order."""
     input:
         runs=lambda w: sweep_runs([w.case]),
         code=SRC_PRESENT,
@@ -64,6 +67,7 @@ rule work_precision_figure:
     params:
         methods=WORK_PRECISION.get("methods", {}),
         fit_levels=WORK_PRECISION.get("fit_levels", 4),
+        arrival_window=WORK_PRECISION.get("arrival_window"),
     log:
         "logs/figures/work_precision_{case}.log",
     group: GROUP_TABLES

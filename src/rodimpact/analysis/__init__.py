@@ -3,7 +3,8 @@
 What lives here: :mod:`.signals` (force maxima, the zig-zag of an unstable step),
 :mod:`.studies` (the cases of the numerical studies: work-precision levels, stress
 references, stability-map points), :mod:`.work_precision` (errors against run time and
-observed orders), :mod:`.stability_study` (the stress runs' verdicts and the stability
+observed orders), :mod:`.convergence` (an order fitted with its standard error, Roache's grid
+convergence index), :mod:`.stability_study` (the stress runs' verdicts and the stability
 map), :mod:`.sweeps` (parameter sweeps of a case), :mod:`.waves` (the paths of the wave fronts in the
 rod, for its strain map), :mod:`.force_fit` (a closed form of a computed contact force),
 :mod:`.inverse` (the least-squares fit of one model parameter to measured contact times, from a

@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any, Mapping, Sequence
 
 from rodimpact.analysis.stability_study import StudyViolation, map_frame, stability_frame, violations
-from rodimpact.analysis.work_precision import observed_orders, work_precision_frame
+from rodimpact.analysis.work_precision import ORDER_TOLERANCE, observed_orders, work_precision_frame
 from rodimpact.storage.bands import read_band
 from rodimpact.storage.casefile import read_case_file
 from rodimpact.storage.curves import read_contact_curve
@@ -275,30 +275,39 @@ WORK_PRECISION_CAPTION = (
 
 
 def make_work_precision(runs: Sequence[str | Path], methods: Mapping[str, Any], fit_levels: int, *,
-                        csv: str | Path, orders_csv: str | Path, orders_md: str | Path,
+                        arrival_window: float, csv: str | Path, orders_csv: str | Path, orders_md: str | Path,
                         provenance: str | Path, orders_html: str | Path | None = None) -> None:
-    """The work-precision table and the fitted orders (with theory) of every method and case."""
+    """The work-precision table, and the orders: expected, observed with the fit's standard
+    error, the levels fitted, monotone or not, and the three-level uncertainty of a method that
+    is its own reference by its finest level (config.yaml ``work_precision``)."""
     records = [read_run(p) for p in runs]
     frame = work_precision_frame(records, methods)
-    orders = observed_orders(frame, methods, fit_levels)
+    orders = observed_orders(frame, methods, fit_levels, arrival_window=arrival_window)
     write_table(frame, csv=csv)
     write_table(orders, csv=orders_csv, md=orders_md, html=orders_html, views=orders_views(orders), caption=(
-        f"Observed orders of convergence (log-log fit of the error against h = 1/resolution on the "
-        f"finest {fit_levels} levels whose error exceeds 10x the reference's), next to the theory."))
+        f"Orders of convergence: expected (from the scheme and the solution's regularity; none "
+        f"stated: a dash) and observed (log-log fit of the error against h = 1/resolution on the "
+        f"finest {fit_levels} levels whose error exceeds 10x the reference's, with its standard "
+        f"error); whether the errors fall at every fitted level and whether their signs change "
+        f"there; whether the order is within {ORDER_TOLERANCE:g} of the expected one; and, for a "
+        f"method measured against its own finest level, the grid convergence index of its finest "
+        f"three levels (safety factor 1.25) or, where they oscillate, half their range."))
     write_provenance(provenance, records, _outputs(csv, orders_csv, orders_md, orders_html))
     log.info("work precision: %d runs, %d cases", len(records), frame["case_id"].nunique())
 
 
 def make_work_precision_figure(runs: Sequence[str | Path], methods: Mapping[str, Any], fit_levels: int, *,
-                               pdf: str | Path, png: str | Path, provenance: str | Path) -> None:
-    """Error against wall time for one case: every method and quantity, orders in the legend."""
+                               arrival_window: float, pdf: str | Path, png: str | Path,
+                               provenance: str | Path) -> None:
+    """Error against wall time for one case: every method and quantity, the observed and
+    expected orders in the legends, a slope guide of the expected order, the fitted levels filled."""
     from rodimpact.present.study_figures import plot_work_precision
 
     records = [read_run(p) for p in runs]
     case = _one_case(records, "a work-precision figure")
     frame = work_precision_frame(records, methods)
-    fig = plot_work_precision(frame, observed_orders(frame, methods, fit_levels), case,
-                              title=case_in_words(records[0].config))
+    fig = plot_work_precision(frame, observed_orders(frame, methods, fit_levels, arrival_window=arrival_window),
+                              case, title=case_in_words(records[0].config))
     _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance,
                  title=f"Error against run time, case {case}")
 

@@ -133,6 +133,13 @@ COLUMNS: dict[str, Column] = {
     # the orders of convergence
     "observed_order": Column("Observed order"), "theoretical_order": Column("Theoretical order", fmt=".0f"),
     "fitted_levels": Column("Fitted levels", fmt=_TEXT),
+    "expected_order": Column("Expected order", fmt=".3g"), "order_stderr": Column("Standard error", fmt=".2f"),
+    "monotone": Column("Monotone", fmt=_TEXT), "sign_change": Column("Sign change", fmt=_TEXT),
+    "within_expected": Column("Within 0.3 of expected", fmt=_TEXT),
+    "asymptotic": Column("Asymptotic", fmt=_TEXT),
+    "arrival_offset": Column("Offset from a wave arrival (of 2L/c)", fmt=".3f"),
+    "gci_order": Column("GCI order"), "gci_pct": Column("GCI", "%", ".3f"),
+    "oscillatory": Column("Oscillatory", fmt=_TEXT), "u_osc_pct": Column("Oscillatory half range", "%", ".3f"),
     # the stress cases
     "status": Column("Status", fmt=_TEXT), "success": Column("Success", fmt=_TEXT),
     "finite": Column("Finite", fmt=_TEXT), "min_force_N": Column("Smallest force", "N", ".3g"),

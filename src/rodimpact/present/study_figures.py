@@ -1,6 +1,8 @@
-"""Figures of the numerical studies: error against wall time, and the stability map."""
+"""Figures of the numerical studies: error against run time, and the stability map."""
 
 from __future__ import annotations
+
+from fractions import Fraction
 
 import matplotlib
 
@@ -8,19 +10,24 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
 
 from rodimpact.analysis.stability_study import MAP_CLASSES, enforced_limit_line  # noqa: E402
-from rodimpact.analysis.work_precision import quantities  # noqa: E402
+from rodimpact.analysis.work_precision import levels_in, quantities  # noqa: E402
 from rodimpact.present.figures import METHOD_LABELS  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
 
-__all__ = ["plot_stability_map", "plot_work_precision", "quantity_words"]
+__all__ = ["order_text", "plot_stability_map", "plot_work_precision", "quantity_words"]
 
 _COLORS = {name: spec.color for name, spec in METHODS.items()}
 #: Markers of the methods, in the registry's order.
 _MARKERS = ("o", "s", "^", "D", "v", "P")
 _ORDINALS = {1: "first", 2: "second", 3: "third", 4: "fourth", 5: "fifth", 6: "sixth", 7: "seventh",
              8: "eighth", 9: "ninth"}
+#: The slope guide lies this factor below the first fitted level's error.
+_GUIDE_OFFSET = 0.35
+#: The error axis reaches this factor below the smallest error: room for each panel's box of orders.
+_LEGEND_ROOM = 10.0**3
 
 
 def quantity_words(quantity: str) -> str:
@@ -32,13 +39,42 @@ def quantity_words(quantity: str) -> str:
             "history_max": r"force history, max norm"}.get(quantity, quantity.replace("_", " "))
 
 
-def _quantity_rank(quantity: str) -> tuple[int, int]:
-    """Contact time, the maxima in order, then the histories."""
-    if quantity == "contact_time":
-        return (0, 0)
-    if quantity.startswith("max_") and quantity[4:].isdigit():
-        return (1, int(quantity[4:]))
-    return (2, ("history_l2", "history_max").index(quantity) if quantity in ("history_l2", "history_max") else 9)
+def order_text(order: float) -> str:
+    """An order as printed: a fraction where it is one with a denominator up to 4 (1.5 -> 3/2,
+    1.667 -> 5/3, 2 -> 2), else two significant digits; an en dash for none."""
+    if not np.isfinite(order):
+        return "–"
+    fraction = Fraction(float(order)).limit_denominator(4)
+    if abs(float(fraction) - order) < 5e-3:
+        return f"{fraction.numerator}" if fraction.denominator == 1 else f"{fraction.numerator}/{fraction.denominator}"
+    return f"{order:.2g}"
+
+
+def _legend_text(order: pd.Series | None) -> str:
+    """``observed ± standard error (expected)`` of one method and quantity; for a method with no
+    order stated and a three-level uncertainty, that uncertainty (GCI, or half the range)."""
+    if order is None:
+        return "–"
+    if not np.isfinite(order.expected_order) and np.isfinite(order.get("gci_pct", np.nan)):
+        return f"GCI {order.gci_pct:.2g} %"
+    if not np.isfinite(order.expected_order) and np.isfinite(order.get("u_osc_pct", np.nan)):
+        return f"half range {order.u_osc_pct:.2g} %"
+    observed = (f"{order.observed_order:.2f} ± {order.order_stderr:.2f}" if np.isfinite(order.observed_order)
+                else "–")
+    expected = order_text(order.expected_order) if np.isfinite(order.expected_order) else "none"
+    return f"{observed} ({expected})"
+
+
+def _slope_guide(ax: matplotlib.axes.Axes, time: np.ndarray, err: np.ndarray, h: np.ndarray, fitted: np.ndarray,
+                 order: float, color: str) -> None:
+    """A dashed segment under the fitted levels: over their wall times it falls as h^order would
+    over their refinement, labelled with the order."""
+    first, last = np.flatnonzero(fitted)[[0, -1]]
+    x = np.array([time[first], time[last]])
+    y = _GUIDE_OFFSET * err[first] * np.array([1.0, (h[last] / h[first]) ** order])
+    ax.loglog(x, y, color=color, linestyle=(0, (4, 2)), linewidth=0.9, alpha=0.9)
+    ax.annotate(f"$h^{{{order_text(order)}}}$", (np.sqrt(x[0] * x[1]), np.sqrt(y[0] * y[1])), xytext=(-2, -3),
+                textcoords="offset points", ha="right", va="top", fontsize=6.5, color=color)
 
 
 def plot_work_precision(frame: pd.DataFrame, orders: pd.DataFrame, case_id: str,
@@ -47,9 +83,12 @@ def plot_work_precision(frame: pd.DataFrame, orders: pd.DataFrame, case_id: str,
     line per method.
 
     All panels share their axes. The wall time is the best of the repeated solves (the least
-    disturbed by the other jobs on the machine). Each panel's small legend gives each method's
-    observed order next to the theoretical one (a dash: no level lies in the asymptotic range);
-    the figure's legend names the methods once.
+    disturbed by the other jobs on the machine). Levels in the fit of the observed order are
+    filled, the others open. Under each method's fitted levels a dashed slope guide falls as
+    h^p would over their refinement, p the method's expected order. Each panel's small legend
+    gives each method's observed order with its standard error and the expected order (a dash:
+    none stated, or fewer than three levels in the asymptotic range); the figure's legend names
+    the methods once and the markers.
 
     Parameters
     ----------
@@ -63,13 +102,13 @@ def plot_work_precision(frame: pd.DataFrame, orders: pd.DataFrame, case_id: str,
         The case in words (the figure's title).
     """
     data = frame[frame["case_id"] == case_id]
-    fitted = orders[orders["case_id"] == case_id].set_index(["method", "quantity"])
+    fitted_of = orders[orders["case_id"] == case_id].set_index(["method", "quantity"])
     rank = {m: i for i, m in enumerate(METHODS)}
     methods = sorted(dict.fromkeys(data["method"]), key=lambda m: rank.get(m, len(rank)))
-    drawn = sorted((q for q in quantities(frame) if np.any(data[f"err_{q}"].to_numpy(float) > 0)), key=_quantity_rank)
+    drawn = [q for q in quantities(frame) if np.any(data[f"err_{q}"].to_numpy(float) > 0)]
     cols = min(len(drawn), 3 if len(drawn) <= 9 else 4)
     rows = -(-len(drawn) // cols)
-    fig, axes = plt.subplots(rows, cols, figsize=(3.1 * cols + 0.3, 2.6 * rows + 1.0), sharex=True, sharey=True,
+    fig, axes = plt.subplots(rows, cols, figsize=(3.1 * cols + 0.3, 2.6 * rows + 1.1), sharex=True, sharey=True,
                              squeeze=False, layout="constrained")
     handles = {}
     for ax, quantity in zip(axes.flat, drawn):
@@ -79,26 +118,40 @@ def plot_work_precision(frame: pd.DataFrame, orders: pd.DataFrame, case_id: str,
             keep = np.isfinite(err) & (err > 0)
             if not keep.any():
                 continue
-            order = fitted.loc[(method, quantity)] if (method, quantity) in fitted.index else None
-            observed = (f"{order.observed_order:.2f}" if order is not None and np.isfinite(order.observed_order)
-                        else "–")
-            theory = f" ({order.theoretical_order:g})" if order is not None else ""
-            (line,) = ax.loglog(rows_of["wall_time_min_s"].to_numpy(float)[keep], err[keep],
-                                color=_COLORS.get(method, "k"), marker=_MARKERS[index % len(_MARKERS)],
-                                markersize=3.5, linewidth=1.0, label=f"{observed}{theory}")
-            handles.setdefault(METHOD_LABELS.get(method, method), line)
+            order = fitted_of.loc[(method, quantity)] if (method, quantity) in fitted_of.index else None
+            in_fit = rows_of["level"].isin(levels_in(order.fitted_levels) if order is not None else ()).to_numpy()
+            time, color = rows_of["wall_time_min_s"].to_numpy(float), _COLORS.get(method, "k")
+            marker = _MARKERS[index % len(_MARKERS)]
+            ax.loglog(time[keep], err[keep], color=color, linewidth=1.0)
+            for filled in (True, False):
+                pick = keep & (in_fit == filled)
+                ax.loglog(time[pick], err[pick], linestyle="none", marker=marker, markersize=3.8, color=color,
+                          markerfacecolor=color if filled else "white", markeredgewidth=0.9)
+            ax.plot([], [], color=color, marker=marker, markersize=3.8, linewidth=1.0, label=_legend_text(order))
+            handles.setdefault(METHOD_LABELS.get(method, method), Line2D([], [], color=color, marker=marker,
+                                                                         markersize=3.8, linewidth=1.0))
+            if order is not None and in_fit.sum() >= 3 and np.isfinite(order.expected_order):
+                _slope_guide(ax, time, err, 1.0 / rows_of["resolution_value"].to_numpy(float), in_fit & keep,
+                             float(order.expected_order), color)
         ax.set_title(quantity_words(quantity), fontsize=9)
         ax.grid(alpha=0.3, which="both")
-        ax.legend(title="order (theory)", fontsize=6.5, title_fontsize=6.5, loc="best", framealpha=0.85,
-                  handlelength=1.6, borderpad=0.3, labelspacing=0.25)
+        ax.legend(title="order: observed ± s.e. (expected)", fontsize=6.5, title_fontsize=6.5, loc="best",
+                  framealpha=0.85, handlelength=1.0, handletextpad=0.4, borderpad=0.3, labelspacing=0.2)
     for ax in list(axes.flat)[len(drawn):]:
         ax.set_visible(False)
+    errors = data[[f"err_{q}" for q in drawn]].to_numpy(float)
+    low, high = np.min(errors[errors > 0]), np.max(errors[np.isfinite(errors)])
+    axes[0, 0].set_ylim(low / _LEGEND_ROOM, 3.0 * high)  # room below the lines for each panel's box
     for j in range(cols):  # the lowest panel of each column carries the time axis
         lowest = [axes[i, j] for i in range(rows) if i * cols + j < len(drawn)][-1]
         lowest.set_xlabel("wall time of one solve (s)")
         lowest.xaxis.set_tick_params(labelbottom=True)
     for i in range(rows):
         axes[i, 0].set_ylabel("relative error")
+    handles["level in the fit"] = Line2D([], [], color="0.3", marker="o", markersize=3.8, linestyle="none")
+    handles["level not in the fit"] = Line2D([], [], color="0.3", marker="o", markersize=3.8, linestyle="none",
+                                             markerfacecolor="white")
+    handles["expected order (slope guide)"] = Line2D([], [], color="0.3", linestyle=(0, (4, 2)), linewidth=0.9)
     fig.legend(list(handles.values()), list(handles), loc="outside lower center", ncol=min(len(handles), 4),
                fontsize=8, frameon=False)
     fig.suptitle(f"Error against run time: {title}" if title else "Error against run time", fontsize=10)

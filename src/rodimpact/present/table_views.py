@@ -183,9 +183,12 @@ def sweep_views(frame: pd.DataFrame) -> list[Panel]:
 
 
 def orders_views(frame: pd.DataFrame) -> list[Panel]:
-    """The observed orders of convergence next to the theory."""
-    return panels(frame, "Observed orders of convergence", ["case_id", "method", "quantity"],
-                  ["observed_order", "theoretical_order", "fitted_levels"])
+    """Per case, the orders of convergence (expected, observed with its standard error, the
+    levels fitted, monotone, sign change), then the verdict and the three-level uncertainty."""
+    return panels(frame, "Orders of convergence", ["case_id", "method", "quantity"],
+                  ["expected_order", "observed_order", "order_stderr", "fitted_levels", "monotone", "sign_change",
+                   "within_expected", "asymptotic", "gci_order", "gci_pct", "oscillatory", "u_osc_pct"],
+                  by="case_id")
 
 
 def stability_views(frame: pd.DataFrame) -> list[Panel]:

@@ -1,0 +1,211 @@
+"""The orders of convergence: the solvers at the shipped levels against their expected orders,
+and the columns of the orders table on synthetic frames (rodimpact.analysis.work_precision)."""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from rodimpact.analysis.studies import level_case
+from rodimpact.analysis.work_precision import (
+    ORDER_TOLERANCE, expected_order, levels_in, observed_orders, work_precision_frame)
+from rodimpact.jobs.runner import run_to_file
+from rodimpact.model.materials import Material, wave_speed
+from rodimpact.storage.runs import read_run
+
+WINDOW = 0.02
+
+
+# ------------------------------------------------------------------ the solvers at the shipped levels
+
+#: fem1d's levels run on model: the four the table fits its contact time on (400 to 3200 steps
+#: per contact; at 6400 the contact time's error falls below 10 times the reference's).
+FEM1D_LEVELS = slice(2, 6)
+
+
+@pytest.fixture(scope="module")
+def model_orders(shipped_project, shipped_config, tmp_path_factory):
+    """sem at every shipped level and fem1d at four, on model, fitted as the table fits them."""
+    study = shipped_config["work_precision"]
+    methods = {name: dict(study["methods"][name]) for name in ("sem", "fem1d")}
+    folder = tmp_path_factory.mktemp("orders")
+    records = []
+    for method, spec in methods.items():
+        levels = list(enumerate(spec["levels"]))
+        for level, overrides in levels[FEM1D_LEVELS] if method == "fem1d" else levels:
+            case = level_case(shipped_project.cases["model"], method, shipped_config["numerics"], overrides)
+            records.append(read_run(run_to_file(case, method, folder / f"{method}_{level}.h5", level=level)))
+    frame = work_precision_frame(records, methods)
+    return observed_orders(frame, methods, study["fit_levels"], arrival_window=study["arrival_window"])
+
+
+@pytest.mark.parametrize("method", ["sem", "fem1d"])
+def test_every_stated_order_is_observed_within_its_tolerance(model_orders, method) -> None:
+    rows = model_orders[model_orders["method"] == method].set_index("quantity")
+    stated = rows[rows["expected_order"].notna()]
+    # on model no maximum lies at a wave arrival: every quantity has its order, none is left out
+    assert set(stated.index) == {"contact_time", "max_1", "max_2", "max_3", "history_l2", "history_max"}
+    for quantity, row in stated.iterrows():
+        assert row["fitted_levels"], (method, quantity)  # at least three levels above the reference's floor
+        assert abs(row["observed_order"] - row["expected_order"]) <= ORDER_TOLERANCE, (
+            method, quantity, row["observed_order"], row["expected_order"])
+        assert row["monotone"], (method, quantity)
+
+
+def test_fem1d_errors_keep_one_sign_at_the_shipped_levels(model_orders) -> None:
+    # mesh and step refined together at Courant number 1: the step's error dominates, no zero crossing
+    rows = model_orders[(model_orders["method"] == "fem1d") & model_orders["sign_change"].notna()]
+    assert len(rows) == 4 and not rows["sign_change"].astype(bool).any(), rows
+
+
+# ------------------------------------------------------------------ the table's columns, synthetic
+
+def _frame(method: str, resolutions, errors: dict[str, list[float]], *, floor: float = 1e-12,
+           offsets: dict[str, float] | None = None, case_id: str = "c") -> pd.DataFrame:
+    """Rows of one method: signed errors per scalar quantity (their magnitudes are the errors)."""
+    rows = []
+    for level, n in enumerate(resolutions):
+        row = {"case_id": case_id, "method": method, "level": level, "resolution_value": float(n)}
+        for quantity, values in errors.items():
+            row[f"err_{quantity}"] = abs(values[level])
+            row[f"ref_err_{quantity}"] = floor
+            if not quantity.startswith("history"):
+                row[f"signed_err_{quantity}"] = values[level]
+        row.update({f"arrival_offset_{q}": v for q, v in (offsets or {}).items()})
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+SPEC = {"reference": "sem", "expected_orders": {"contact_time": 2, "max": 2, "max_at_arrival": 5 / 3,
+                                                "history_l2": 2, "history_max": 1.5}}
+
+
+def _orders(frame: pd.DataFrame, methods: dict, fit_levels: int = 4) -> pd.DataFrame:
+    return observed_orders(frame, methods, fit_levels, arrival_window=WINDOW).set_index(["method", "quantity"])
+
+
+def test_a_power_law_is_fitted_on_the_finest_levels_with_its_standard_error() -> None:
+    n = np.array([100, 200, 400, 800, 1600, 3200])
+    frame = _frame("m", n, {"contact_time": list(3.0 / n**2), "history_max": list(0.5 / n**1.5)})
+    row = _orders(frame, {"m": SPEC}).loc[("m", "contact_time")]
+    assert row["observed_order"] == pytest.approx(2.0, rel=1e-12) and row["order_stderr"] == pytest.approx(0, abs=1e-9)
+    assert row["fitted_levels"] == "2-5" and levels_in(row["fitted_levels"]) == {2, 3, 4, 5}
+    assert row["monotone"] and not row["sign_change"] and row["within_expected"] and row["asymptotic"]
+    history = _orders(frame, {"m": SPEC}).loc[("m", "history_max")]
+    assert history["expected_order"] == 1.5 and history["observed_order"] == pytest.approx(1.5, rel=1e-12)
+    assert history["sign_change"] is None  # a norm has no sign
+
+
+def test_sign_changes_non_monotone_errors_and_a_level_below_the_floor_are_reported() -> None:
+    n = np.array([100, 200, 400, 800, 1600])
+    alternating = [(-1) ** k * 3.0 / m**2 for k, m in enumerate(n)]
+    zigzag = [1e-3, 2e-4, 4e-4, 5e-5, 6e-5]  # 400 and 1600 worse than the level before
+    below = [1e-3, 2.5e-4, 1e-11, 1.6e-5, 4e-6]  # 400 crosses zero: its error is under the floor
+    frame = _frame("m", n, {"contact_time": alternating, "max_1": zigzag, "max_2": below}, floor=1e-12)
+    orders = _orders(frame, {"m": SPEC})
+    crossing = orders.loc[("m", "contact_time")]
+    assert crossing["sign_change"] and crossing["monotone"] and crossing["observed_order"] == pytest.approx(2.0)
+    wandering = orders.loc[("m", "max_1")]
+    assert not wandering["monotone"] and not wandering["asymptotic"] and not wandering["sign_change"]
+    assert orders.loc[("m", "max_2"), "fitted_levels"] == "0-1, 3-4"
+    assert levels_in("0-1, 3-4") == {0, 1, 3, 4} and levels_in("") == set()
+    # fewer than three levels above ten times the floor: no order, no verdict
+    few = _orders(_frame("m", n, {"contact_time": list(3.0 / n**2)}, floor=3.0 / 400**2 / 10 * 1.01),
+                  {"m": SPEC}).loc[("m", "contact_time")]
+    assert math.isnan(few["observed_order"]) and few["fitted_levels"] == "" and few["within_expected"] is None
+
+
+def test_an_order_outside_the_tolerance_is_not_within_the_expected() -> None:
+    n = np.array([100, 200, 400, 800])
+    frame = _frame("m", n, {"contact_time": list(3.0 / n**1.6), "max_1": list(3.0 / n**1.75)})
+    orders = _orders(frame, {"m": SPEC})
+    assert not orders.loc[("m", "contact_time"), "within_expected"]  # 1.6 against 2
+    assert orders.loc[("m", "max_1"), "within_expected"] and orders.loc[("m", "max_1"), "asymptotic"]
+
+
+def test_a_maximum_at_a_wave_arrival_takes_its_own_expected_order() -> None:
+    n = np.array([100, 200, 400, 800])
+    errors = {f"max_{k}": list(1.0 / n**2) for k in (1, 2, 3)}
+    frame = _frame("m", n, errors, offsets={"max_1": 0.0005, "max_2": -0.019, "max_3": 0.3})
+    orders = _orders(frame, {"m": SPEC, "plain": {**SPEC, "expected_orders": {"max": 2}}})
+    assert orders.loc[("m", "max_1"), "expected_order"] == pytest.approx(5 / 3)
+    assert orders.loc[("m", "max_2"), "expected_order"] == pytest.approx(5 / 3)
+    assert orders.loc[("m", "max_3"), "expected_order"] == 2
+    assert orders.loc[("m", "max_1"), "arrival_offset"] == 0.0005
+    # a method that states no order at an arrival keeps `max` there; no order stated: NaN
+    assert expected_order({"expected_orders": {"max": 2}}, "max_1", at_arrival=True) == 2
+    assert math.isnan(expected_order({"expected_orders": {"max": None}}, "max_1"))
+    assert math.isnan(expected_order({}, "contact_time"))
+
+
+def test_a_quantity_a_method_does_not_have_gets_no_row() -> None:
+    n = np.array([100, 200, 400])
+    frame = _frame("m", n, {"contact_time": list(1.0 / n**2), "max_4": [math.nan] * 3})
+    assert ("m", "max_4") not in _orders(frame, {"m": SPEC}).index
+
+
+AXI = {"reference": "axi", "as_reference": "finest", "expected_orders": {"contact_time": None}}
+
+
+def test_a_method_measured_against_its_finest_level_gets_its_grid_convergence_index() -> None:
+    # f = f0 (1 + C h^1.5) on 5, 10, 20: signed errors against the finest level f1
+    n = np.array([5.0, 10.0, 20.0])
+    f = 1.0 + 0.02 * (1.0 / n) ** 1.5
+    oscillating = np.array([1.004, 0.999, 1.001])
+    frame = _frame("axi", n, {"contact_time": list(f / f[-1] - 1.0), "max_1": list(oscillating / oscillating[-1] - 1.0),
+                              "history_l2": [1e-2, 3e-3, 0.0]})
+    orders = _orders(frame, {"axi": AXI})
+    monotone = orders.loc[("axi", "contact_time")]
+    f0 = 1.0  # the exact value the extrapolation recovers
+    assert monotone["gci_order"] == pytest.approx(1.5, rel=1e-9) and not monotone["oscillatory"]
+    assert monotone["gci_pct"] == pytest.approx(100 * 1.25 * abs(f[-1] - f0) / f[-1], rel=1e-9)
+    assert math.isnan(monotone["u_osc_pct"]) and math.isnan(monotone["expected_order"])
+    assert monotone["within_expected"] is None and monotone["asymptotic"] is None
+    wave = orders.loc[("axi", "max_1")]
+    assert wave["oscillatory"] and math.isnan(wave["gci_pct"]) and math.isnan(wave["gci_order"])
+    assert wave["u_osc_pct"] == pytest.approx(100 * 0.5 * (1.004 - 0.999) / 1.001, rel=1e-9)
+    assert math.isnan(orders.loc[("axi", "history_l2"), "gci_pct"])  # a norm: no index
+    # a method with an extrapolated reference gets none
+    other = _orders(_frame("m", n, {"contact_time": list(f / f[-1] - 1.0)}), {"m": SPEC}).loc[("m", "contact_time")]
+    assert math.isnan(other["gci_pct"]) and other["oscillatory"] is None
+
+
+# ------------------------------------------------------------------ the reference of a finest level
+
+STEEL = {"name": "steel", "youngs_modulus_pa": 2.0e11, "density_kg_m3": 7800.0, "poisson_ratio": 0.3}
+
+
+def _run(n: int, contact_time: float, maxima: list[float], peak_times: list[float]) -> SimpleNamespace:
+    """A stored run as the analyses read it, with a triangle of force over the contact."""
+    t = np.linspace(0.0, contact_time, 201)
+    return SimpleNamespace(
+        case_id="c", method="axi", wall_time_s=0.1 * n,
+        config={"run": {"level": {5: 0, 10: 1, 20: 2}[n], "numerics": {"elements_across": n}},
+                "rod": {"length_m": 0.03, "material": STEEL}},
+        summary={"contact_time_s": contact_time, "peak_time_s": np.array(peak_times), "peak_force_N": np.array(maxima),
+                 "contact_start_s": np.array([0.0]), "contact_end_s": np.array([contact_time]), "energy_error": 0.0},
+        series={"time": t, "contact_force": maxima[0] * (1.0 - np.abs(2 * t / contact_time - 1.0))})
+
+
+def test_the_finest_level_is_the_reference_with_its_uncertainty() -> None:
+    round_trip = 2 * 0.03 / wave_speed(Material.from_mapping(STEEL))
+    peaks = [round_trip * 1.001, round_trip * 2.4]  # the first just after the first arrival
+    runs = [_run(n, 5.6e-4 * (1 + 0.01 / n**2), [1742.0 * (1 - 0.1 / n**2), 3800.0], peaks) for n in (5, 10, 20)]
+    frame = work_precision_frame(runs, {"axi": AXI | {"order": 2, "resolution": "elements_across"}})
+    finest = frame[frame["level"] == 2].iloc[0]
+    assert finest["reference"] == "axi (finest level)" and finest["err_contact_time"] == 0.0
+    coarse = frame[frame["level"] == 0].iloc[0]
+    assert coarse["signed_err_contact_time"] == pytest.approx((1 + 0.01 / 25) / (1 + 0.01 / 400) - 1, rel=1e-9)
+    assert coarse["signed_err_max_1"] < 0 < coarse["signed_err_contact_time"]
+    # the uncertainty of the reference: GCI of three levels at ratio 2, order 2 recovered
+    f1 = 1 + 0.01 / 400
+    assert finest["ref_err_contact_time"] == pytest.approx(1.25 * (f1 - 1.0) / f1, rel=1e-6)
+    assert finest["ref_err_max_2"] == 0.0  # the same on every level
+    assert finest["arrival_offset_max_1"] == pytest.approx(0.001, rel=1e-9)
+    assert finest["arrival_offset_max_2"] == pytest.approx(0.4, rel=1e-9)
+    with pytest.raises(ValueError, match="needs 3 levels"):
+        work_precision_frame(runs[1:], {"axi": AXI | {"order": 2, "resolution": "elements_across"}})
