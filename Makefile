@@ -9,6 +9,8 @@
 #                results/benchmarks/build.csv: the last build's time per rule (jobs, solvers, overhead)
 #                from snakemake's job records; run make paper first
 #   make convergence   only the error-against-run-time study -> results/tables/work_precision.csv
+#   make convergence-separate   the study's separate cases (levels over a minute each, not in
+#                make paper) -> results/tables/work_precision_separate*.{csv,md,html}
 #   make stability     only the stress cases and the stability map -> results/tables/stability.csv
 #   make report        make paper, then the self-contained HTML report -> results/report.html
 #                      (every table and figure with its caption; the benchmarks too if they exist)
@@ -25,7 +27,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-from-lock
 CORES  ?= 2
 
-.PHONY: paper test test-cluster bench convergence stability report report-check readme-images provenance env clean distclean
+.PHONY: paper test test-cluster bench convergence convergence-separate stability report report-check readme-images provenance env clean distclean
 
 $(STAMP): environment.lock pyproject.toml
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info[:2] == (3, 11) else "rodimpact needs Python 3.11 (environment.lock is for 3.11), found " + sys.version.split()[0])'
@@ -58,13 +60,17 @@ bench: $(STAMP)
 convergence: $(STAMP)
 	$(BIN)/snakemake -j$(CORES) results/tables/work_precision.csv results/tables/work_precision_orders.md
 
+convergence-separate: $(STAMP)
+	$(BIN)/snakemake -j$(CORES) results/tables/work_precision_separate.csv results/tables/work_precision_separate_orders.md
+
 stability: $(STAMP)
 	$(BIN)/snakemake -j$(CORES) results/tables/stability.csv results/figures/stability_map.png
 
 # After the build (a no-op when it is up to date), so the report never shows stale results;
 # the benchmarks are not rebuilt (make bench), only reported when they exist.
 report: paper
-	$(BIN)/snakemake --report results/report.html all $(wildcard results/benchmarks/sem.csv results/benchmarks/fem.csv)
+	$(BIN)/snakemake --report results/report.html all $(wildcard results/benchmarks/sem.csv results/benchmarks/fem.csv \
+		results/tables/work_precision_separate_orders.csv)
 
 # Checks the report as it is (make report builds it); chromium and its driver from Debian's packages.
 report-check: $(STAMP)

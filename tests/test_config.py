@@ -534,6 +534,25 @@ MALFORMED = {
         "7.79e-06 m); take dt_s <= 3.252e-06 s (steps_per_contact >= 22), or set allow_unstable: true to run it "
         "anyway",
     ),
+    "separate work precision on an unknown case": (
+        _set("config/config.yaml", "work_precision", "separate", "cases", ["ball_9.51mm-r1_I301"]),
+        "config/config.yaml: field 'work_precision.separate.cases[0]': unknown case 'ball_9.51mm-r1_I301'",
+    ),
+    "separate work precision on a case of the default build": (
+        _set("config/config.yaml", "work_precision", "separate", "cases", ["ball_9.51mm-r1_l301", "model"]),
+        "config/config.yaml: field 'work_precision.separate.cases[1]': case 'model' is swept by the default build "
+        "already (work_precision.cases)",
+    ),
+    "separate work precision with a method not swept": (
+        _set("config/config.yaml", "work_precision", "separate", "methods", ["fem_ax"]),
+        "config/config.yaml: field 'work_precision.separate.methods[0]': method 'fem_ax' is not swept; swept: sem, "
+        "sem_paper, fem1d, fem_axi",
+    ),
+    "separate work precision without a method's reference": (
+        _set("config/config.yaml", "work_precision", "separate", "methods", ["fem1d"]),
+        "config/config.yaml: field 'work_precision.separate.methods': method 'fem1d' is measured against 'sem', "
+        "which is not among them",
+    ),
     "stability on an unknown set": (
         _set("config/config.yaml", "stability", "sets", ["stres"]),
         "config/config.yaml: field 'stability.sets[0]': unknown case set 'stres'; known: model, stress, table2, example",

@@ -349,3 +349,21 @@ def test_figure_code_change_reruns_no_solver(changed: DotTestBuild) -> None:
     stats = job_stats(run.output)
     assert "solve" not in stats, run.describe()
     assert stats.get("fig2") == 1 and stats.get("fig_readings") == 1, run.describe()
+
+
+def test_the_studys_separate_cases_are_a_target_of_their_own(tmp_path: Path) -> None:
+    """work_precision.separate: outside rule all; its target runs only its methods' levels on
+    its cases and its table."""
+    project = copy_project(tmp_path / "project")
+    config = project / "config" / "config.yaml"
+    document = yaml.safe_load(config.read_text(encoding="utf-8"))
+    document["work_precision"]["separate"] = {"cases": ["ball_12.73mm-r1_l30"], "methods": ["sem"]}
+    config.write_text(yaml.safe_dump(document, sort_keys=False), encoding="utf-8")
+    everything = snakemake(project, "-n")
+    assert everything.returncode == 0, everything.describe()
+    assert "work_precision_separate_table" not in job_stats(everything.output)
+    assert "results/convergence/ball_12.73mm-r1_l30/" not in everything.output
+    separate = snakemake(project, "-n", "results/tables/work_precision_separate_orders.md")
+    assert separate.returncode == 0, separate.describe()
+    assert job_stats(separate.output) == {"case_file": 1, "solve_levels_sem": 1,
+                                          "work_precision_separate_table": 1}, separate.describe()

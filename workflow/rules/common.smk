@@ -308,11 +308,17 @@ def sweep_case(case_id, method, level):
     return level_case(PROJECT.cases[case_id], method, config["numerics"], sweep_level(method, level))
 
 
-def sweep_runs(cases=None):
-    """HDF5 files of every level of every swept method on ``cases`` (default: all swept)."""
+def sweep_runs(cases=None, methods=None):
+    """HDF5 files of every level of the swept ``methods`` (default: all) on ``cases`` (default:
+    the default build's)."""
     cases = WORK_PRECISION.get("cases", []) if cases is None else cases
+    swept = WORK_PRECISION.get("methods", {})
     return [f"results/convergence/{c}/{m}_level{k}.h5" for c in cases
-            for m, sweep in WORK_PRECISION.get("methods", {}).items() for k in range(len(sweep["levels"]))]
+            for m in (swept if methods is None else methods) for k in range(len(swept[m]["levels"]))]
+
+
+# The sweep's cases too slow for the default build (a level over a minute): their own target.
+WORK_PRECISION_SEPARATE = WORK_PRECISION.get("separate") or {}
 
 
 # One Paramspace per sweep case: its grid, and the names of its points (one file each); and each

@@ -42,6 +42,42 @@ rule work_precision_table:
         "../scripts/work_precision.py"
 
 
+if WORK_PRECISION_SEPARATE:
+
+    rule work_precision_separate_table:
+        """The same table and orders for the sweep's separate cases (levels over a minute each),
+        with their methods only: outside rule all (make convergence-separate)."""
+        input:
+            runs=sweep_runs(WORK_PRECISION_SEPARATE["cases"], WORK_PRECISION_SEPARATE["methods"]),
+            code=SRC_PRESENT,
+        output:
+            csv="results/tables/work_precision_separate.csv",
+            orders_csv=report(
+                "results/tables/work_precision_separate_orders.csv",
+                caption="../report/work_precision_separate.rst",
+                category="Error against run time",
+                subcategory="Separate cases",
+                labels={"artifact": "Orders and uncertainty, separate cases", "format": "CSV"},
+            ),
+            orders_md="results/tables/work_precision_separate_orders.md",
+            orders_html="results/tables/work_precision_separate_orders.html",
+            provenance="results/tables/work_precision_separate.provenance.json",
+        params:
+            methods={m: WORK_PRECISION["methods"][m] for m in WORK_PRECISION_SEPARATE["methods"]},
+            fit_levels=WORK_PRECISION.get("fit_levels", 4),
+            arrival_window=WORK_PRECISION.get("arrival_window"),
+        log:
+            "logs/tables/work_precision_separate.log",
+        group: GROUP_TABLES
+        threads: 1
+        resources:
+            **PRESENTATION_RESOURCES,
+        conda:
+            "../envs/rodimpact.yaml"
+        script:
+            "../scripts/work_precision.py"
+
+
 rule work_precision_figure:
     """Error against wall time for one case, one panel per error quantity, one line per method,
     with a slope guide of each method's expected order."""

@@ -67,6 +67,21 @@ def check_work_precision(study: Mapping[str, Any] | None, cases: Mapping[str, di
     for index, case_id in enumerate(study["cases"]):
         if case_id not in cases:
             raise error(f"unknown case {case_id!r}", field=f"work_precision.cases[{index}]")
+    separate = study.get("separate") or {"cases": [], "methods": []}
+    for index, case_id in enumerate(separate["cases"]):
+        if case_id not in cases:
+            raise error(f"unknown case {case_id!r}", field=f"work_precision.separate.cases[{index}]")
+        if case_id in study["cases"]:
+            raise error(f"case {case_id!r} is swept by the default build already (work_precision.cases)",
+                        field=f"work_precision.separate.cases[{index}]")
+    for index, method in enumerate(separate["methods"]):
+        if method not in study["methods"]:
+            raise error(f"method {method!r} is not swept; swept: {', '.join(study['methods'])}",
+                        field=f"work_precision.separate.methods[{index}]")
+        reference = study["methods"][method]["reference"]
+        if reference not in separate["methods"]:
+            raise error(f"method {method!r} is measured against {reference!r}, which is not among them",
+                        field="work_precision.separate.methods")
     for method, sweep in study["methods"].items():
         where = f"work_precision.methods.{method}"
         if sweep["reference"] not in study["methods"]:
@@ -80,7 +95,8 @@ def check_work_precision(study: Mapping[str, Any] | None, cases: Mapping[str, di
             if sweep["resolution"] not in level:
                 raise error(f"every level must set the resolution {sweep['resolution']!r}",
                             field=f"{where}.levels[{index}]")
-            for case_id in study["cases"]:
+            swept = [*study["cases"], *(separate["cases"] if method in separate["methods"] else [])]
+            for case_id in swept:
                 case = level_case(cases[case_id], method, numerics, level)
                 try:
                     check_run(case, method)
