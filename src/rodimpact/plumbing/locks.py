@@ -80,11 +80,13 @@ def runs_snakemake(command: list[str]) -> bool:
     for argument in arguments:
         if argument == "-m":
             return next(arguments, "") == "snakemake"
+        if argument == "-c":  # a program given as a string: not snakemake's entry point
+            return False
         if argument in _PYTHON_OPTIONS_WITH_VALUE:
             next(arguments, None)
-        elif argument == "-c" or not argument.startswith("-"):
-            return argument != "-c" and (os.path.basename(argument) == "snakemake"
-                                         or argument.endswith(os.path.join("snakemake", "__main__.py")))
+        elif not argument.startswith("-"):  # the script
+            return (os.path.basename(argument) == "snakemake"
+                    or argument.endswith(os.path.join("snakemake", "__main__.py")))
     return False
 
 
