@@ -45,7 +45,9 @@ SMALLER = {("materials",), ("work_precision", "cases"), ("work_precision", "timi
            ("numerics", "fem_axi", "steps_per_contact"), ("numerics", "fem_axi", "elements_across"),
            ("sensor", "fit", "apply_to"), ("sensor", "fit", "thickness_grid_m"),
            # .test has no reading calibrated without the sensor (r10_l30_film_cal, r10_l30_cal)
-           ("sensor", "film_table", "film_calibrated"), ("sensor", "film_table", "no_film_calibrated")}
+           ("sensor", "film_table", "film_calibrated"), ("sensor", "film_table", "no_film_calibrated"),
+           # the study's separate cases take minutes (fem_axi on the slowest Table 2 row): none in .test
+           ("work_precision", "separate")}
 
 
 def _leaves(document: object, path: tuple = ()) -> dict:
