@@ -65,7 +65,7 @@ from helpers.repo import ROOT  # noqa: E402
 from helpers.snakemake_cli import BUILD_TIMEOUT_S as LOCAL_BUILD_TIMEOUT_S  # noqa: E402
 from helpers.snakemake_cli import DRY_RUN_TIMEOUT_S, job_stats, snakemake  # noqa: E402
 from local_slurm import LocalSlurm, SlurmError, install  # noqa: E402
-from timing import CLUSTER_CSV, BuildTiming, recorded_build, write_cluster_csv  # noqa: E402
+from timing import CLUSTER_CSV, BuildTiming, job_count, recorded_build, write_cluster_csv  # noqa: E402
 
 #: The profile under test, and what docs/cluster.md tells a user to run.
 PROFILE = Path("profiles") / "slurm"
@@ -406,7 +406,7 @@ def check_cluster_runs(cluster: LocalSlurm, pristine: Path, scratch: Path, refer
     check_build(build, jobs, built, reference, report)
     say(f"     {PLAN_CACHE} written {watch.writes} times during the build (at least)")
     if build.returncode == 0:
-        slurm = BuildTiming(build="slurm", jobs=sum(job_stats(build.output).values()), submissions=len(jobs),
+        slurm = BuildTiming(build="slurm", jobs=job_count(built / DOTTEST), submissions=len(jobs),
                             wall_s=build.seconds, measured="timed by the check (planning included)")
         path = write_cluster_csv(ROOT / CLUSTER_CSV, local, slurm, ROOT)
         ratio = f", {slurm.wall_s / local.wall_s:.2f} times the local build's {local.wall_s:.0f} s" if local else ""
@@ -442,7 +442,7 @@ def reference_build(pristine: Path, scratch: Path) -> tuple[Path, BuildTiming | 
     if run.returncode != 0:
         raise SlurmError(f"the local build of {DOTTEST} failed, nothing to compare with:\n{run.describe()}")
     say(f"local build to compare with: {project / DOTTEST} ({seconds:.0f} s)")
-    return project / DOTTEST, BuildTiming(build="local", jobs=sum(job_stats(run.output).values()), submissions=None,
+    return project / DOTTEST, BuildTiming(build="local", jobs=job_count(project / DOTTEST), submissions=None,
                                           wall_s=seconds, measured="timed by the check (planning included)")
 
 

@@ -43,13 +43,19 @@ class BuildTiming:
     measured: str
 
 
+def job_count(workdir: Path) -> int:
+    """The jobs that made ``workdir``'s outputs, from its job records (every row counts jobs so,
+    a local build and a SLURM build alike; the target rule ``all`` makes no output)."""
+    return len(read_jobs(workdir))
+
+
 def recorded_build(workdir: Path) -> BuildTiming | None:
     """The build that made ``workdir``'s outputs, from its job records (None without records)."""
     rows = build_stats(read_jobs(workdir))
     if not rows:
         return None
     total = rows[-1]
-    return BuildTiming(build="local", jobs=total.jobs, submissions=None, wall_s=total.wall_s,
+    return BuildTiming(build="local", jobs=job_count(workdir), submissions=None, wall_s=total.wall_s,
                        measured="job records of the checkout's build (first start to last end)")
 
 
