@@ -84,10 +84,10 @@ STRESS = ["microgram_fast", "heavy_slow", "thin_wire", "long_rod_heavy", "short_
 
 def test_shipped_config_loads_all_cases(shipped: Project) -> None:
     expected = ["model"] + [f"{row}-{variant}" for row in ROWS for variant in VARIANTS]
-    # 1 + 6 rows x 14 variants, in file order (files sorted by name: model, stress, table2, worked_example)
-    assert [c for c in shipped.cases if shipped.cases[c]["set"] not in ("stress", "example")] == expected
+    # 1 + 6 rows x 14 variants, in file order (files sorted by name: model, smooth, stress, table2, worked_example)
+    assert [c for c in shipped.cases if shipped.cases[c]["set"] not in ("smooth", "stress", "example")] == expected
     assert shipped.sets == {"example": ["ball_10mm", "ball_20mm"], "model": ["model"], "table2": expected[1:],
-                            "stress": STRESS}
+                            "stress": STRESS, "smooth": ["linear_spring"]}
     assert list(shipped.variants["table2"]) == list(VARIANTS)
     assert shipped.variants["model"] == {}
 
@@ -418,7 +418,7 @@ MALFORMED = {
     "unknown contact law": (
         _set(TABLE2, "variants", "r10_l30_film", "contact", "law", "hertz_flim"),
         f"{TABLE2}: field 'variants.r10_l30_film.contact.law': unknown contact law 'hertz_flim'; "
-        "known: hertz, hertz_film, hertz_stack, tabulated",
+        "known: hertz, hertz_film, hertz_stack, tabulated, spring",
     ),
     "negative film thickness": (
         _set(TABLE2, "variants", "r10_l30_film", "contact", "film", "thickness_m", -2.8e-5),
@@ -492,7 +492,7 @@ MALFORMED = {
     ),
     "unknown target set": (
         _set("config/config.yaml", "targets", "sets", ["model", "tabel2"]),
-        "config/config.yaml: field 'targets.sets[1]': unknown case set 'tabel2'; known: model, stress, table2, example",
+        "config/config.yaml: field 'targets.sets[1]': unknown case set 'tabel2'; known: model, smooth, stress, table2, example",
     ),
     "sensor band of a reading without a calibrated stack": (
         _set("config/config.yaml", "sensor", "band", ["r10_l30_sensor_cal", "r10_l30_film_cal"]),
@@ -553,9 +553,35 @@ MALFORMED = {
         "config/config.yaml: field 'work_precision.separate.methods': method 'fem1d' is measured against 'sem', "
         "which is not among them",
     ),
+    "work precision per case on a case not swept": (
+        _set("config/config.yaml", "work_precision", "per_case", "modle", {"methods": ["sem"]}),
+        "config/config.yaml: field 'work_precision.per_case.modle': case 'modle' is not swept "
+        "(work_precision.cases, work_precision.separate.cases)",
+    ),
+    "work precision per case with a method not swept": (
+        _set("config/config.yaml", "work_precision", "per_case", "linear_spring", "methods", ["sem", "fem2d"]),
+        "config/config.yaml: field 'work_precision.per_case.linear_spring.methods[1]': method 'fem2d' is not swept; "
+        "swept: sem, sem_paper, fem1d, fem_axi",
+    ),
+    "work precision per case with a method that cannot run the case's law": (
+        _set("config/config.yaml", "work_precision", "per_case", "linear_spring", "methods", ["sem", "fem_axi"]),
+        "config/config.yaml: field 'work_precision.per_case.linear_spring.methods[1]': method 'fem_axi' cannot run "
+        "the case's spring law",
+    ),
+    "work precision per case without a method's reference": (
+        _set("config/config.yaml", "work_precision", "per_case", "linear_spring", "methods", ["fem1d"]),
+        "config/config.yaml: field 'work_precision.cases[3]': case 'linear_spring': method 'fem1d' is measured "
+        "against 'sem', which is not swept on it (swept: fem1d)",
+    ),
+    "work precision per case with orders of a method not swept on it": (
+        _set("config/config.yaml", "work_precision", "per_case", "linear_spring", "expected_orders", "sem_paper",
+             {"max": 1}),
+        "config/config.yaml: field 'work_precision.per_case.linear_spring.expected_orders.sem_paper': method "
+        "'sem_paper' is not swept on the case; swept: sem, fem1d",
+    ),
     "stability on an unknown set": (
         _set("config/config.yaml", "stability", "sets", ["stres"]),
-        "config/config.yaml: field 'stability.sets[0]': unknown case set 'stres'; known: model, stress, table2, example",
+        "config/config.yaml: field 'stability.sets[0]': unknown case set 'stres'; known: model, smooth, stress, table2, example",
     ),
     "stability without a method's tolerances": (
         _set("config/config.yaml", "stability", "tolerances", "fem1d", None),

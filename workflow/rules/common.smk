@@ -43,6 +43,7 @@ from snakemake.utils import Paramspace
 from rodimpact.analysis.studies import level_case, map_point_case, map_point_names, reference_case
 from rodimpact.analysis.measured import measured_cases
 from rodimpact.analysis.sweeps import sweep_frame, sweep_point_case, sweep_points
+from rodimpact.config.checks import swept_methods
 from rodimpact.contact.laws import LAWS, law_of
 from rodimpact.solvers.field import FIELD_OUTPUT
 from rodimpact.solvers.registry import METHODS as METHOD_REGISTRY
@@ -301,20 +302,29 @@ def sweep_level(method, level):
     return dict(levels[level])
 
 
-def sweep_case(case_id, method, level):
-    """The case of one sweep level (the method need not be among the case's own)."""
+def swept_on(case_id):
+    """The methods the work-precision study sweeps on a case (rodimpact.config.checks.swept_methods)."""
     if case_id not in PROJECT.cases:
         refuse(f"unknown case {case_id!r}; known: {', '.join(PROJECT.cases)}")
+    return swept_methods(WORK_PRECISION, case_id, PROJECT.cases[case_id])
+
+
+def sweep_case(case_id, method, level):
+    """The case of one sweep level (the method need not be among the case's own, but the study
+    must sweep it on the case)."""
+    if method not in swept_on(case_id):
+        refuse(f"the work-precision study does not sweep {method!r} on case {case_id!r}; it sweeps "
+               f"{', '.join(swept_on(case_id))}")
     return level_case(PROJECT.cases[case_id], method, config["numerics"], sweep_level(method, level))
 
 
 def sweep_runs(cases=None, methods=None):
-    """HDF5 files of every level of the swept ``methods`` (default: all) on ``cases`` (default:
-    the default build's)."""
+    """HDF5 files of every level of the methods the study sweeps on each of ``cases`` (default:
+    the default build's), of ``methods`` only when given."""
     cases = WORK_PRECISION.get("cases", []) if cases is None else cases
     swept = WORK_PRECISION.get("methods", {})
     return [f"results/convergence/{c}/{m}_level{k}.h5" for c in cases
-            for m in (swept if methods is None else methods) for k in range(len(swept[m]["levels"]))]
+            for m in swept_on(c) if methods is None or m in methods for k in range(len(swept[m]["levels"]))]
 
 
 # The sweep's cases too slow for the default build (a level over a minute): their own target.

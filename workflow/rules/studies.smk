@@ -30,6 +30,7 @@ rule work_precision_table:
         methods=WORK_PRECISION.get("methods", {}),
         fit_levels=WORK_PRECISION.get("fit_levels", 4),
         arrival_window=WORK_PRECISION.get("arrival_window"),
+        per_case=WORK_PRECISION.get("per_case", {}),
     log:
         "logs/tables/work_precision.log",
     group: GROUP_TABLES
@@ -66,6 +67,7 @@ if WORK_PRECISION_SEPARATE:
             methods={m: WORK_PRECISION["methods"][m] for m in WORK_PRECISION_SEPARATE["methods"]},
             fit_levels=WORK_PRECISION.get("fit_levels", 4),
             arrival_window=WORK_PRECISION.get("arrival_window"),
+            per_case=WORK_PRECISION.get("per_case", {}),
         log:
             "logs/tables/work_precision_separate.log",
         group: GROUP_TABLES
@@ -104,6 +106,7 @@ rule work_precision_figure:
         methods=WORK_PRECISION.get("methods", {}),
         fit_levels=WORK_PRECISION.get("fit_levels", 4),
         arrival_window=WORK_PRECISION.get("arrival_window"),
+        per_case=WORK_PRECISION.get("per_case", {}),
     log:
         "logs/figures/work_precision_{case}.log",
     group: GROUP_TABLES

@@ -42,7 +42,7 @@ from rodimpact.analysis.records import StoredRun as RunRecord
 from rodimpact.analysis.signals import first_contact_maxima
 from rodimpact.model.materials import Material, wave_speed
 
-__all__ = ["HISTORY_SAMPLES", "ORDER_TOLERANCE", "expected_order", "fit_indices", "levels_in", "observed_orders",
+__all__ = ["HISTORY_SAMPLES", "ORDER_TOLERANCE", "case_spec", "expected_order", "fit_indices", "levels_in", "observed_orders",
            "quantities", "quantity_rank", "work_precision_frame"]
 
 #: Points of the common grid on which force histories are compared.
@@ -79,7 +79,17 @@ def _grid(reference: RunRecord) -> np.ndarray:
 
 
 def _history(rec: RunRecord, grid: np.ndarray) -> np.ndarray:
-    return np.interp(grid, rec.series["time"], rec.series["contact_force"], right=0.0)
+    """The run's force on ``grid``: linear between its nodes and the contact starts and ends it
+    located (P = 0 there; a method that steps to them has them among its nodes already), so
+    that the kink of the force at a contact's end is where the run put it, not smeared over
+    the step that holds it."""
+    time, force = np.asarray(rec.series["time"], float), np.asarray(rec.series["contact_force"], float)
+    events = np.concatenate([np.atleast_1d(rec.summary.get(key, [])) for key in ("contact_start_s", "contact_end_s")])
+    events = np.setdiff1d(events[np.isfinite(events)].astype(float), time)
+    if events.size:
+        at = np.searchsorted(time, events)
+        time, force = np.insert(time, at, events), np.insert(force, at, 0.0)
+    return np.interp(grid, time, force, right=0.0)
 
 
 def _norms(force: np.ndarray, reference: np.ndarray) -> tuple[float, float]:
@@ -158,8 +168,9 @@ def work_precision_frame(records: Sequence[RunRecord], methods: Mapping[str, Map
     rows = []
     for case_id in dict.fromkeys(r.case_id for r in records):
         runs = [r for r in records if r.case_id == case_id]
+        swept = dict.fromkeys(r.method for r in runs)  # a case need not run every method
         references = {name: _Reference([r for r in runs if r.method == name], methods[name])
-                      for name in dict.fromkeys(spec["reference"] for spec in methods.values())}
+                      for name in dict.fromkeys(methods[m]["reference"] for m in swept)}
         for rec in sorted(runs, key=lambda r: (list(methods).index(r.method), r.config["run"]["level"])):
             spec = methods[rec.method]
             reference = references[spec["reference"]]
@@ -208,6 +219,13 @@ def expected_order(spec: Mapping[str, Any], quantity: str, at_arrival: bool = Fa
         key = "max_at_arrival" if at_arrival and "max_at_arrival" in orders else "max"
     value = orders.get(key)
     return math.nan if value is None else float(value)
+
+
+def case_spec(spec: Mapping[str, Any], method: str, case: Mapping[str, Any] | None) -> Mapping[str, Any]:
+    """A method's sweep settings on one case: its ``expected_orders`` replaced by the case's own
+    for the method (config.yaml ``work_precision.per_case.<case>.expected_orders.<method>``)."""
+    orders = ((case or {}).get("expected_orders") or {}).get(method)
+    return spec if orders is None else {**spec, "expected_orders": orders}
 
 
 def fit_indices(error: np.ndarray, floor: np.ndarray, fit_levels: int) -> np.ndarray:
@@ -274,7 +292,7 @@ def _order_columns(group: pd.DataFrame, quantity: str, spec: Mapping[str, Any], 
 
 
 def observed_orders(frame: pd.DataFrame, methods: Mapping[str, Mapping[str, Any]], fit_levels: int, *,
-                    arrival_window: float) -> pd.DataFrame:
+                    arrival_window: float, per_case: Mapping[str, Mapping[str, Any]] | None = None) -> pd.DataFrame:
     """The order of each method and quantity, fitted on the asymptotic range, against the expected.
 
     The fit (:func:`rodimpact.analysis.convergence.fitted_order`: log error against log h,
@@ -291,6 +309,9 @@ def observed_orders(frame: pd.DataFrame, methods: Mapping[str, Mapping[str, Any]
         At most this many levels are fitted.
     arrival_window : float
         A maximum within this fraction of 2L/c of a wave arrival takes ``max_at_arrival``.
+    per_case : mapping, optional
+        config.yaml's ``work_precision.per_case``: a case's own expected orders per method
+        (:func:`case_spec`).
 
     Returns
     -------
@@ -308,7 +329,8 @@ def observed_orders(frame: pd.DataFrame, methods: Mapping[str, Mapping[str, Any]
     """
     rows = []
     for (case_id, method), group in frame.groupby(["case_id", "method"], sort=False):
-        group, spec = group.sort_values("resolution_value"), methods[method]
+        group = group.sort_values("resolution_value")
+        spec = case_spec(methods[method], method, (per_case or {}).get(case_id))
         own_finest = spec["reference"] == method and spec.get("as_reference", "richardson") == "finest"
         for quantity in quantities(frame):
             if not np.isfinite(group[f"err_{quantity}"].to_numpy(float)).any():

@@ -10,13 +10,14 @@ from __future__ import annotations
 from typing import Any, Callable, Mapping
 
 from rodimpact.analysis.studies import level_case
+from rodimpact.config.bodies import runs_law
 from rodimpact.contact.laws import law_of
 from rodimpact.solvers.field import FIELD_OUTPUT
 from rodimpact.solvers.options import OptionError
 from rodimpact.solvers.registry import METHODS
 
 __all__ = ["check_outputs", "check_run", "check_sensor", "check_set_declarations", "check_stability",
-           "check_work_precision"]
+           "check_work_precision", "swept_methods"]
 
 
 def check_run(case: Mapping[str, Any], method: str) -> None:
@@ -58,6 +59,38 @@ def check_outputs(case: Mapping[str, Any], variant: str | None, error: Callable[
     return outputs
 
 
+def swept_methods(study: Mapping[str, Any], case_id: str, case: Mapping[str, Any]) -> list[str]:
+    """The methods config.yaml's ``work_precision`` sweeps on one of its cases.
+
+    The case's ``per_case`` ``methods`` when it names them; else every method of the study's
+    ``methods`` that can run the case's contact law (:func:`~rodimpact.config.bodies.runs_law`),
+    in the study's order. A case of ``separate`` takes only ``separate.methods`` of them.
+    """
+    named = (study.get("per_case") or {}).get(case_id, {}).get("methods")
+    methods = [m for m in study["methods"] if (m in named if named is not None else runs_law(case, m))]
+    separate = study.get("separate") or {}
+    if case_id in separate.get("cases", []):
+        methods = [m for m in methods if m in separate["methods"]]
+    return methods
+
+
+def _check_per_case(study: Mapping[str, Any], cases: Mapping[str, dict], error: Callable[..., Exception]) -> None:
+    """``per_case``: known cases of the study, and methods it sweeps that can run the case."""
+    separate = (study.get("separate") or {}).get("cases", [])
+    for case_id, spec in (study.get("per_case") or {}).items():
+        where = f"work_precision.per_case.{case_id}"
+        if case_id not in [*study["cases"], *separate]:
+            raise error(f"case {case_id!r} is not swept (work_precision.cases, work_precision.separate.cases)",
+                        field=where)
+        for index, method in enumerate(spec.get("methods", [])):
+            if method not in study["methods"]:
+                raise error(f"method {method!r} is not swept; swept: {', '.join(study['methods'])}",
+                            field=f"{where}.methods[{index}]")
+            if not runs_law(cases[case_id], method):
+                raise error(f"method {method!r} cannot run the case's {law_of(cases[case_id].get('contact')).name} "
+                            "law", field=f"{where}.methods[{index}]")
+
+
 def check_work_precision(study: Mapping[str, Any] | None, cases: Mapping[str, dict],
                          numerics: Mapping[str, Any], error: Callable[..., Exception]) -> None:
     """Check config.yaml's ``work_precision`` against the cases; ``error(message, field=)``
@@ -82,6 +115,23 @@ def check_work_precision(study: Mapping[str, Any] | None, cases: Mapping[str, di
         if reference not in separate["methods"]:
             raise error(f"method {method!r} is measured against {reference!r}, which is not among them",
                         field="work_precision.separate.methods")
+    _check_per_case(study, cases, error)
+    listed = [(f"work_precision.cases[{i}]", c) for i, c in enumerate(study["cases"])]
+    listed += [(f"work_precision.separate.cases[{i}]", c) for i, c in enumerate(separate["cases"])]
+    for field, case_id in listed:
+        swept = swept_methods(study, case_id, cases[case_id])
+        if not swept:
+            raise error(f"case {case_id!r}: no swept method can run its "
+                        f"{law_of(cases[case_id].get('contact')).name} law", field=field)
+        for method in swept:
+            reference = study["methods"][method]["reference"]
+            if reference not in swept:
+                raise error(f"case {case_id!r}: method {method!r} is measured against {reference!r}, which is not "
+                            f"swept on it (swept: {', '.join(swept)})", field=field)
+        for method in (study.get("per_case") or {}).get(case_id, {}).get("expected_orders", {}):
+            if method not in swept:
+                raise error(f"method {method!r} is not swept on the case; swept: {', '.join(swept)}",
+                            field=f"work_precision.per_case.{case_id}.expected_orders.{method}")
     for method, sweep in study["methods"].items():
         where = f"work_precision.methods.{method}"
         if sweep["reference"] not in study["methods"]:
@@ -95,7 +145,7 @@ def check_work_precision(study: Mapping[str, Any] | None, cases: Mapping[str, di
             if sweep["resolution"] not in level:
                 raise error(f"every level must set the resolution {sweep['resolution']!r}",
                             field=f"{where}.levels[{index}]")
-            swept = [*study["cases"], *(separate["cases"] if method in separate["methods"] else [])]
+            swept = [c for c in (*study["cases"], *separate["cases"]) if method in swept_methods(study, c, cases[c])]
             for case_id in swept:
                 case = level_case(cases[case_id], method, numerics, level)
                 try:

@@ -276,13 +276,14 @@ WORK_PRECISION_CAPTION = (
 
 def make_work_precision(runs: Sequence[str | Path], methods: Mapping[str, Any], fit_levels: int, *,
                         arrival_window: float, csv: str | Path, orders_csv: str | Path, orders_md: str | Path,
-                        provenance: str | Path, orders_html: str | Path | None = None) -> None:
+                        provenance: str | Path, orders_html: str | Path | None = None,
+                        per_case: Mapping[str, Any] | None = None) -> None:
     """The work-precision table, and the orders: expected, observed with the fit's standard
     error, the levels fitted, monotone or not, and the three-level uncertainty of a method that
     is its own reference by its finest level (config.yaml ``work_precision``)."""
     records = [read_run(p) for p in runs]
     frame = work_precision_frame(records, methods)
-    orders = observed_orders(frame, methods, fit_levels, arrival_window=arrival_window)
+    orders = observed_orders(frame, methods, fit_levels, arrival_window=arrival_window, per_case=per_case)
     write_table(frame, csv=csv)
     write_table(orders, csv=orders_csv, md=orders_md, html=orders_html, views=orders_views(orders), caption=(
         f"Orders of convergence: expected (from the scheme and the solution's regularity; none "
@@ -298,7 +299,7 @@ def make_work_precision(runs: Sequence[str | Path], methods: Mapping[str, Any], 
 
 def make_work_precision_figure(runs: Sequence[str | Path], methods: Mapping[str, Any], fit_levels: int, *,
                                arrival_window: float, pdf: str | Path, png: str | Path,
-                               provenance: str | Path) -> None:
+                               provenance: str | Path, per_case: Mapping[str, Any] | None = None) -> None:
     """Error against wall time for one case: every method and quantity, the observed and
     expected orders in the legends, a slope guide of the expected order, the fitted levels filled."""
     from rodimpact.present.study_figures import plot_work_precision
@@ -306,8 +307,8 @@ def make_work_precision_figure(runs: Sequence[str | Path], methods: Mapping[str,
     records = [read_run(p) for p in runs]
     case = _one_case(records, "a work-precision figure")
     frame = work_precision_frame(records, methods)
-    fig = plot_work_precision(frame, observed_orders(frame, methods, fit_levels, arrival_window=arrival_window),
-                              case, title=case_in_words(records[0].config))
+    orders = observed_orders(frame, methods, fit_levels, arrival_window=arrival_window, per_case=per_case)
+    fig = plot_work_precision(frame, orders, case, title=case_in_words(records[0].config))
     _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance,
                  title=f"Error against run time, case {case}")
 
