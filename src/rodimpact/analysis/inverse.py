@@ -33,13 +33,20 @@ from typing import Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.interpolate import PchipInterpolator
-from scipy.optimize import minimize_scalar
 
 __all__ = ["SCAN_POINTS", "FitInputError", "LeaveOneOut", "ThetaFit", "fit_theta", "inside", "leave_one_out",
            "predict_at"]
 
 log = logging.getLogger(__name__)
+
+
+def _pchip():
+    """:class:`scipy.interpolate.PchipInterpolator`, imported on first use: the table and figure
+    jobs that import this module through :mod:`rodimpact.present` without fitting skip
+    scipy.interpolate (0.4 s)."""
+    from scipy.interpolate import PchipInterpolator
+
+    return PchipInterpolator
 
 #: The number of evenly spaced values of theta on which the minimum is bracketed.
 SCAN_POINTS = 2001
@@ -223,7 +230,7 @@ def predict_at(theta_grid: ArrayLike, predicted: ArrayLike, theta: ArrayLike) ->
     at = np.asarray(theta, dtype=float)
     if not np.all(np.isfinite(at)) or np.any(at < grid[0]) or np.any(at > grid[-1]):
         raise FitInputError("theta", f"must lie in the grid's span [{grid[0]:g}, {grid[-1]:g}] (no extrapolation)")
-    return PchipInterpolator(grid, table, axis=1, extrapolate=False)(at)
+    return _pchip()(grid, table, axis=1, extrapolate=False)(at)
 
 
 def fit_theta(theta_grid: ArrayLike, predicted: ArrayLike, measured: ArrayLike, *,
@@ -259,7 +266,7 @@ def fit_theta(theta_grid: ArrayLike, predicted: ArrayLike, measured: ArrayLike, 
     grid, table, times, w = _inputs(theta_grid, predicted, measured, weights, source_range)
     used = _rows(rows, table.shape[0])
     index = np.asarray(used)
-    curve = PchipInterpolator(grid, table[index], axis=1, extrapolate=False)
+    curve = _pchip()(grid, table[index], axis=1, extrapolate=False)
     slope = curve.derivative()
     m, wu = times[index], w[index]
     evaluations = 0
@@ -286,6 +293,8 @@ def fit_theta(theta_grid: ArrayLike, predicted: ArrayLike, measured: ArrayLike, 
         theta, status = float(grid[-1]), "at_upper_bound"
     else:
         low, high = scan[max(j - 1, 0)], scan[min(j + 1, SCAN_POINTS - 1)]
+        from scipy.optimize import minimize_scalar
+
         result = minimize_scalar(cost, bounds=(low, high), method="bounded",
                                  options={"xatol": 1e-12 * (grid[-1] - grid[0])})
         converged = bool(result.success)
@@ -300,7 +309,7 @@ def fit_theta(theta_grid: ArrayLike, predicted: ArrayLike, measured: ArrayLike, 
     se = math.sqrt(ssr / (n - 1) / sensitivity) if n > 1 and sensitivity > 0 else math.nan
     fit = ThetaFit(
         theta=theta, standard_error=se, residual_rms=float(np.sqrt(np.mean(r * r))), rows_used=used,
-        predicted=_frozen(PchipInterpolator(grid, table, axis=1, extrapolate=False)(theta)),
+        predicted=_frozen(_pchip()(grid, table, axis=1, extrapolate=False)(theta)),
         at_bound=at_bound, success=converged and not at_bound, status=status, message=_MESSAGES[status],
         evaluations=evaluations,
         inside_range=None if source_range is None else inside(theta, *(float(x) for x in source_range)))

@@ -2,7 +2,8 @@
 
 What lives here: :mod:`.problem` (the geometry of both bodies and the scales), :mod:`.options`
 (the settings), :mod:`.meshes` (meshes in the (r, z) half-plane), :mod:`.film_mesh` (the rod
-with a bonded film disc on its struck end), :mod:`.film_model` (the film's region and its
+with a bonded film disc on its struck end), :mod:`.layers` (how a film or stack is divided
+through its thickness, without the mesher's imports), :mod:`.film_model` (the film's region and its
 contact nodes), :mod:`.axisym` (the
 r-weighted elasticity forms), :mod:`.axibody` (one body's Newmark operators),
 :mod:`.farbar` (the rod beyond a few diameters as a 1-D bar joined to the continuum),

@@ -8,7 +8,7 @@ from typing import Any, Mapping
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.cost import MIB, SOLVE_S, Cost, contact_duration, horizon
 from rodimpact.solvers.fem_axi.farbar import BAR_ELEMENTS_PER_RADIUS, continuum_length
-from rodimpact.solvers.fem_axi.film_mesh import FILM_ASPECT, layer_elements
+from rodimpact.solvers.fem_axi.layers import FILM_ASPECT, layer_elements
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact
 

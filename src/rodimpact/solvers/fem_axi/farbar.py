@@ -23,9 +23,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-import scipy.sparse as sp
 from numpy.typing import NDArray
+
+if TYPE_CHECKING:  # the cost model reads this module: scipy only where the bar is built
+    import scipy.sparse as sp
 
 __all__ = ["BAR_ELEMENTS_PER_RADIUS", "MIN_ROD_TO_CONTINUUM", "FarBar", "continuum_length"]
 
@@ -102,6 +106,8 @@ class FarBar:
         element of length ell, A = pi a^2: the bar's share of the per-radian forms of the
         continuum (whose energies are 2 pi times the quadratic forms).
         """
+        import scipy.sparse as sp
+
         e = self.elements
         ell = (self.length_m - self.start_m) / e
         area = math.pi * self.radius_m**2
@@ -117,6 +123,8 @@ class FarBar:
 
     def interpolation_row(self, z: float) -> sp.csr_matrix:
         """Row that maps the bar's nodal displacements to u_z at height ``z`` (m), shape (1, e + 1)."""
+        import scipy.sparse as sp
+
         z_nodes = self.nodes
         if not z_nodes[0] <= z <= z_nodes[-1]:
             raise ValueError(f"z must lie in the bar [{z_nodes[0]:g}, {z_nodes[-1]:g}] m, got {z!r}")

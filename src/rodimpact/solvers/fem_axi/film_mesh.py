@@ -39,14 +39,12 @@ from rodimpact.solvers.fem_axi.meshes import (
     SIZE_GRADIENT, BodyMesh, _area2, _ceil, _distance_to_origin, _fine_sizes, _longest_edges, _oriented, _positive, _tagged,
     graded_size, refine_until
 )
+from rodimpact.solvers.fem_axi.layers import FILM_ASPECT, layer_elements
 from rodimpact.solvers.fem_axi.options import FILM_LAYERS
 
 __all__ = ["FILM_ASPECT", "FILM_LAYERS", "FilmRodMesh", "film_rod_mesh", "layer_elements", "layers_within"]
 
 log = logging.getLogger(__name__)
-
-FILM_ASPECT = 6.0
-"""Largest ratio of a film cell's width to its height (the columns' spacing away from the contact)."""
 
 
 @dataclass(frozen=True)
@@ -114,26 +112,6 @@ def _rod_under_film(a: float, length: float, fine: float, extent: float, film_ra
     if np.any(_area2(p, mesh.t) * _area2(mesh.p, mesh.t) <= 0.0):
         raise RuntimeError("moving a vertex to the film's edge folded a triangle")
     return MeshTri(p, mesh.t, sort_t=False)
-
-
-def layer_elements(thicknesses_m: Sequence[float], layers: int = FILM_LAYERS) -> list[int]:
-    """Elements through each layer's thickness: ``layers`` through the thickest, and through
-    every other as many as make them at most as high (at least one).
-
-    Parameters
-    ----------
-    thicknesses_m : sequence of float
-        The layers' thicknesses, m (> 0).
-    layers : int
-        Elements through the thickest layer (>= 1).
-    """
-    if isinstance(layers, bool) or not isinstance(layers, int) or layers < 1:
-        raise ValueError(f"layers must be a positive integer, got {layers!r}")
-    thicknesses = [_positive("film_thickness_m", h) for h in thicknesses_m]
-    if not thicknesses:
-        raise ValueError("film_thickness_m: at least one layer")
-    height = max(thicknesses) / layers
-    return [layers if h == max(thicknesses) else max(1, math.ceil(h / height - 1e-9)) for h in thicknesses]
 
 
 def film_rod_mesh(radius_m: float, length_m: float, fine_size_m: float, fine_extent_m: float,

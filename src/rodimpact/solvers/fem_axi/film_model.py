@@ -33,10 +33,11 @@ from rodimpact.solvers.fem_axi.problem import AxiImpact
 __all__ = ["film_contact", "film_rod_matrices"]
 
 
-def film_rod_matrices(basis: Basis, film_mesh: FilmRodMesh, problem: AxiImpact) -> tuple[Any, Any]:
+def film_rod_matrices(basis: Basis, film_mesh: FilmRodMesh, problem: AxiImpact, *,
+                      mass: bool = True) -> tuple[Any, Any]:
     """Per-radian stiffness (N/m) and mass (kg) of the rod and its layers on ``basis``'s DOFs,
     each region assembled with its own material (``problem.rod_material``, each layer of
-    ``problem.stack``)."""
+    ``problem.stack``); ``mass=False``: zeros for the mass (a static solve)."""
     stack, rod = problem.stack, problem.rod_material
     if stack is None:
         raise ValueError("problem: has no film or stack")
@@ -44,12 +45,13 @@ def film_rod_matrices(basis: Basis, film_mesh: FilmRodMesh, problem: AxiImpact) 
         raise ValueError(f"film_mesh: {len(film_mesh.layer_elements)} layers meshed for a stack of {len(stack.layers)}")
     rod_part = Basis(basis.mesh, basis.elem, elements=film_mesh.rod_elements)
     stiffness = axisym_stiffness(rod_part, rod.youngs_modulus_pa, rod.poisson_ratio)
-    mass = axisym_mass(rod_part, rod.density_kg_m3)
+    masses = axisym_mass(rod_part, rod.density_kg_m3) if mass else sp.csr_matrix((basis.N, basis.N))
     for layer, elements in zip(stack.layers, film_mesh.layer_elements):
         part = Basis(basis.mesh, basis.elem, elements=elements)
         stiffness = stiffness + axisym_stiffness(part, layer.youngs_modulus_pa, layer.poisson_ratio)
-        mass = mass + axisym_mass(part, layer.density_kg_m3)
-    return stiffness.tocsr(), mass.tocsr()
+        if mass:
+            masses = masses + axisym_mass(part, layer.density_kg_m3)
+    return stiffness.tocsr(), masses.tocsr()
 
 
 def _surface_uz_rows(basis: Basis, body: BodyMesh, radii: NDArray[np.float64], sphere_radius: float

@@ -84,7 +84,7 @@ def static_indentation(problem: AxiImpact, displacements_m: Sequence[float],
     if problem.body != "cap" or problem.far_end != "fixed":
         raise ValueError("problem: static indentation needs body='cap' and a fixed far end")
     options = FEMAxiOptions() if options is None else options
-    model = build_model(problem, options)
+    model = build_model(problem, options, dynamic=False)  # statics: no mass matrices
     rod, imp, B_rod, B_imp, gap0, r_c, fine = (model.rod, model.impactor, model.B_rod, model.B_imp, model.gap0,
                                                 model.r_c, model.fine_size_m)
     free = np.arange(imp.n - 1)  # the rigid coordinate W (last) is prescribed

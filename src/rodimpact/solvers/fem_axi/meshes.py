@@ -23,6 +23,8 @@ from scipy.optimize import brentq
 from scipy.spatial import Delaunay
 from skfem import MeshTri
 
+from rodimpact.solvers.fem_axi.layers import positive as _positive
+
 __all__ = ["BodyMesh", "rod_mesh", "cap_mesh", "ball_mesh", "surface_nodes",
            "hertz_mesh_sizes"]
 
@@ -57,12 +59,6 @@ class BodyMesh:
     boundaries: dict[str, np.ndarray]
     fine_size_m: float
     contact_extent_m: float
-
-
-def _positive(name: str, value: float) -> float:
-    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not 0 < value < math.inf:
-        raise ValueError(f"{name} must be a positive finite number, got {value!r}")
-    return float(value)
 
 
 def _fine_sizes(fine_size_m: float, fine_extent_m: float, body_m: float

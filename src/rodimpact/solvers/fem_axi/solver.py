@@ -105,7 +105,12 @@ def _volume(basis: Basis) -> float:
     return 2 * math.pi * float(ones @ (axisym_mass(basis, 1.0) @ ones))
 
 
-def build_model(problem: AxiImpact, options: FEMAxiOptions) -> AxiModel:
+def _mass(basis: Basis, density: float, dynamic: bool) -> sp.spmatrix:
+    """The per-radian mass matrix of ``basis`` (kg), or zeros of its shape when not ``dynamic``."""
+    return axisym_mass(basis, density) if dynamic else sp.csr_matrix((basis.N, basis.N))
+
+
+def build_model(problem: AxiImpact, options: FEMAxiOptions, *, dynamic: bool = True) -> AxiModel:
     """Mesh and assemble both bodies and the contact's candidate gaps.
 
     Without a film the rod's end face z = 0 is struck, the impactor's sphere touches it at the
@@ -114,6 +119,9 @@ def build_model(problem: AxiImpact, options: FEMAxiOptions) -> AxiModel:
     bare face z = 0 beyond; the impactor, meshed in its own frame (touching the origin), stands H lower
     (its forms do not depend on z, so only its gaps see this); the candidates are the rod's
     struck-surface nodes.
+
+    ``dynamic=False`` (a static solve, :mod:`.indentation`) leaves the mass matrices out: the
+    bodies get zero masses (the stiffnesses, candidates and gaps are the same bit for bit).
     """
     scales = problem.scales()
     a_contact = scales.contact_radius_m
@@ -147,17 +155,18 @@ def build_model(problem: AxiImpact, options: FEMAxiOptions) -> AxiModel:
     if film_mesh is None:
         rod_body = AxiBody(rod_basis, axisym_stiffness(rod_basis, problem.rod_material.youngs_modulus_pa,
                                                        problem.rod_material.poisson_ratio),
-                           axisym_mass(rod_basis, problem.rod_material.density_kg_m3), removed,
+                           _mass(rod_basis, problem.rod_material.density_kg_m3, dynamic), removed,
                            bar=bar, joint=joint)
     else:
-        rod_body = AxiBody(rod_basis, *film_rod_matrices(rod_basis, film_mesh, problem), removed, bar=bar, joint=joint)
+        rod_body = AxiBody(rod_basis, *film_rod_matrices(rod_basis, film_mesh, problem, mass=dynamic), removed,
+                           bar=bar, joint=joint)
     mat = problem.impactor_material
     if problem.body == "sphere":
         imp = ball_mesh(R, fine, extent)
         imp_basis = _basis(imp.mesh, options.element)
         density = problem.mass_kg / _volume(imp_basis)  # the meshed ball weighs exactly m
         imp_body = AxiBody(imp_basis, axisym_stiffness(imp_basis, mat.youngs_modulus_pa, mat.poisson_ratio),
-                           axisym_mass(imp_basis, density), axis_dofs(imp_basis))
+                           _mass(imp_basis, density, dynamic), axis_dofs(imp_basis))
     else:
         height = options.cap_height * R
         imp = cap_mesh(R, height, fine, extent)
@@ -168,7 +177,7 @@ def build_model(problem: AxiImpact, options: FEMAxiOptions) -> AxiModel:
             raise OptionError("cap_height", f"={options.cap_height}: the elastic cap ({cap_mass:.3g} kg) outweighs "
                                             f"the impactor ({problem.mass_kg:.3g} kg); use a smaller cap_height")
         imp_body = AxiBody(imp_basis, axisym_stiffness(imp_basis, mat.youngs_modulus_pa, mat.poisson_ratio),
-                           axisym_mass(imp_basis, mat.density_kg_m3),
+                           _mass(imp_basis, mat.density_kg_m3, dynamic),
                            np.union1d(axis_dofs(imp_basis), dofs_of(imp_basis, back, 0)),
                            rigid=dofs_of(imp_basis, back, 1), rigid_mass_kg=problem.mass_kg - cap_mass)
     if film_mesh is not None:
