@@ -13,6 +13,7 @@ import pytest
 from rodimpact.analysis.studies import level_case
 from rodimpact.analysis.work_precision import (
     ORDER_TOLERANCE, _history, expected_order, levels_in, observed_orders, work_precision_frame)
+from rodimpact.contact.spring import semi_infinite_rod_contact
 from rodimpact.jobs.runner import run_to_file
 from rodimpact.model.materials import Material, wave_speed
 from rodimpact.storage.runs import read_run
@@ -82,13 +83,32 @@ def smooth_orders(shipped_project, shipped_config, tmp_path_factory):
             records.append(read_run(run_to_file(case, method, folder / f"{method}_{level}.h5", level=level)))
     # every swept method's settings, as the workflow passes them: the case runs two of them
     frame = work_precision_frame(records, study["methods"])
-    return observed_orders(frame, study["methods"], study["fit_levels"], arrival_window=study["arrival_window"],
-                           per_case=study["per_case"])
+    orders = observed_orders(frame, study["methods"], study["fit_levels"], arrival_window=study["arrival_window"],
+                             per_case=study["per_case"])
+    return SimpleNamespace(records=records, frame=frame, orders=orders)
+
+
+def test_the_smooth_cases_reference_is_its_closed_form(smooth_orders, shipped_project) -> None:
+    """The Richardson extrapolation of sem's finest two levels against the damped oscillator's
+    closed form (rodimpact.contact.spring): measured 6e-14 in contact time, 3e-12 in the peak,
+    far inside the reference's own estimate (the finest level's error, 1.6e-9)."""
+    case = shipped_project.cases["linear_spring"]
+    rod = Material.from_mapping(case["rod"]["material"])
+    exact = semi_infinite_rod_contact(case["contact"]["stiffness_n_per_m"], case["impactor"]["mass_kg"],
+                                      case["impactor"]["velocity_m_s"],
+                                      rod.density_kg_m3 * wave_speed(rod) * case["rod"]["area_m2"])
+    sem = [r for r in smooth_orders.records if r.method == "sem"]
+    coarse, fine = (r.summary for r in sem[-2:])
+    for key, value in (("contact_time_s", exact.contact_time_s), ("peak_force_N", exact.peak_force_N)):
+        q2, q1 = float(np.max(coarse[key])), float(np.max(fine[key]))
+        assert q1 + (q1 - q2) / 3.0 == pytest.approx(value, rel=1e-11), key
+    assert smooth_orders.frame.query("method == 'sem'")["ref_err_contact_time"].iloc[0] == pytest.approx(1.6e-9,
+                                                                                                       rel=0.05)
 
 
 @pytest.mark.parametrize("method", ["sem", "fem1d"])
 def test_the_smooth_case_shows_the_formal_order_in_every_stated_norm(smooth_orders, method) -> None:
-    rows = smooth_orders[smooth_orders["method"] == method].set_index("quantity")
+    rows = smooth_orders.orders[smooth_orders.orders["method"] == method].set_index("quantity")
     stated = rows[rows["expected_order"].notna()]
     # the history's max norm included: 2 here, against 3/2 on model (the force's t^(3/2) onset)
     assert {"max_1", "history_l2", "history_max"} <= set(stated.index)
