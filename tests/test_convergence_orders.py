@@ -28,18 +28,23 @@ WINDOW = 0.02
 FEM1D_LEVELS = slice(2, 6)
 
 
+def _level_runs(project, config, case_id: str, fem1d_levels: slice, folder) -> list:
+    """The stored runs of sem at every shipped level and of fem1d at ``fem1d_levels`` on a case."""
+    records = []
+    for method in ("sem", "fem1d"):
+        levels = list(enumerate(config["work_precision"]["methods"][method]["levels"]))
+        for level, overrides in levels[fem1d_levels] if method == "fem1d" else levels:
+            case = level_case(project.cases[case_id], method, config["numerics"], overrides)
+            records.append(read_run(run_to_file(case, method, folder / f"{method}_{level}.h5", level=level)))
+    return records
+
+
 @pytest.fixture(scope="module")
 def model_orders(shipped_project, shipped_config, tmp_path_factory):
     """sem at every shipped level and fem1d at four, on model, fitted as the table fits them."""
     study = shipped_config["work_precision"]
     methods = {name: dict(study["methods"][name]) for name in ("sem", "fem1d")}
-    folder = tmp_path_factory.mktemp("orders")
-    records = []
-    for method, spec in methods.items():
-        levels = list(enumerate(spec["levels"]))
-        for level, overrides in levels[FEM1D_LEVELS] if method == "fem1d" else levels:
-            case = level_case(shipped_project.cases["model"], method, shipped_config["numerics"], overrides)
-            records.append(read_run(run_to_file(case, method, folder / f"{method}_{level}.h5", level=level)))
+    records = _level_runs(shipped_project, shipped_config, "model", FEM1D_LEVELS, tmp_path_factory.mktemp("orders"))
     frame = work_precision_frame(records, methods)
     return observed_orders(frame, methods, study["fit_levels"], arrival_window=study["arrival_window"])
 
@@ -73,14 +78,8 @@ def smooth_orders(shipped_project, shipped_config, tmp_path_factory):
     """sem at every shipped level and fem1d at five on the smooth case (config/cases/smooth.yaml),
     fitted as the table fits them, with the case's own expected orders."""
     study = shipped_config["work_precision"]
-    methods = {name: dict(study["methods"][name]) for name in ("sem", "fem1d")}
-    folder = tmp_path_factory.mktemp("smooth")
-    records = []
-    for method, spec in methods.items():
-        levels = list(enumerate(spec["levels"]))
-        for level, overrides in levels[SMOOTH_FEM1D_LEVELS] if method == "fem1d" else levels:
-            case = level_case(shipped_project.cases["linear_spring"], method, shipped_config["numerics"], overrides)
-            records.append(read_run(run_to_file(case, method, folder / f"{method}_{level}.h5", level=level)))
+    records = _level_runs(shipped_project, shipped_config, "linear_spring", SMOOTH_FEM1D_LEVELS,
+                          tmp_path_factory.mktemp("smooth"))
     # every swept method's settings, as the workflow passes them: the case runs two of them
     frame = work_precision_frame(records, study["methods"])
     orders = observed_orders(frame, study["methods"], study["fit_levels"], arrival_window=study["arrival_window"],
