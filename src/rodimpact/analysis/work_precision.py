@@ -42,8 +42,8 @@ from rodimpact.analysis.records import StoredRun as RunRecord
 from rodimpact.analysis.signals import first_contact_maxima
 from rodimpact.model.materials import Material, wave_speed
 
-__all__ = ["HISTORY_SAMPLES", "ORDER_TOLERANCE", "case_spec", "expected_order", "fit_indices", "levels_in", "observed_orders",
-           "quantities", "quantity_rank", "work_precision_frame"]
+__all__ = ["HISTORY_SAMPLES", "ORDER_TOLERANCE", "case_spec", "expected_order", "fit_indices", "levels_in",
+           "observed_orders", "quantities", "quantity_rank", "work_precision_frame"]
 
 #: Points of the common grid on which force histories are compared.
 HISTORY_SAMPLES = 20_001

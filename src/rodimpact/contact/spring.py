@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rodimpact.contact.hertz import ElasticMaterial
-from rodimpact.contact.law import ContactLaw, LawSettings, RigidImpact
+from rodimpact.contact.law import ContactLaw, LawSettings, RigidImpact, _check_positive
 from rodimpact.settings.declare import REQUIRED, setting
 
 __all__ = ["SpringLaw", "SpringSettings", "SemiInfiniteContact", "semi_infinite_rod_contact"]
@@ -57,8 +57,7 @@ class SpringLaw(ContactLaw):
     method_contact = frozenset({"law"})
 
     def __post_init__(self) -> None:
-        if not (math.isfinite(self.c) and self.c > 0):
-            raise ValueError(f"c must be > 0, got {self.c!r}")
+        _check_positive(c=self.c)
 
     @classmethod
     def from_bodies(cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial,
@@ -92,8 +91,7 @@ class SpringLaw(ContactLaw):
     def rigid_impact(self, mass_kg: float, velocity_m_s: float) -> RigidImpact:
         """Half a period of the oscillator m alpha'' = -c alpha: t = pi sqrt(m / c),
         alpha_max = v0 sqrt(m / c), P_max = v0 sqrt(m c)."""
-        if not (mass_kg > 0 and velocity_m_s > 0 and math.isfinite(mass_kg) and math.isfinite(velocity_m_s)):
-            raise ValueError(f"mass_kg and velocity_m_s must be > 0, got {mass_kg!r} and {velocity_m_s!r}")
+        _check_positive(mass_kg=mass_kg, velocity_m_s=velocity_m_s)
         root = math.sqrt(mass_kg / self.c)
         return RigidImpact(max_approach_m=velocity_m_s * root, contact_time_s=math.pi * root,
                            peak_force_N=velocity_m_s * math.sqrt(mass_kg * self.c))
@@ -151,11 +149,8 @@ def semi_infinite_rod_contact(stiffness_n_per_m: float, mass_kg: float, velocity
     ValueError
         A value that is not > 0, or a damping ratio >= 1 (the spring never separates).
     """
-    values = {"stiffness_n_per_m": stiffness_n_per_m, "mass_kg": mass_kg, "velocity_m_s": velocity_m_s,
-              "impedance_kg_s": impedance_kg_s}
-    for name, value in values.items():
-        if not (math.isfinite(value) and value > 0):
-            raise ValueError(f"{name} must be > 0, got {value!r}")
+    _check_positive(stiffness_n_per_m=stiffness_n_per_m, mass_kg=mass_kg, velocity_m_s=velocity_m_s,
+                    impedance_kg_s=impedance_kg_s)
     omega0 = math.sqrt(stiffness_n_per_m / mass_kg)
     zeta = math.sqrt(mass_kg * stiffness_n_per_m) / (2.0 * impedance_kg_s)
     if zeta >= 1.0:
