@@ -39,17 +39,18 @@ def _file(root: Path, output: str) -> None:
 
 @pytest.fixture
 def project(tmp_path: Path) -> Path:
-    """A batch of two runs (1.5 s and 0.5 s of solver in a 3 s job), a single run (2 s in a 2.5 s
-    job), a timed run (median 0.25 s, 4 repeats, in a 2 s job), a table (two outputs, 1 s), a
-    benchmark (left out) and the record of a file that no longer exists (left out)."""
+    """A batch of two runs in its output directory (1.5 s and 0.5 s of solver in a 3 s job, and
+    snakemake's timestamp file), a single run (2 s in a 2.5 s job), a timed run in a batch's
+    directory (median 0.25 s, 4 repeats, in a 2 s job), a table (two outputs, 1 s), a benchmark
+    (left out) and the record of a file that no longer exists (left out)."""
     _run(tmp_path, "results/sweeps/s/sem/a.h5", 1.5)
     _run(tmp_path, "results/sweeps/s/sem/b.h5", 0.5)
-    _record(tmp_path, "results/sweeps/s/sem/a.h5", "solve_sweep_s_0", 100.0, 103.0, 7)
-    _record(tmp_path, "results/sweeps/s/sem/b.h5", "solve_sweep_s_0", 100.001, 103.0, 7)
+    _file(tmp_path, "results/sweeps/s/sem/.snakemake_timestamp")
+    _record(tmp_path, "results/sweeps/s/sem", "solve_sweep", 100.0, 103.0, 7)
     _run(tmp_path, "results/runs/c/sem.h5", 2.0)
     _record(tmp_path, "results/runs/c/sem.h5", "solve", 101.0, 103.5, 8)
-    _run(tmp_path, "results/convergence/c/sem_level0.h5", 0.25, repeats=4)
-    _record(tmp_path, "results/convergence/c/sem_level0.h5", "solve_levels_sem", 103.5, 105.5, 9)
+    _run(tmp_path, "results/convergence/c/sem/level0.h5", 0.25, repeats=4)
+    _record(tmp_path, "results/convergence/c/sem", "solve_levels", 103.5, 105.5, 9)
     _file(tmp_path, "results/tables/t.csv")
     _file(tmp_path, "results/tables/t.md")
     _record(tmp_path, "results/tables/t.csv", "table", 106.0, 107.0, 10)
@@ -63,7 +64,7 @@ def project(tmp_path: Path) -> Path:
 def test_jobs_group_the_records_of_one_job(project: Path) -> None:
     jobs = read_jobs(project)
     assert [(job.rule, job.start, job.end, job.runs) for job in jobs] == [
-        ("solve_sweep_s_0", 100.0, 103.0, 2), ("solve", 101.0, 103.5, 1), ("solve_levels_sem", 103.5, 105.5, 1),
+        ("solve_sweep", 100.0, 103.0, 2), ("solve", 101.0, 103.5, 1), ("solve_levels", 103.5, 105.5, 1),
         ("table", 106.0, 107.0, 0)]
     assert jobs[0].solver_s == pytest.approx(2.0) and jobs[2].solver_s == pytest.approx(1.0)
     assert jobs[3].outputs == ("results/tables/t.csv", "results/tables/t.md")
@@ -71,12 +72,12 @@ def test_jobs_group_the_records_of_one_job(project: Path) -> None:
 
 def test_rows_per_rule_and_the_build(project: Path) -> None:
     rows = {row.rule: row for row in build_stats(read_jobs(project))}
-    assert list(rows) == ["solve", "solve_levels_sem", "solve_sweep_s_0", "table", "total"]
-    batch = rows["solve_sweep_s_0"]
+    assert list(rows) == ["solve", "solve_levels", "solve_sweep", "table", "total"]
+    batch = rows["solve_sweep"]
     assert (batch.jobs, batch.runs) == (1, 2)
     assert batch.job_s == pytest.approx(3.0) and batch.solver_s == pytest.approx(2.0)
     assert batch.overhead_s == pytest.approx(1.0) and batch.overhead_per_run_s == pytest.approx(0.5)
-    assert rows["solve_levels_sem"].overhead_s == pytest.approx(1.0)  # 2 s job, 4 x 0.25 s of solves
+    assert rows["solve_levels"].overhead_s == pytest.approx(1.0)  # 2 s job, 4 x 0.25 s of solves
     assert rows["table"].solver_s == 0 and rows["table"].overhead_per_run_s is None
     total = rows["total"]
     assert (total.jobs, total.runs) == (4, 4)

@@ -21,7 +21,7 @@ import pytest
 
 from rodimpact.plumbing.locks import RUNS_DIR
 from rodimpact.plumbing.plan_cache import CACHE_FILE
-from rodimpact.storage.faults import REBUILD_HINT
+from rodimpact.storage.faults import DIRECTORY_TIMESTAMP, REBUILD_HINT
 from rodimpact.storage.runs import read_run
 
 from helpers.copies import clone_built, copy_project
@@ -81,13 +81,18 @@ def built(tmp_path_factory: pytest.TempPathFactory) -> Path:
     ("results/runs/nosuch/sem.h5", "rodimpact: unknown case 'nosuch'; known: model, "),
     ("results/runs/short_rod/fem_axi.h5", "rodimpact: case 'short_rod' does not run 'fem_axi'; its methods: "
                                           "sem, sem_paper, fem1d"),
-    ("results/convergence/model/sem_level99.h5", "rodimpact: no rule makes 'results/convergence/model/"
-                                                 "sem_level99.h5'; results/convergence/ holds: "),
+    ("results/convergence/model/sem/level99.h5", "rodimpact: no rule makes 'results/convergence/model/sem/"
+                                                 "level99.h5' alone: it would be a file of results/convergence/"
+                                                 "model/sem, which rule solve_levels writes as a whole"),
+    ("results/convergence/model/nosuch/level0.h5", "rodimpact: no rule makes 'results/convergence/model/nosuch/"
+                                                   "level0.h5'; results/convergence/ holds: "
+                                                   "results/convergence/{case}/{method}"),
     ("results/sweeps/ball_sweep-r1_l301/sem/ball_diameter_m~0.5.h5",
-     "rodimpact: no rule makes 'results/sweeps/ball_sweep-r1_l301/sem/ball_diameter_m~0.5.h5'; "
-     "results/sweeps/ball_sweep-r1_l301/ holds: results/sweeps/ball_sweep-r1_l301/{method}/ball_diameter_m~"),
+     "rodimpact: no rule makes 'results/sweeps/ball_sweep-r1_l301/sem/ball_diameter_m~0.5.h5' alone: it would be "
+     "a file of results/sweeps/ball_sweep-r1_l301/sem, which rule solve_sweep writes as a whole"),
     ("tables", "rodimpact: no rule makes 'tables' and no rule has that name; rules: all, "),
-], ids=["unknown case", "method the case does not run", "missing level", "missing sweep point", "unknown rule"])
+], ids=["unknown case", "method the case does not run", "a level of a batch", "an unknown method's level",
+        "a sweep point of a batch", "unknown rule"])
 def test_a_target_the_configuration_does_not_define_is_one_line(project: Path, target: str, expected: str) -> None:
     assert_one_line_refusal(snakemake(project, "-n", target), expected)
 
@@ -242,6 +247,28 @@ def test_a_damaged_run_is_named_marked_and_remade(built: Path, tmp_path: Path, h
     recovered = snakemake(path, "-j1", TABLE, timeout=BUILD_TIMEOUT_S)
     assert recovered.returncode == 0, recovered.describe()
     assert read_run(run_file).case_id == "model" and table.is_file()
+
+
+BATCH = "results/convergence/model/sem"  # one job: the SEM's work-precision levels on model
+
+
+def test_a_damaged_run_of_a_batch_is_named_marked_and_remade(project: Path, tmp_path: Path) -> None:
+    """A run in a batch's directory (the rule's output is the directory): its reader marks the file
+    and the directory's timestamp, and the next build remakes the batch."""
+    path = clone_built(project, tmp_path / "project")
+    built = snakemake(path, "-j1", BATCH, timeout=BUILD_TIMEOUT_S)
+    assert built.returncode == 0, built.describe()
+    run_file = path / BATCH / "level0.h5"
+    _damage(run_file, "edited")
+    with pytest.raises(ValueError, match="data_sha256") as refused:
+        read_run(run_file)
+    assert str(refused.value).endswith(REBUILD_HINT)
+    assert run_file.stat().st_mtime == 0.0 and (path / BATCH / DIRECTORY_TIMESTAMP).stat().st_mtime == 0.0
+    planned = snakemake(path, "-n", BATCH)
+    assert planned.returncode == 0 and "solve_levels" in planned.output, planned.describe()
+    recovered = snakemake(path, "-j1", BATCH, timeout=BUILD_TIMEOUT_S)
+    assert recovered.returncode == 0, recovered.describe()
+    assert read_run(run_file).case_id == "model"
 
 
 # ------------------------------------------------------------------ a full disk

@@ -104,3 +104,15 @@ def pending(rows: list[dict[str, str]], rule: str | None = None) -> set[str]:
         for row in rows
         if row["plan"] == "update pending" and (rule is None or row["rule"] == rule)
     }
+
+
+def pending_runs(rows: list[dict[str, str]], workdir: Path) -> set[str]:
+    """The HDF5 files a run would (re)write: pending outputs ending in ``.h5``, and the ``.h5`` files
+    in a pending batch's output directory (as they are in ``workdir`` now)."""
+    files = set()
+    for output in pending(rows):
+        if output.endswith(".h5"):
+            files.add(output)
+        elif (workdir / output).is_dir():
+            files.update((Path(output) / f.name).as_posix() for f in (workdir / output).glob("*.h5"))
+    return files

@@ -3,8 +3,6 @@
 
 rule bench_sem:
     """Wall time and error of both SEM schemes on 'model' at several step sizes."""
-    input:
-        code=SRC_BENCH,
     output:
         csv=report(
             "results/benchmarks/sem.csv",
@@ -15,6 +13,7 @@ rule bench_sem:
         ),
         provenance="results/benchmarks/sem.provenance.json",
     params:
+        code=SRC_BENCH,
         case=lambda w: PROJECT.cases["model"],
     log:
         "logs/benchmarks/sem.log",
@@ -37,8 +36,6 @@ rule bench_fem:
     'model' and every Table 2 case it runs, with and without the film, at the shipped level
     (time, DOFs, steps, peak memory); 'model' and the slowest Table 2 row again with the whole
     rod a continuum, to check the far bar."""
-    input:
-        code=SRC_BENCH,
     output:
         csv=report(
             "results/benchmarks/fem.csv",
@@ -49,6 +46,7 @@ rule bench_fem:
         ),
         provenance="results/benchmarks/fem.provenance.json",
     params:
+        code=SRC_BENCH,
         case=lambda w: PROJECT.cases["model"],
         axi_cases=lambda w: FEM_AXI_BENCH_CASES,
     log:
@@ -68,8 +66,6 @@ rule bench_sem_scaling:
     """The SEM's time per step against the wave round trips in the contact ('model' with its
     rod shortened to 10 to 10,000 round trips, and 'seconds_contact'); the automatic step's
     cost over a fixed-step run at the step it chose."""
-    input:
-        code=SRC_BENCH,
     output:
         csv=report(
             "results/benchmarks/sem_scaling.csv",
@@ -80,6 +76,7 @@ rule bench_sem_scaling:
         ),
         provenance="results/benchmarks/sem_scaling.provenance.json",
     params:
+        code=SRC_BENCH,
         model=lambda w: PROJECT.cases["model"],
         stress=lambda w: PROJECT.cases["seconds_contact"],
     log:

@@ -12,11 +12,10 @@ localrules:
 
 rule case_file:
     """The resolved case, its derived scales and each method's step and estimated cost."""
-    input:
-        code=SRC_CASES,
     output:
         yaml="results/cases/{case}.yaml",
     params:
+        code=SRC_CASES,
         case=resolved_case_of,
     log:
         "logs/cases/{case}.log",

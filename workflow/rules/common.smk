@@ -49,7 +49,7 @@ from rodimpact.solvers.field import FIELD_OUTPUT
 from rodimpact.solvers.registry import METHODS as METHOD_REGISTRY
 from rodimpact.plumbing.locks import register_run
 from rodimpact.plumbing.plan_cache import CACHE_FILE, PlanCache, code_fingerprint
-from rodimpact.plumbing.sources import module_sources
+from rodimpact.plumbing.sources import source_digest
 
 # What planning computes (the checked project, each job's estimate) is kept in
 # .snakemake/rodimpact/, keyed on the digests of all it reads (rodimpact.plumbing.plan_cache).
@@ -101,10 +101,10 @@ def refuse(message):
 
 
 def sources(*entry_modules):
-    """Package files a script's imports reach: listed as inputs, a code change reruns the rule."""
-    files = PLAN.remember((SRC_DIR, entry_modules), module_sources)
-    # relative to the working directory (the project, or another one given by --directory)
-    return [os.path.relpath(p) for p in files]
+    """The digest of the package files a script's imports reach (rodimpact.plumbing.sources): a
+    rule's ``params: code=``, so that a change to that code reruns the rule (snakemake's params
+    trigger) and a change to other code does not."""
+    return PLAN.remember((SRC_DIR, tuple(sorted(set(entry_modules)))), source_digest)
 
 
 def per_job(function):
@@ -128,7 +128,7 @@ SOLVER_SOURCES = {name: sources(*SRC_RUN, spec.solver_module) for name, spec in 
 
 
 def solver_sources(method=None):
-    """Input function: the sources of the method ``method(wildcards)`` (default: the wildcard) runs."""
+    """Params function: the code digest of the method ``method(wildcards)`` (default: the wildcard) runs."""
     return lambda wildcards: SOLVER_SOURCES[method(wildcards) if method else wildcards.method]
 
 
@@ -137,16 +137,18 @@ SRC_BATCH = ("rodimpact.jobs.batch", "rodimpact.jobs.logs")
 BATCH_SOURCES = {name: sources(*SRC_BATCH, spec.solver_module) for name, spec in METHOD_REGISTRY.items()}
 
 
-def sweep_sources(case_id):
-    """Input function: the sources of a batch of a sweep's points by the method of the wildcard,
-    and, for a calibrated law, the code that computes each point's curve in the batch (CURVE_CODE)."""
-    builder = curve_rule_of(PROJECT.sweeps[case_id])
-    return lambda wildcards: [*BATCH_SOURCES[wildcards.method], *(CURVE_CODE[builder] if builder else [])]
+def sweep_sources(wildcards):
+    """Params function: the code digest of a batch of a sweep's points by the method of the
+    wildcard and, for a calibrated law, of the code that computes each point's curve in the batch
+    (CURVE_CODE)."""
+    builder = curve_rule_of(PROJECT.sweeps[wildcards.case])
+    extra = CURVE_CODE[builder] if builder else ()
+    return sources(*SRC_BATCH, METHOD_REGISTRY[wildcards.method].solver_module, *extra)
 
 
 def batch_sources(method=None):
-    """Input function: the sources of a batch of runs of the method ``method(wildcards)`` (default:
-    the wildcard)."""
+    """Params function: the code digest of a batch of runs of the method ``method(wildcards)``
+    (default: the wildcard)."""
     return lambda wildcards: BATCH_SOURCES[method(wildcards) if method else wildcards.method]
 
 
@@ -156,9 +158,9 @@ SRC_CASES = sources("rodimpact.jobs.cases", "rodimpact.jobs.logs",
 SRC_PRESENT = sources("rodimpact.present.artifacts", "rodimpact.jobs.logs")
 SRC_BENCH = sources("rodimpact.tools.bench", "rodimpact.tools.bench_scaling", "rodimpact.storage.atomic",
                     "rodimpact.jobs.logs")
-SRC_INDENTATION = sources("rodimpact.jobs.indentation", "rodimpact.jobs.logs")
-# the code that computes each kind of curve (a calibrated sweep's batch runs it too)
-CURVE_CODE = {"indentation": SRC_INDENTATION}
+# the code that computes each kind of curve (a calibrated sweep's batch runs it too), by its modules
+CURVE_CODE = {"indentation": ("rodimpact.jobs.indentation", "rodimpact.jobs.logs")}
+SRC_INDENTATION = sources(*CURVE_CODE["indentation"])
 SRC_BAND = sources("rodimpact.jobs.band", "rodimpact.jobs.logs")
 # The case sets compared with their measurements (compare.smk): every target set that has cases
 # with something measured, whatever its name.
@@ -261,34 +263,68 @@ def indentation_case_of(wildcards):
     return case
 
 
-def contact_curve(wildcards):
-    """Input function: the curve file of a run whose case's law needs one (else none)."""
-    case = PROJECT.cases.get(wildcards.case)
-    curve_rule = None if case is None else curve_rule_of(case)
-    return [] if curve_rule is None else [CURVE_FILES[curve_rule].format(case=wildcards.case)]
+def group_of(case):
+    """The group a case's runs are batched in: its reading (variant) in a set with variants, else its set."""
+    return case.get("variant") or case["set"]
+
+
+# group -> its cases: one job runs one method on every case of a group that lists it (rule solve)
+GROUPS = {}
+for _case in PROJECT.cases.values():
+    GROUPS.setdefault(group_of(_case), []).append(_case)
+_CLASH = sorted({c["variant"] for c in PROJECT.cases.values() if c.get("variant")} & {c["set"] for c in PROJECT.cases.values()})
+if _CLASH:
+    sys.exit(f"rodimpact: a variant may not be named like a case set ({_CLASH[0]!r}): both name a group of runs, "
+             f"results/runs/{_CLASH[0]}/")
 
 
 def runs_of(cases):
-    """HDF5 files of every method of every case in ``cases``."""
-    return [f"results/runs/{c['id']}/{m}.h5" for c in cases for m in c["methods"]]
+    """HDF5 files of every method of every case in ``cases``: results/runs/{group}/{method}/{case}.h5."""
+    return [f"results/runs/{group_of(c)}/{m}/{c['id']}.h5" for c in cases for m in c["methods"]]
+
+
+def run_batches(runs):
+    """Input: the batches' directories (rule solve) that hold the run files ``runs`` (a list, or a
+    function of the wildcards returning one). A rule that reads runs takes their directories as
+    inputs and the files as its ``runs`` param."""
+    if callable(runs):
+        return lambda wildcards: run_batches(runs(wildcards))
+    return sorted({os.path.dirname(run) for run in runs})
 
 
 @per_job
-def case_of_run(wildcards):
-    """The resolved case of a run; refuses a method the case does not list."""
-    case = PROJECT.cases.get(wildcards.case)
-    if case is None:
-        refuse(f"unknown case {wildcards.case!r}; known: {', '.join(PROJECT.cases)}")
-    if wildcards.method not in case["methods"]:
-        refuse(f"case {wildcards.case!r} does not run {wildcards.method!r}; its methods: {', '.join(case['methods'])}")
-    return case
+def group_runs(wildcards):
+    """The runs of one batch: the method of the wildcard on every case of the group that lists it,
+    by file name (the case), each with its case file and, for a law calibrated by a curve, the
+    curve's file; refuses an unknown group and a method no case of it runs."""
+    cases = GROUPS.get(wildcards.group)
+    if cases is None:
+        refuse(f"unknown group of runs {wildcards.group!r}; known: {', '.join(GROUPS)}")
+    runs = {}
+    for case in cases:
+        if wildcards.method in case["methods"]:
+            curve = curve_rule_of(case)
+            runs[case["id"]] = {"case": case, "method": wildcards.method, "case_file": f"results/cases/{case['id']}.yaml"}
+            if curve is not None:
+                runs[case["id"]]["contact_curve"] = CURVE_FILES[curve].format(case=case["id"])
+    if not runs:
+        refuse(f"no case of group {wildcards.group!r} runs {wildcards.method!r}; its cases' methods: "
+               f"{', '.join(sorted({m for c in cases for m in c['methods']}))}")
+    return runs
 
 
 WORK_PRECISION = config.get("work_precision", {})
 STABILITY = config.get("stability", {})
 MAP = STABILITY.get("map", {})
 MAP_POINTS = map_point_names(MAP) if MAP else []
-STRESS_CASES = [c for name in STABILITY.get("sets", []) for c in PROJECT.cases_in(name)]
+# The stress runs: each set's cases by each method some case of it lists, and the references
+# (rule solve_stress: one directory per set and method, one file per case)
+STRESS_DIRS = {(name, m): f"results/stress/{name}/{m}" for name in STABILITY.get("sets", [])
+               for m in METHOD_REGISTRY if any(m in c["methods"] for c in PROJECT.cases_in(name))}
+STRESS_RUNS = [f"results/stress/{name}/{m}/{c['id']}.h5" for name in STABILITY.get("sets", [])
+               for c in PROJECT.cases_in(name) for m in c["methods"]]
+STRESS_REFERENCES = [f"results/stress/{name}/reference/{c['id']}.h5" for name in STABILITY.get("sets", [])
+                     for c in PROJECT.cases_in(name)]
 # The cases that ask for the strain over the rod (output strain_field): each gets its wave map
 # (waves.smk), and only they.
 WAVE_CASES = [case_id for case_id, case in PROJECT.cases.items() if FIELD_OUTPUT in case["outputs"]]
@@ -318,13 +354,23 @@ def sweep_case(case_id, method, level):
     return level_case(PROJECT.cases[case_id], method, config["numerics"], sweep_level(method, level))
 
 
-def sweep_runs(cases=None, methods=None):
-    """HDF5 files of every level of the methods the study sweeps on each of ``cases`` (default:
-    the default build's), of ``methods`` only when given."""
+def _swept(cases=None, methods=None):
+    """(case, method, levels) of every method the study sweeps on each of ``cases`` (default: the
+    default build's), of ``methods`` only when given."""
     cases = WORK_PRECISION.get("cases", []) if cases is None else cases
     swept = WORK_PRECISION.get("methods", {})
-    return [f"results/convergence/{c}/{m}_level{k}.h5" for c in cases
-            for m in swept_on(c) if methods is None or m in methods for k in range(len(swept[m]["levels"]))]
+    return [(c, m, len(swept[m]["levels"])) for c in cases for m in swept_on(c) if methods is None or m in methods]
+
+
+def level_dirs(cases=None, methods=None):
+    """The directories of the work-precision levels (one job each: rule solve_levels) of
+    :func:`_swept`'s cases and methods."""
+    return [f"results/convergence/{c}/{m}" for c, m, _ in _swept(cases, methods)]
+
+
+def sweep_runs(cases=None, methods=None):
+    """HDF5 files of every level of :func:`_swept`'s cases and methods."""
+    return [f"results/convergence/{c}/{m}/level{k}.h5" for c, m, count in _swept(cases, methods) for k in range(count)]
 
 
 # The sweep's cases too slow for the default build (a level over a minute): their own target.
@@ -339,17 +385,15 @@ SWEEP_POINTS = {case_id: dict(zip(space.instance_patterns, sweep_points(PROJECT.
                 for case_id, space in SWEEPS.items()}
 
 
+def sweep_point_dirs(sweep_cases):
+    """The directories of the given sweep cases' points, one per method (one job each: rule solve_sweep)."""
+    return [f"results/sweeps/{c['id']}/{m}" for c in sweep_cases for m in c["sweep"]["methods"]]
+
+
 def sweep_point_runs(sweep_cases):
     """HDF5 files of every point and method of the given sweep cases."""
     return [f"results/sweeps/{c['id']}/{m}/{point}.h5" for c in sweep_cases for m in c["sweep"]["methods"]
             for point in SWEEPS[c["id"]].instance_patterns]
-
-
-def batches(items, size):
-    """``items`` in consecutive batches of at most ``size``, of near-equal lengths."""
-    items = list(items)
-    count = -(-len(items) // size)
-    return [items[len(items) * i // count:len(items) * (i + 1) // count] for i in range(count)]
 
 
 def rule_name(text):
@@ -374,7 +418,7 @@ def default_targets():
     if "model" in sets:
         targets += expand("results/figures/force_fit_model.{ext}", ext=["pdf", "png"])
     for name in sets:
-        targets += runs_of(PROJECT.cases_in(name))
+        targets += run_batches(runs_of(PROJECT.cases_in(name)))
         # the contact force handed on (forces.smk)
         targets += force_files(PROJECT.cases_in(name), "csv") + force_files(PROJECT.cases_in(name), "json")
         # the waves in the rod (waves.smk), for the cases that list strain_field
@@ -455,7 +499,7 @@ FILM_TABLE_SETS = sorted({READING_SET_OF[v] for v in FILM_TABLE.values()}) \
     if all(v in READING_SET_OF for v in FILM_TABLE.values()) else []
 FILM_FORCE = SENSOR.get("film_force") or {}
 # its runs: each row on each reading, by each of the methods the case runs
-FILM_FORCE_RUNS = [f"results/runs/{case['id']}/{method}.h5"
+FILM_FORCE_RUNS = [runs_of([case])[case["methods"].index(method)]
                    for case in (PROJECT.cases[f"{row}-{variant}"] for row in FILM_FORCE.get("rows", [])
                                 for variant in FILM_FORCE.get("variants", []))
                    for method in FILM_FORCE["methods"] if method in case["methods"]] \

@@ -8,9 +8,8 @@
 rule compare_table:
     """One case set's runs against its measurements: per case, method and quantity, with a summary."""
     input:
-        runs=lambda w: compare_runs(w.set),
+        runs=run_batches(lambda w: compare_runs(w.set)),
         histories=lambda w: compare_histories(w.set),
-        code=SRC_COMPARE,
     output:
         csv=report(
             "results/tables/compare_{set}.csv",
@@ -25,6 +24,8 @@ rule compare_table:
         tex="results/tables/compare_{set}.tex",
         provenance="results/tables/compare_{set}.provenance.json",
     params:
+        code=SRC_COMPARE,
+        runs=lambda w: compare_runs(w.set),
         set_name="{set}",
     wildcard_constraints:
         set=one_of(COMPARE_SETS),
@@ -43,9 +44,8 @@ rule compare_table:
 rule compare_figure:
     """One case set's measured and computed values against the impactor's mass (or its compare.x)."""
     input:
-        runs=lambda w: compare_runs(w.set),
+        runs=run_batches(lambda w: compare_runs(w.set)),
         histories=lambda w: compare_histories(w.set),
-        code=SRC_COMPARE,
     output:
         pdf=report(
             "results/figures/compare_{set}.pdf",
@@ -63,6 +63,8 @@ rule compare_figure:
         ),
         provenance="results/figures/compare_{set}.provenance.json",
     params:
+        code=SRC_COMPARE,
+        runs=lambda w: compare_runs(w.set),
         set_name="{set}",
         title=lambda w: f"{set_title(w.set)[:1].upper()}{set_title(w.set)[1:]}: measured and computed",
         x=lambda w: PROJECT.compare.get(w.set, {}).get("x", ""),
@@ -85,9 +87,8 @@ rule compare_figure:
 rule compare_history:
     """One case's measured force history against each of its methods' forces, and their difference."""
     input:
-        runs=lambda w: compare_case_runs(w.set, w.case),
+        runs=run_batches(lambda w: compare_case_runs(w.set, w.case)),
         history=lambda w: PROJECT.cases[w.case]["measured"]["force_history"]["path"],
-        code=SRC_COMPARE,
     output:
         pdf=report(
             "results/figures/compare_{set}_{case}.pdf",
@@ -104,6 +105,9 @@ rule compare_history:
             labels={"set": "{set}", "artifact": "Force history: {case}", "format": "PNG"},
         ),
         provenance="results/figures/compare_{set}_{case}.provenance.json",
+    params:
+        code=SRC_COMPARE,
+        runs=lambda w: compare_case_runs(w.set, w.case),
     wildcard_constraints:
         set=one_of(COMPARE_SETS),
         case=one_of(HISTORY_CASES),

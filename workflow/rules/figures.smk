@@ -4,8 +4,7 @@
 rule fig2:
     """Fig. 2: contact force against time for the case 'model', every method it runs."""
     input:
-        runs=lambda w: runs_of([PROJECT.cases["model"]]),
-        code=SRC_PRESENT,
+        runs=run_batches(lambda w: runs_of([PROJECT.cases["model"]])),
     output:
         pdf=report(
             "results/figures/fig2_contact_force.pdf",
@@ -22,6 +21,9 @@ rule fig2:
             labels={"artifact": "Fig. 2: contact force", "format": "PNG"},
         ),
         provenance="results/figures/fig2_contact_force.provenance.json",
+    params:
+        code=SRC_PRESENT,
+        runs=lambda w: runs_of([PROJECT.cases["model"]]),
     log:
         "logs/figures/fig2_contact_force.log",
     group: GROUP_TABLES
@@ -37,8 +39,7 @@ rule fig2:
 rule fig4:
     """Fig. 4: displacement of the cross-section at half the rod length, case 'model'."""
     input:
-        runs=lambda w: runs_of([PROJECT.cases["model"]]),
-        code=SRC_PRESENT,
+        runs=run_batches(lambda w: runs_of([PROJECT.cases["model"]])),
     output:
         pdf=report(
             "results/figures/fig4_midrod_displacement.pdf",
@@ -56,6 +57,8 @@ rule fig4:
         ),
         provenance="results/figures/fig4_midrod_displacement.provenance.json",
     params:
+        code=SRC_PRESENT,
+        runs=lambda w: runs_of([PROJECT.cases["model"]]),
         fraction=0.5,
     log:
         "logs/figures/fig4_midrod_displacement.log",
@@ -74,13 +77,12 @@ rule fig_readings:
     declare it) and ours, one panel per rod (a grid by rod radius and length), with the curves of
     the set's sweeps, and the readings with the film and their bands."""
     input:
-        runs=lambda w: set_reading_runs(w.set),
-        sweep_runs=lambda w: sweep_point_runs(PROJECT.sweeps_in(w.set)),
+        runs=run_batches(lambda w: set_reading_runs(w.set)),
+        sweep_points=lambda w: sweep_point_dirs(PROJECT.sweeps_in(w.set)),
         bands=lambda w: expand("results/studies/film_band_{variant}.h5",
                                variant=[v for v in FILM_VARIANTS if READING_SET_OF[v] == w.set]),
         sensor_bands=lambda w: sensor_band_files([v for v, band in SENSOR_READINGS.items()
                                                   if band and v in sensor_variants(w.set)]),
-        code=SRC_PRESENT,
     output:
         pdf=report(
             "results/figures/{set}_contact_time.pdf",
@@ -98,6 +100,9 @@ rule fig_readings:
         ),
         provenance="results/figures/{set}_contact_time.provenance.json",
     params:
+        code=SRC_PRESENT,
+        runs=lambda w: set_reading_runs(w.set),
+        sweep_runs=lambda w: sweep_point_runs(PROJECT.sweeps_in(w.set)),
         variants=lambda w: READING_SETS[w.set],
         film_variants=lambda w: [v for v in FILM_VARIANTS if READING_SET_OF[v] == w.set],
         sensors=lambda w: sensor_variants(w.set),
@@ -122,8 +127,7 @@ rule fig_readings:
 rule fig_film_force:
     """The contact force P(t) with and without the sensor film, lightest and heaviest ball."""
     input:
-        runs=FILM_FORCE_RUNS,
-        code=SRC_PRESENT,
+        runs=run_batches(FILM_FORCE_RUNS),
     output:
         pdf=report(
             "results/figures/film_force.pdf",
@@ -141,6 +145,8 @@ rule fig_film_force:
         ),
         provenance="results/figures/film_force.provenance.json",
     params:
+        code=SRC_PRESENT,
+        runs=FILM_FORCE_RUNS,
         rows=FILM_FORCE["rows"],
         variants=FILM_FORCE["variants"],
         methods=FILM_FORCE["methods"],

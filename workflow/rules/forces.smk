@@ -13,12 +13,14 @@ for set_name in config["targets"]["sets"]:
         name:
             f"forces_{rule_name(set_name)}"
         input:
-            runs=runs_of(PROJECT.cases_in(set_name)),
-            code=SRC_FORCES,
+            runs=run_batches(runs_of(PROJECT.cases_in(set_name))),
         output:
             csvs=force_files(PROJECT.cases_in(set_name), "csv"),
             jsons=force_files(PROJECT.cases_in(set_name), "json"),
             provenance=f"results/forces/{set_name}.provenance.json",
+        params:
+            code=SRC_FORCES,
+            runs=runs_of(PROJECT.cases_in(set_name)),
         log:
             f"logs/forces/{set_name}.log",
         group: GROUP_TABLES
@@ -34,9 +36,8 @@ for set_name in config["targets"]["sets"]:
 rule fig_force_fit:
     """The closed form of the contact force over the computed force, case 'model', every method."""
     input:
-        runs=lambda w: runs_of([PROJECT.cases["model"]]),
+        runs=run_batches(lambda w: runs_of([PROJECT.cases["model"]])),
         jsons=lambda w: force_files([PROJECT.cases["model"]], "json"),
-        code=SRC_PRESENT,
     output:
         pdf=report(
             "results/figures/force_fit_model.pdf",
@@ -51,6 +52,9 @@ rule fig_force_fit:
             labels={"artifact": "Contact force and its closed form", "format": "PNG"},
         ),
         provenance="results/figures/force_fit_model.provenance.json",
+    params:
+        code=SRC_PRESENT,
+        runs=lambda w: runs_of([PROJECT.cases["model"]]),
     log:
         "logs/figures/force_fit_model.log",
     group: GROUP_TABLES

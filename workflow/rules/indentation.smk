@@ -9,10 +9,10 @@ rule indentation:
     """Static indentation of one case's bodies by the continuum: its contact-law curve."""
     input:
         case=case_file(lambda w: w.case),
-        code=SRC_INDENTATION,
     output:
         h5=CURVE_FILES["indentation"],
     params:
+        code=SRC_INDENTATION,
         case=indentation_case_of,
         numerics=lambda w: config["numerics"]["fem_axi"],
     log:
@@ -32,10 +32,10 @@ rule film_band:
     at the corners of the film constants' ranges, and along each range (monotonicity)."""
     input:
         cases=lambda w: [f"results/cases/{c['id']}.yaml" for c in reading_cases(w.variant)],
-        code=SRC_BAND,
     output:
         h5="results/studies/film_band_{variant}.h5",
     params:
+        code=SRC_BAND,
         cases=lambda w: reading_cases(w.variant),
         variant="{variant}",
     log:

@@ -16,7 +16,7 @@ from pathlib import Path
 #   inherits. A job in a conda environment loses PYTHONPATH (snakemake.shell drops it unless
 #   --conda-not-block-search-path-envvars is given): the workflow runs in the project's .venv,
 #   not with --sdm conda.
-#   Why not enough: sources() lists the checkout's src/ files as the rules' inputs, so this
+#   Why not enough: sources() digests the checkout's src/ files for the rules' params, so this
 #   process and every job must import exactly those; and before `configfile:` (Snakefile),
 #   since reading config.yaml below already imports rodimpact. PYTHONPATH is set, not read
 #   from the user, for the jobs; a cluster job's snakemake parses this file again and sets it.

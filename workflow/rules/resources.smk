@@ -9,57 +9,66 @@ from rodimpact.tools.bench_plan import fem_bench_runs, sem_bench_runs, sem_scali
 from rodimpact.jobs.resources import PRESENTATION, estimate_resources, estimate_sequence
 
 
-def level_runs(method):
-    """Input function: the levels of ``method``'s work-precision sweep on the case of the
-    wildcard, by output name (level0, level1, ...)."""
-
-    @per_job
-    def runs(wildcards):
-        count = len(WORK_PRECISION["methods"][method]["levels"])
-        return {f"level{k}": {"case": sweep_case(wildcards.case, method, k), "method": method, "level": k,
-                              "study": {"name": "work_precision", "level": k, "overrides": sweep_level(method, k)}}
-                for k in range(count)}
-
-    return runs
+@per_job
+def level_runs(wildcards):
+    """The levels of the method of the wildcard in the work-precision sweep on the case of the
+    wildcard, by file name (level0, level1, ...); refuses a method the study does not sweep there."""
+    levels = WORK_PRECISION.get("methods", {}).get(wildcards.method, {}).get("levels", [])
+    runs = {f"level{k}": {"case": sweep_case(wildcards.case, wildcards.method, k), "method": wildcards.method,
+                          "level": k, "study": {"name": "work_precision", "level": k,
+                                                "overrides": sweep_level(wildcards.method, k)}}
+            for k in range(len(levels))}
+    return runs or refuse(f"the work-precision study does not sweep {wildcards.method!r}")
 
 
-def sweep_batch_runs(case_id, names):
-    """Input function: the runs of the points ``names`` of a sweep by the method of the
-    wildcard, by output name (p0, p1, ...); refuses a method the sweep does not run."""
-
-    @per_job
-    def runs(wildcards):
-        case = PROJECT.sweeps[case_id]
-        if wildcards.method not in case["sweep"]["methods"]:
-            refuse(f"sweep {case_id!r} does not run {wildcards.method!r}; its methods: "
-                   f"{', '.join(case['sweep']['methods'])}")
-        runs = {}
-        for k, name in enumerate(names):
-            point = sweep_point_case(case, SWEEP_POINTS[case_id][name], name)
-            runs[f"p{k}"] = {"case": point, "method": wildcards.method,
-                             "study": {"name": "sweep", "sweep": case_id, "point": name}}
-            builder = curve_rule_of(point)
-            if builder is not None:  # no rule computes a point's curve, its batch does
-                runs[f"p{k}"]["curve"] = {"rule": builder, "settings": CURVE_SETTINGS[builder]}
-        return runs
-
+@per_job
+def sweep_batch_runs(wildcards):
+    """Every point of the sweep of the wildcard's case by the method of the wildcard, by file name
+    (the point's name); refuses a method the sweep does not run."""
+    case_id = wildcards.case
+    case = PROJECT.sweeps[case_id]
+    if wildcards.method not in case["sweep"]["methods"]:
+        refuse(f"sweep {case_id!r} does not run {wildcards.method!r}; its methods: "
+               f"{', '.join(case['sweep']['methods'])}")
+    runs = {}
+    for name, values in SWEEP_POINTS[case_id].items():
+        point = sweep_point_case(case, values, name)
+        runs[name] = {"case": point, "method": wildcards.method,
+                      "study": {"name": "sweep", "sweep": case_id, "point": name}}
+        builder = curve_rule_of(point)
+        if builder is not None:  # no rule computes a point's curve, its batch does
+            runs[name]["curve"] = {"rule": builder, "settings": CURVE_SETTINGS[builder]}
     return runs
 
 
 @per_job
-def reference_case_of(wildcards):
-    """The sem reference case of a stress case (rule solve_stress_reference)."""
-    return reference_case(PROJECT.cases[wildcards.case], config["numerics"],
-                          config["stability"]["reference_tolerance"])
+def stress_runs(wildcards):
+    """One method on every case of a stress set that lists it, or (``reference``) the sem reference
+    of every case at the study's tolerance, by file name (the case); a run records its case file."""
+    cases = PROJECT.cases_in(wildcards.set)
+    if wildcards.stress_method == "reference":
+        tolerance = config["stability"]["reference_tolerance"]
+        return {c["id"]: {"case": reference_case(c, config["numerics"], tolerance), "method": "sem",
+                          "case_file": f"results/cases/{c['id']}.yaml"} for c in cases}
+    runs = {c["id"]: {"case": c, "method": wildcards.stress_method, "case_file": f"results/cases/{c['id']}.yaml"}
+            for c in cases if wildcards.stress_method in c["methods"]}
+    if not runs:
+        refuse(f"no case of the stress set {wildcards.set!r} runs {wildcards.stress_method!r}")
+    return runs
+
+
+def stress_method_of(wildcards):
+    """The solver a stress batch uses: its method, sem for the reference."""
+    return "sem" if wildcards.stress_method == "reference" else wildcards.stress_method
 
 
 @per_job
-def map_row_runs(wildcards):
-    """The runs of one row of the stability map (rule solve_map_row), by output name (z0, z1, ...)."""
+def map_runs(wildcards):
+    """Every point of the stability map (each impactor mass at every rod impedance) by one method
+    or its sem reference, by file name (m{i}_z{j})."""
     base, method = PROJECT.cases[MAP["base_case"]], map_method_of(wildcards)
-    return {f"z{j}": {"case": map_point_case(base, MAP, f"m{wildcards.row}_z{j}", wildcards.map_method,
-                                             config["numerics"]), "method": method}
-            for j in range(len(MAP["impedance_kg_s"]))}
+    return {name: {"case": map_point_case(base, MAP, name, wildcards.map_method, config["numerics"]),
+                   "method": method} for name in MAP_POINTS}
 
 
 def map_method_of(wildcards):

@@ -8,10 +8,10 @@ rule sensor_band:
         case=case_file(lambda w: w.case),
         # the nominal stack's calibrated law: the curve the case's own runs take
         curve=CURVE_FILES["indentation"],
-        code=SRC_SENSOR,
     output:
         h5="results/studies/sensor_band/{case}.h5",
     params:
+        code=SRC_SENSOR,
         case=lambda w: PROJECT.cases[w.case],
         variant=lambda w: SENSOR_READING_OF[w.case],
         band=lambda w: SENSOR_READINGS[SENSOR_READING_OF[w.case]],
@@ -36,7 +36,6 @@ rule sensor_band_table:
     input:
         bands=sensor_band_files([v for v, band in SENSOR_READINGS.items() if band]),
         cases=[f"results/cases/{case}.yaml" for case, v in SENSOR_READING_OF.items() if SENSOR_READINGS[v]],
-        code=SRC_SENSOR_TABLES,
     output:
         csv=report(
             "results/tables/sensor_band.csv",
@@ -48,6 +47,8 @@ rule sensor_band_table:
         md="results/tables/sensor_band.md",
         html="results/tables/sensor_band.html",
         provenance="results/tables/sensor_band.provenance.json",
+    params:
+        code=SRC_SENSOR_TABLES,
     log:
         "logs/tables/sensor_band.log",
     group: GROUP_TABLES
@@ -66,7 +67,6 @@ rule sensor_fit:
         fitted=sensor_band_files([SENSOR_FIT["reading"]] if SENSOR_FIT else []),
         applied=sensor_band_files(SENSOR_FIT.get("apply_to", []) if SENSOR_FIT else []),
         cases=[f"results/cases/{c}.yaml" for c in SENSOR_READING_OF],
-        code=SRC_SENSOR_TABLES,
     output:
         csv=report(
             "results/tables/sensor_fit.csv",
@@ -80,6 +80,7 @@ rule sensor_fit:
         summary="results/tables/sensor_fit.json",
         provenance="results/tables/sensor_fit.provenance.json",
     params:
+        code=SRC_SENSOR_TABLES,
         layer=SENSOR_FIT["layer"] if SENSOR_FIT else "",
     log:
         "logs/tables/sensor_fit.log",
@@ -99,7 +100,6 @@ rule fig_sensor_fit:
         fitted=sensor_band_files([SENSOR_FIT["reading"]] if SENSOR_FIT else []),
         applied=sensor_band_files(SENSOR_FIT.get("apply_to", []) if SENSOR_FIT else []),
         cases=[f"results/cases/{c}.yaml" for c in SENSOR_READING_OF],
-        code=SRC_SENSOR_TABLES,
     output:
         pdf=report(
             "results/figures/sensor_fit.pdf",
@@ -117,6 +117,7 @@ rule fig_sensor_fit:
         ),
         provenance="results/figures/sensor_fit.provenance.json",
     params:
+        code=SRC_SENSOR_TABLES,
         layer=SENSOR_FIT["layer"] if SENSOR_FIT else "",
         descriptions=READING_DESCRIPTIONS,
     log:

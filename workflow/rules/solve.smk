@@ -1,124 +1,111 @@
-# Solvers: one HDF5 file per (case, method).
+# Solvers: one HDF5 file per (case, method), written in batches (below).
 
 
 rule solve:
-    """Run one method on one case; the HDF5 file appears whole or not at all."""
+    """One method on every case of one group (a reading of a set with variants, else a set) that
+    lists it: one file per case, results/runs/{group}/{method}/{case}.h5, each written whole."""
     input:
-        case=case_file(lambda w: w.case),
-        curve=contact_curve,
-        code=solver_sources(),
+        cases=lambda w: [run["case_file"] for run in group_runs(w).values()],
+        curves=lambda w: [run["contact_curve"] for run in group_runs(w).values() if "contact_curve" in run],
     output:
-        h5="results/runs/{case}/{method}.h5",
+        runs=directory("results/runs/{group}/{method}"),
     params:
-        case=case_of_run,
-        method="{method}",
+        code=batch_sources(),
+        runs=group_runs,
+        keep_failed=False,
+        timing=None,
     log:
-        "logs/runs/{case}/{method}.log",
+        "logs/runs/{group}/{method}.log",
+    wildcard_constraints:
+        group=one_of(GROUPS),
     group: GROUP_SOLVERS
     threads: 1
     resources:
-        **solver_resources(case_of_run),
+        **batch_resources(group_runs),
     conda:
         "../envs/rodimpact.yaml"
     script:
-        "../scripts/solve.py"
+        "../scripts/solve_batch.py"
 
 
-# The levels of a method's work-precision sweep on one case: one job (a rule per method,
-# solve_levels_<method>), one timed HDF5 file per level.
-for method, levels in WORK_PRECISION.get("methods", {}).items():
-    runs_of_levels = level_runs(method)
+# Batches: one method on a group of runs in one job, written into the rule's output directory,
+# one HDF5 file per run (each whole, with its own provenance; rodimpact.jobs.batch). A run of a
+# fraction of a second costs less than starting a job.
 
-    rule:
-        """Every level of one method's work-precision sweep on one case, each timed."""
-        name:
-            f"solve_levels_{method}"
-        input:
-            case=case_file(lambda w: w.case),
-            code=BATCH_SOURCES[method],
-        output:
-            **{f"level{k}": f"results/convergence/{{case}}/{method}_level{k}.h5" for k in range(len(levels["levels"]))},
-        params:
-            runs=runs_of_levels,
-            keep_failed=False,
-            timing=WORK_PRECISION.get("timing", {}),
-        log:
-            f"logs/convergence/{{case}}/{method}.log",
-        group: GROUP_SOLVERS
-        threads: 1
-        resources:
-            **batch_resources(runs_of_levels, timing=WORK_PRECISION.get("timing", {})),
-        conda:
-            "../envs/rodimpact.yaml"
-        script:
-            "../scripts/solve_batch.py"
+
+rule solve_levels:
+    """Every level of one method's work-precision sweep on one case, each timed: one file per
+    level, results/convergence/{case}/{method}/level{k}.h5."""
+    input:
+        case=case_file(lambda w: w.case),
+    output:
+        runs=directory("results/convergence/{case}/{method}"),
+    params:
+        code=batch_sources(),
+        runs=level_runs,
+        keep_failed=False,
+        timing=WORK_PRECISION.get("timing", {}),
+    log:
+        "logs/convergence/{case}/{method}.log",
+    group: GROUP_SOLVERS
+    threads: 1
+    resources:
+        **batch_resources(level_runs, timing=WORK_PRECISION.get("timing", {})),
+    conda:
+        "../envs/rodimpact.yaml"
+    script:
+        "../scripts/solve_batch.py"
 
 
 rule solve_stress:
-    """One method on one stress case; a failure is stored as data (the study checks it)."""
+    """One method on every case of a stress set that lists it, or (``reference``) the sem reference of
+    each case at the study's reference tolerance: one file per case,
+    results/stress/{set}/{stress_method}/{case}.h5; a failure is stored as data (the study checks it)."""
     input:
-        case=case_file(lambda w: w.case),
-        code=solver_sources(),
+        cases=lambda w: [run["case_file"] for run in stress_runs(w).values()],
     output:
-        h5="results/stress/{case}/{method}.h5",
+        runs=directory("results/stress/{set}/{stress_method}"),
     params:
-        case=case_of_run,
-        method="{method}",
+        code=batch_sources(stress_method_of),
+        runs=stress_runs,
+        keep_failed=True,
+        timing=None,
     log:
-        "logs/stress/{case}/{method}.log",
+        "logs/stress/{set}/{stress_method}.log",
+    wildcard_constraints:
+        set=one_of(STABILITY.get("sets", [])),
+        stress_method=one_of([*METHOD_REGISTRY, "reference"]),
     group: GROUP_SOLVERS
     threads: 1
     resources:
-        **solver_resources(case_of_run),
+        **batch_resources(stress_runs),
     conda:
         "../envs/rodimpact.yaml"
     script:
-        "../scripts/solve_study.py"
-
-
-rule solve_stress_reference:
-    """The sem reference of a stress case, at the study's reference tolerance."""
-    input:
-        case=case_file(lambda w: w.case),
-        code=solver_sources(lambda w: "sem"),
-    output:
-        h5="results/stress/{case}/reference.h5",
-    params:
-        case=reference_case_of,
-        method="sem",
-    log:
-        "logs/stress/{case}/reference.log",
-    group: GROUP_SOLVERS
-    threads: 1
-    resources:
-        **solver_resources(reference_case_of, lambda w: "sem"),
-    conda:
-        "../envs/rodimpact.yaml"
-    script:
-        "../scripts/solve_study.py"
+        "../scripts/solve_batch.py"
 
 
 if MAP:
 
-    rule solve_map_row:
-        """One row of the stability map (one impactor mass, every rod impedance) with one method
-        or its sem reference: one HDF5 file per point; a failure is stored as data."""
+    rule solve_map:
+        """Every point of the stability map (each impactor mass at every rod impedance) with one
+        method or its sem reference: one file per point, results/stability_map/{map_method}/m{i}_z{j}.h5;
+        a failure is stored as data."""
         input:
             case=case_file(lambda w: MAP["base_case"]),
-            code=batch_sources(map_method_of),
         output:
-            **{f"z{j}": f"results/stability_map/m{{row}}_z{j}/{{map_method}}.h5"
-               for j in range(len(MAP["impedance_kg_s"]))},
+            runs=directory("results/stability_map/{map_method}"),
         params:
-            runs=map_row_runs,
+            code=batch_sources(map_method_of),
+            runs=map_runs,
             keep_failed=True,
             timing=None,
         log:
-            "logs/stability_map/m{row}/{map_method}.log",
+            "logs/stability_map/{map_method}.log",
         group: GROUP_SOLVERS
         threads: 1
         resources:
-            **batch_resources(map_row_runs),
+            **batch_resources(map_runs),
         conda:
             "../envs/rodimpact.yaml"
         script:

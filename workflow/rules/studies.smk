@@ -6,8 +6,7 @@ rule work_precision_table:
     """Errors of every level against the converged reference; the orders, expected and observed,
     and the uncertainty of a method measured against its own finest level."""
     input:
-        runs=sweep_runs(),
-        code=SRC_PRESENT,
+        levels=level_dirs(),
     output:
         csv=report(
             "results/tables/work_precision.csv",
@@ -27,6 +26,8 @@ rule work_precision_table:
         orders_html="results/tables/work_precision_orders.html",
         provenance="results/tables/work_precision.provenance.json",
     params:
+        code=SRC_PRESENT,
+        runs=sweep_runs(),
         methods=WORK_PRECISION.get("methods", {}),
         fit_levels=WORK_PRECISION.get("fit_levels", 4),
         arrival_window=WORK_PRECISION.get("arrival_window"),
@@ -49,8 +50,7 @@ if WORK_PRECISION_SEPARATE:
         """The same table and orders for the sweep's separate cases (levels over a minute each),
         with their methods only: outside rule all (make convergence-separate)."""
         input:
-            runs=sweep_runs(WORK_PRECISION_SEPARATE["cases"], WORK_PRECISION_SEPARATE["methods"]),
-            code=SRC_PRESENT,
+            levels=level_dirs(WORK_PRECISION_SEPARATE["cases"], WORK_PRECISION_SEPARATE["methods"]),
         output:
             csv="results/tables/work_precision_separate.csv",
             orders_csv=report(
@@ -64,6 +64,8 @@ if WORK_PRECISION_SEPARATE:
             orders_html="results/tables/work_precision_separate_orders.html",
             provenance="results/tables/work_precision_separate.provenance.json",
         params:
+            code=SRC_PRESENT,
+            runs=sweep_runs(WORK_PRECISION_SEPARATE["cases"], WORK_PRECISION_SEPARATE["methods"]),
             methods={m: WORK_PRECISION["methods"][m] for m in WORK_PRECISION_SEPARATE["methods"]},
             fit_levels=WORK_PRECISION.get("fit_levels", 4),
             arrival_window=WORK_PRECISION.get("arrival_window"),
@@ -84,8 +86,7 @@ rule work_precision_figure:
     """Error against wall time for one case, one panel per error quantity, one line per method,
     with a slope guide of each method's expected order."""
     input:
-        runs=lambda w: sweep_runs([w.case]),
-        code=SRC_PRESENT,
+        levels=lambda w: level_dirs([w.case]),
     output:
         pdf=report(
             "results/figures/work_precision_{case}.pdf",
@@ -103,6 +104,8 @@ rule work_precision_figure:
         ),
         provenance="results/figures/work_precision_{case}.provenance.json",
     params:
+        code=SRC_PRESENT,
+        runs=lambda w: sweep_runs([w.case]),
         methods=WORK_PRECISION.get("methods", {}),
         fit_levels=WORK_PRECISION.get("fit_levels", 4),
         arrival_window=WORK_PRECISION.get("arrival_window"),
@@ -122,9 +125,7 @@ rule work_precision_figure:
 rule stability_table:
     """Every method on every stress case: ok, or failed with a message; a violation stops here."""
     input:
-        runs=[f"results/stress/{c['id']}/{m}.h5" for c in STRESS_CASES for m in c["methods"]],
-        references=[f"results/stress/{c['id']}/reference.h5" for c in STRESS_CASES],
-        code=SRC_PRESENT,
+        batches=[*STRESS_DIRS.values(), *(f"results/stress/{name}/reference" for name in STABILITY.get("sets", []))],
     output:
         csv=report(
             "results/tables/stability.csv",
@@ -137,6 +138,9 @@ rule stability_table:
         html="results/tables/stability.html",
         provenance="results/tables/stability.provenance.json",
     params:
+        code=SRC_PRESENT,
+        runs=STRESS_RUNS,
+        references=STRESS_REFERENCES,
         tolerances=STABILITY.get("tolerances", {}),
     log:
         "logs/tables/stability.log",
@@ -153,9 +157,7 @@ rule stability_table:
 rule stability_map:
     """Where each SEM scheme is stable and accurate at one step, over mass and impedance."""
     input:
-        runs=[f"results/stability_map/{p}/{m}.h5" for p in MAP_POINTS for m in MAP.get("methods", [])],
-        references=[f"results/stability_map/{p}/reference.h5" for p in MAP_POINTS],
-        code=SRC_PRESENT,
+        batches=[f"results/stability_map/{m}" for m in [*MAP.get("methods", []), "reference"]] if MAP else [],
     output:
         csv=report(
             "results/tables/stability_map.csv",
@@ -180,6 +182,9 @@ rule stability_map:
         ),
         provenance="results/tables/stability_map.provenance.json",
     params:
+        code=SRC_PRESENT,
+        runs=[f"results/stability_map/{m}/{p}.h5" for m in MAP.get("methods", []) for p in MAP_POINTS],
+        references=[f"results/stability_map/reference/{p}.h5" for p in MAP_POINTS],
         spec=MAP,
     log:
         "logs/figures/stability_map.log",

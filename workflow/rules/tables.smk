@@ -5,8 +5,7 @@ rule readings_table:
     """One reading of a set with variants against its measurements (for the paper's set: Table 2
     for one reading of the experiment's rod, with the published results its cases declare)."""
     input:
-        runs=lambda w: reading_runs(w.variant),
-        code=SRC_PRESENT,
+        runs=run_batches(lambda w: reading_runs(w.variant)),
     output:
         csv=report(
             "results/tables/{set}_{variant}.csv",
@@ -20,6 +19,8 @@ rule readings_table:
         tex="results/tables/{set}_{variant}.tex",
         provenance="results/tables/{set}_{variant}.provenance.json",
     params:
+        code=SRC_PRESENT,
+        runs=lambda w: reading_runs(w.variant),
         variant="{variant}",
         title=lambda w: set_title(w.set),
         reference=lambda w: PROJECT.compare.get(w.set, {}).get("reference", ""),
@@ -41,8 +42,7 @@ rule readings_table:
 rule readings_summary:
     """Mean and max error against the measurements per reading and method of a set with variants."""
     input:
-        runs=lambda w: set_reading_runs(w.set),
-        code=SRC_PRESENT,
+        runs=run_batches(lambda w: set_reading_runs(w.set)),
     output:
         csv=report(
             "results/tables/{set}_variants.csv",
@@ -55,6 +55,8 @@ rule readings_summary:
         html="results/tables/{set}_variants.html",
         provenance="results/tables/{set}_variants.provenance.json",
     params:
+        code=SRC_PRESENT,
+        runs=lambda w: set_reading_runs(w.set),
         variants=lambda w: READING_SETS[w.set],
         published=lambda w: set_published(w.set),
     wildcard_constraints:
@@ -74,8 +76,7 @@ rule readings_summary:
 rule fig2_comparison:
     """Fig. 2's numbers: contact time and maxima per method against the SEM and the paper's."""
     input:
-        runs=lambda w: runs_of([PROJECT.cases["model"]]),
-        code=SRC_PRESENT,
+        runs=run_batches(lambda w: runs_of([PROJECT.cases["model"]])),
     output:
         csv=report(
             "results/tables/fig2_comparison.csv",
@@ -87,6 +88,9 @@ rule fig2_comparison:
         md="results/tables/fig2_comparison.md",
         html="results/tables/fig2_comparison.html",
         provenance="results/tables/fig2_comparison.provenance.json",
+    params:
+        code=SRC_PRESENT,
+        runs=lambda w: runs_of([PROJECT.cases["model"]]),
     log:
         "logs/tables/fig2_comparison.log",
     group: GROUP_TABLES
@@ -105,10 +109,9 @@ rule film_table:
     method, the calibrated law, the film's prediction band and the model-form error of the
     quasi-static contact."""
     input:
-        runs=[run for v in FILM_TABLE.values() for run in reading_runs(v)] if FILM_TABLE_SETS else [],
+        runs=run_batches([run for v in FILM_TABLE.values() for run in reading_runs(v)] if FILM_TABLE_SETS else []),
         band=f"results/studies/film_band_{FILM_TABLE.get('film')}.h5",
         sensor_bands=sensor_band_files([v for v in [FILM_TABLE.get("sensor_calibrated")] if SENSOR_READINGS.get(v)]),
-        code=SRC_PRESENT,
     output:
         csv=report(
             "results/tables/{set}_film.csv",
@@ -121,6 +124,8 @@ rule film_table:
         html="results/tables/{set}_film.html",
         provenance="results/tables/{set}_film.provenance.json",
     params:
+        code=SRC_PRESENT,
+        runs=[run for v in FILM_TABLE.values() for run in reading_runs(v)] if FILM_TABLE_SETS else [],
         variants=FILM_TABLE,
     wildcard_constraints:
         set=one_of(FILM_TABLE_SETS),
@@ -141,7 +146,6 @@ rule film_band_table:
     input:
         bands=expand("results/studies/film_band_{variant}.h5", variant=FILM_VARIANTS),
         cases=[f"results/cases/{c['id']}.yaml" for v in FILM_VARIANTS for c in reading_cases(v)],
-        code=SRC_PRESENT,
     output:
         csv=report(
             "results/tables/film_band.csv",
@@ -154,6 +158,7 @@ rule film_band_table:
         html="results/tables/film_band.html",
         provenance="results/tables/film_band.provenance.json",
     params:
+        code=SRC_PRESENT,
         variants=FILM_VARIANTS,
     log:
         "logs/tables/film_band.log",
@@ -171,7 +176,6 @@ rule film_indentation_table:
     """The continuum's indentation curves (the calibrated laws) against the analytic laws."""
     input:
         curves=expand("results/indentation/{case}.h5", case=CALIBRATED_CASES),
-        code=SRC_PRESENT,
     output:
         csv=report(
             "results/tables/film_indentation.csv",
@@ -184,6 +188,7 @@ rule film_indentation_table:
         html="results/tables/film_indentation.html",
         provenance="results/tables/film_indentation.provenance.json",
     params:
+        code=SRC_PRESENT,
         cases=CALIBRATED_CASES,
     log:
         "logs/tables/film_indentation.log",

@@ -9,8 +9,7 @@ SRC_WAVES = sources("rodimpact.present.wave_figures", "rodimpact.jobs.logs")
 rule wave_map:
     """The axial strain over the rod against time, for one case that lists strain_field."""
     input:
-        runs=lambda w: field_runs(PROJECT.cases[w.case]),
-        code=SRC_WAVES,
+        runs=run_batches(lambda w: field_runs(PROJECT.cases[w.case])),
     output:
         pdf=report(
             "results/figures/wave_map_{case}.pdf",
@@ -28,6 +27,8 @@ rule wave_map:
         ),
         provenance="results/figures/wave_map_{case}.provenance.json",
     params:
+        code=SRC_WAVES,
+        runs=lambda w: field_runs(PROJECT.cases[w.case]),
         field_grid=lambda w: PROJECT.cases[w.case]["field_grid"],  # for the caption
         far_end=lambda w: PROJECT.cases[w.case]["rod"]["far_end"],
     log:

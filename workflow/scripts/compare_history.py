@@ -5,4 +5,4 @@ from rodimpact.present.compare_artifacts import make_history_figure
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821
-    make_history_figure(snakemake.input.runs, pdf=out.pdf, png=out.png, provenance=out.provenance)  # noqa: F821
+    make_history_figure(snakemake.params.runs, pdf=out.pdf, png=out.png, provenance=out.provenance)  # noqa: F821

@@ -5,4 +5,4 @@ from rodimpact.jobs.logs import script_logging
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821
-    export_forces(snakemake.input.runs, out.csvs, out.jsons, provenance=out.provenance)  # noqa: F821
+    export_forces(snakemake.params.runs, out.csvs, out.jsons, provenance=out.provenance)  # noqa: F821

@@ -5,6 +5,6 @@ from rodimpact.jobs.logs import script_logging
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out, params = snakemake.output, snakemake.params  # noqa: F821
-    make_readings_table(snakemake.input.runs, params.variant, title=params.title,  # noqa: F821
+    make_readings_table(snakemake.params.runs, params.variant, title=params.title,  # noqa: F821
                         reference=params.reference, csv=out.csv, md=out.md, html=out.html, tex=out.tex,
                         provenance=out.provenance)

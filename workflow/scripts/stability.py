@@ -5,6 +5,6 @@ from rodimpact.jobs.logs import script_logging
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821
-    make_stability(snakemake.input.runs, snakemake.input.references,  # noqa: F821
+    make_stability(snakemake.params.runs, snakemake.params.references,  # noqa: F821
                    snakemake.params.tolerances, csv=out.csv, md=out.md, html=out.html,  # noqa: F821
                    provenance=out.provenance)

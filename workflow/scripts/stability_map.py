@@ -5,5 +5,5 @@ from rodimpact.jobs.logs import script_logging
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out, params = snakemake.output, snakemake.params  # noqa: F821
-    make_stability_map(snakemake.input.runs, snakemake.input.references, params.spec,  # noqa: F821
+    make_stability_map(params.runs, params.references, params.spec,  # noqa: F821
                        csv=out.csv, pdf=out.pdf, png=out.png, provenance=out.provenance)

@@ -1,8 +1,9 @@
-"""Several runs in one job: the points of a sweep, a row of the stability map, the levels of a
-work-precision sweep. Each run is its own HDF5 file, written whole (atomically) with its own
-provenance, as :func:`rodimpact.jobs.runner.run_to_file` writes a single run; a batch only
-shares what every run of it would repeat: the process, its imports, the case file's record and
-the code version.
+"""Several runs in one job: the points of a sweep, the stability map's points or a stress set's
+cases by one method, the levels of a work-precision sweep. Each run is its own HDF5 file, written
+whole (atomically) with its own provenance, as :func:`rodimpact.jobs.runner.run_to_file` writes a
+single run; a batch only shares what every run of it would repeat: the process, its imports, the
+case file's record and the code version. A batch whose rule's output is one directory
+(:func:`run_batch_into`) writes its runs into it, one file ``{name}.h5`` per run.
 
 A run whose contact law is calibrated by a curve (a sweep point of a ``tabulated`` law) has no
 case of its own for the workflow's curve rule to compute it: its ``curve`` entry names the rule
@@ -22,7 +23,7 @@ from rodimpact.storage.provenance import code_version
 from rodimpact.jobs.runner import run_to_file
 from rodimpact.jobs.timing import Timing
 
-__all__ = ["CURVE_BUILDERS", "run_batch"]
+__all__ = ["CURVE_BUILDERS", "run_batch", "run_batch_into"]
 
 log = logging.getLogger(__name__)
 
@@ -42,7 +43,9 @@ def run_batch(runs: Mapping[str, Mapping[str, Any]], paths: Mapping[str, str | P
     runs : mapping of str to mapping
         Output name -> run: ``case`` (a resolved case), ``method``, and optionally ``study``
         (stored in the run's config, ``run.study``), ``level`` (a work-precision level) and
-        ``curve`` (``{"rule": ..., "settings": ...}``: the law's curve, computed here first).
+        ``curve`` (``{"rule": ..., "settings": ...}``: the law's curve, computed here first),
+        ``contact_curve`` (the file of the law's curve, when a rule computed it) and
+        ``case_file`` (the case file of this run, when it is not the batch's ``case_file``).
     paths : mapping of str to path
         Output name -> the run's HDF5 file (the rule's named outputs); the same names as ``runs``.
     case_file : path, optional
@@ -66,20 +69,41 @@ def run_batch(runs: Mapping[str, Mapping[str, Any]], paths: Mapping[str, str | P
     """
     if set(runs) != set(paths):
         raise ValueError(f"runs and paths differ: runs {sorted(runs)}, paths {sorted(paths)}")
-    reference = case_file_reference(case_file) if case_file is not None else None
+    references: dict[str, dict[str, str]] = {}
     version = code_version()
     timed = Timing(**timing) if timing is not None else None
     written = []
     for name, run in runs.items():
-        curve = None
+        curve = run.get("contact_curve")  # the curve file of a law calibrated by a rule's curve
         if run.get("curve") is not None:
             rule = run["curve"].get("rule")
             if rule not in CURVE_BUILDERS:
                 raise ValueError(f"runs: {name}: no curve rule {rule!r} in a batch; known: {', '.join(CURVE_BUILDERS)}")
             module, function = CURVE_BUILDERS[rule]
             curve = getattr(importlib.import_module(module), function)(run["case"], run["curve"].get("settings"))
+        source = run.get("case_file", case_file)
+        if source is not None and str(source) not in references:
+            references[str(source)] = case_file_reference(source)
         written.append(run_to_file(run["case"], run["method"], paths[name], level=run.get("level"),
                                    keep_failed=keep_failed, timing=timed, study=run.get("study"),
-                                   case_file=reference, contact_curve=curve, code_version=version))
+                                   case_file=None if source is None else references[str(source)],
+                                   contact_curve=curve, code_version=version))
     log.info("batch of %d runs written", len(written))
     return written
+
+
+def run_batch_into(runs: Mapping[str, Mapping[str, Any]], directory: str | Path, **options: Any) -> list[Path]:
+    """:func:`run_batch` with every run written to ``directory/{name}.h5`` (the directory is made
+    first): the batch of a rule whose output is that directory. ``options`` as for :func:`run_batch`.
+
+    Raises
+    ------
+    ValueError
+        A run's name is not a plain file name (empty, or with a path separator).
+    """
+    directory = Path(directory)
+    bad = [name for name in runs if not name or Path(name).name != name or name in (".", "..")]
+    if bad:
+        raise ValueError(f"runs: {bad[0]!r} is not a file name in {directory}")
+    directory.mkdir(parents=True, exist_ok=True)
+    return run_batch(runs, {name: directory / f"{name}.h5" for name in runs}, **options)

@@ -1,19 +1,39 @@
-"""Which source files a piece of the workflow depends on, from the static import graph.
+"""Which source files a piece of the workflow runs, from the static import graph, and their digest.
 
-Snakemake does not see the modules a script imports. The rules list, as inputs, the
-package files their entry modules import (transitively), so a change to the code a rule
-runs reruns it, and a change to unrelated code (a figure, a benchmark) does not.
+Snakemake does not see the modules a script imports. Each rule passes, as a ``params`` entry,
+the digest of the package files its entry modules import (transitively): snakemake reruns a
+job whose params changed (its default rerun triggers), so a change to the code a rule runs
+reruns it, and a change to unrelated code (a figure, a benchmark) does not. One value per job
+instead of some sixty input files keeps planning cheap: snakemake looks every input of every
+job up against every rule's outputs.
+
+What snakemake does on its own
+    For a ``script:`` rule it records the script's own source (rerun trigger ``code``), not
+    the modules the script imports; its ``params`` trigger compares the ``repr`` of each param
+    with the one recorded when the job last ran.
+
+Why that is not enough here
+    The science lives in ``src/rodimpact``, which the scripts import.
+
+If snakemake's internals change
+    Should snakemake stop rerunning on changed params, a code change reruns nothing:
+    ``tests/test_workflow_changes.py::test_a_methods_code_change_reruns_only_its_runs`` fails.
 """
 
 from __future__ import annotations
 
 import ast
+import hashlib
 from pathlib import Path
 from typing import Iterable
 
-__all__ = ["module_sources"]
+__all__ = ["module_sources", "source_digest"]
 
 PACKAGE = "rodimpact"
+
+#: (file, modification time, size) -> the package modules it imports: each file is parsed once
+#: per process, however many rules ask for its closure.
+_PARSED: dict[tuple[str, int, int], frozenset[str]] = {}
 
 
 def _module_file(src: Path, module: str) -> Path | None:
@@ -29,8 +49,12 @@ def _parents(module: str) -> list[str]:
     return [".".join(parts[:i]) for i in range(1, len(parts))]
 
 
-def _imports(src: Path, module: str, path: Path) -> set[str]:
+def _imports(src: Path, module: str, path: Path) -> frozenset[str]:
     """Package modules imported by ``module`` (file ``path``): absolute and relative."""
+    stat = path.stat()
+    key = (str(path.resolve()), stat.st_mtime_ns, stat.st_size)
+    if key in _PARSED:
+        return _PARSED[key]
     package = module if path.name == "__init__.py" else module.rpartition(".")[0]
     found: set[str] = set()
     for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), filename=str(path))):
@@ -46,7 +70,9 @@ def _imports(src: Path, module: str, path: Path) -> set[str]:
             found.add(base)
             # "from pkg import name" may import a submodule called name
             found.update(f"{base}.{alias.name}" for alias in node.names)
-    return {m for m in found if (m == PACKAGE or m.startswith(PACKAGE + ".")) and _module_file(src, m)}
+    result = frozenset(m for m in found if (m == PACKAGE or m.startswith(PACKAGE + ".")) and _module_file(src, m))
+    _PARSED[key] = result
+    return result
 
 
 def module_sources(src: str | Path, entry_modules: Iterable[str]) -> list[str]:
@@ -63,6 +89,11 @@ def module_sources(src: str | Path, entry_modules: Iterable[str]) -> list[str]:
     -------
     list of str
         Sorted paths (as given by ``src``), package ``__init__.py`` files included.
+
+    Raises
+    ------
+    ModuleNotFoundError
+        An entry module is not a file under ``src``.
     """
     src = Path(src)
     todo = list(entry_modules)
@@ -80,3 +111,17 @@ def module_sources(src: str | Path, entry_modules: Iterable[str]) -> list[str]:
         todo.extend(_parents(module))
         todo.extend(_imports(src, module, path) - seen)
     return sorted(str(p) for p in files)
+
+
+def source_digest(src: str | Path, entry_modules: Iterable[str]) -> str:
+    """SHA-256 (hex) of the sources :func:`module_sources` finds: each file's path below ``src``
+    and its bytes. Another checkout of the same code has the same digest; a change to any of
+    those files, or a module added to or dropped from the closure, changes it."""
+    src = Path(src)
+    sha = hashlib.sha256()
+    for name in module_sources(src, entry_modules):
+        path = Path(name)
+        for part in (path.relative_to(src).as_posix().encode(), path.read_bytes()):
+            sha.update(len(part).to_bytes(8, "little"))
+            sha.update(part)
+    return sha.hexdigest()

@@ -100,7 +100,8 @@ def _literal_prefix(pattern: str) -> str:
     return pattern.split("{", 1)[0]
 
 
-def unknown_target_message(target: str, patterns: Iterable[str], rule_names: Sequence[str]) -> str:
+def unknown_target_message(target: str, patterns: Iterable[str], rule_names: Sequence[str],
+                           batch: tuple[str, str] | None = None) -> str:
     """One line saying that no rule makes ``target``, with what the nearest folder offers.
 
     Parameters
@@ -111,6 +112,9 @@ def unknown_target_message(target: str, patterns: Iterable[str], rule_names: Seq
         The output patterns of every rule (``{wildcard}`` as written in the rules).
     rule_names : sequence of str
         The rules that may be asked for by name.
+    batch : (str, str), optional
+        The directory holding ``target`` that a rule writes as a whole (a batch of runs), and
+        that rule's name: the message asks for the directory instead.
 
     Returns
     -------
@@ -118,6 +122,9 @@ def unknown_target_message(target: str, patterns: Iterable[str], rule_names: Seq
         ``no rule makes '<target>'; <folder> holds: <patterns>`` (or the rule names when no
         folder of the target holds any output).
     """
+    if batch is not None:
+        return (f"no rule makes {target!r} alone: it would be a file of {batch[0]}, which rule {batch[1]} writes "
+                f"as a whole (one job for all its runs); ask for {batch[0]}")
     patterns = sorted({plain_pattern(p) for p in patterns})
     parts = target.split("/")[:-1]
     for depth in range(len(parts), 0, -1):

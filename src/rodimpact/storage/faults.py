@@ -5,6 +5,21 @@ refused by its reader with :class:`UnreadableInput`: one line naming the file an
 The reader also marks the file out of date (:func:`mark_out_of_date`: its modification time
 set to the epoch), so that snakemake's modification-time check reruns the job that makes it
 on the next build; the message says so.
+
+What snakemake does on its own
+    A job reruns when an output is older than the job's script (its ``code`` trigger), whatever
+    its inputs. For a rule whose output is a directory (a batch of runs), snakemake takes the
+    modification time of the file ``.snakemake_timestamp`` it writes inside the directory when
+    the job ends (:data:`DIRECTORY_TIMESTAMP`), not the times of the files in it.
+
+Why that is not enough here
+    A damaged run inside a batch's directory must rerun its batch: the directory's timestamp
+    is marked too.
+
+If snakemake's internals change
+    Should snakemake carry a directory's time elsewhere, a damaged run of a batch is refused
+    again on the next build instead of remade: ``tests/test_faults.py::
+    test_a_damaged_run_of_a_batch_is_named_marked_and_remade`` fails.
 """
 
 from __future__ import annotations
@@ -14,20 +29,29 @@ import logging
 import os
 from pathlib import Path
 
-__all__ = ["REBUILD_HINT", "StoredFileError", "UnreadableInput", "mark_out_of_date"]
+__all__ = ["DIRECTORY_TIMESTAMP", "REBUILD_HINT", "StoredFileError", "UnreadableInput", "mark_out_of_date"]
 
 logger = logging.getLogger(__name__)
 
 #: What the user runs after an input was refused (the marked file is remade first).
 REBUILD_HINT = "marked out of date: `make paper` (or the same snakemake command) remakes it"
+#: The file whose modification time snakemake takes for a directory output's.
+DIRECTORY_TIMESTAMP = ".snakemake_timestamp"
 
 
 def mark_out_of_date(path: str | Path) -> bool:
-    """Set the file's modification time to the epoch (older than every input of its job);
-    False when the file cannot be touched."""
+    """Set the file's modification time to the epoch (older than every input of its job), and so
+    the timestamp of the directory output holding it, when it lies in one (a batch's run); False
+    when the file cannot be touched."""
     with contextlib.suppress(OSError):
         os.utime(path, (0, 0))
         logger.warning("%s: marked out of date (modification time set to the epoch)", path)
+        for parent in Path(path).parents:
+            if (parent / DIRECTORY_TIMESTAMP).is_file():
+                with contextlib.suppress(OSError):
+                    os.utime(parent / DIRECTORY_TIMESTAMP, (0, 0))
+                    logger.warning("%s: its batch %s marked out of date", path, parent)
+                break
         return True
     return False
 

@@ -38,7 +38,7 @@ import h5py
 from rodimpact.storage.bands import read_band
 from rodimpact.storage.casefile import read_case_file
 from rodimpact.storage.curves import read_contact_curve
-from rodimpact.storage.faults import REBUILD_HINT, StoredFileError
+from rodimpact.storage.faults import DIRECTORY_TIMESTAMP, REBUILD_HINT, StoredFileError
 from rodimpact.storage.provenance import (
     commit_exists, file_sha256, find_repo_root, library_versions
 )
@@ -275,9 +275,13 @@ def audit(root: str | Path = ".", *, results: str = "results", workflow: bool = 
             status = workflow_status(root, targets)
     findings = []
     for path in files:
-        if path in exempt:
+        if path in exempt or Path(path).name == DIRECTORY_TIMESTAMP:  # snakemake's, in a batch's directory
             continue
         finding = found.get(path) or Finding(path, "unknown", ("no provenance record lists it",))
+        if workflow and path not in status:  # a run of a batch: its directory is the rule's output
+            holder = next((str(parent) for parent in Path(path).parents if str(parent) in status), None)
+            if holder is not None:
+                status[path] = status[holder]
         if ".tmp." in Path(path).name or ".tmp-" in Path(path).name:
             finding = _merged(finding, ("a temporary file left by an interrupted write",))
         if workflow and path not in status:

@@ -9,8 +9,9 @@ groups them into jobs, and for each rule sums
 
 * ``job_s``: the jobs' times, end minus start: everything a job costs (snakemake's work on
   it, the Python process, the imports, the solves, the writing);
-* ``solver_s``: the solver times stored in the job's HDF5 runs (``wall_time_s``; a timed
-  run stores the median of its repeats, counted ``wall_time_repeats`` times);
+* ``solver_s``: the solver times stored in the job's HDF5 runs (its outputs, or the files in its
+  output directory for a batch; ``wall_time_s``; a timed run stores the median of its repeats,
+  counted ``wall_time_repeats`` times);
 * ``overhead_s = job_s - solver_s``, its median per job and its share per run file.
 
 ``wall_s`` is the span from the first start to the last end: of a rule's jobs, and, in the
@@ -167,9 +168,15 @@ def read_jobs(root: str | Path = ".", exclude: Sequence[str] = EXCLUDED) -> list
     return sorted(jobs, key=lambda job: (job.start, job.rule))
 
 
+def _run_files(root: Path, output: str) -> list[Path]:
+    """The HDF5 files an output holds: itself, or those in it when it is a directory (a batch's runs)."""
+    path = root / output
+    return sorted(path.glob("*.h5")) if path.is_dir() else [path] if output.endswith(".h5") else []
+
+
 def _job(rule: str, entries: list[tuple[float, float, str]], root: Path) -> Job:
     outputs = tuple(sorted(output for _, _, output in entries))
-    solver = [s for s in (_solver_seconds(root / o) for o in outputs if o.endswith(".h5")) if s is not None]
+    solver = [s for s in (_solver_seconds(f) for o in outputs for f in _run_files(root, o)) if s is not None]
     return Job(rule=rule, start=min(start for _, start, _ in entries), end=max(end for end, _, _ in entries),
                outputs=outputs, solver_s=sum(solver), runs=len(solver))
 
