@@ -134,7 +134,7 @@ def _stiffness_matrix(basis: Basis, lam: float, mu: float) -> sp.csr_matrix:
     (the same products and sums, in the same order, into the same COO layout), with each
     local function's strains computed once and a trial function's column of the element
     matrices at a time (scikit-fem calls the form once per pair of local functions)."""
-    r = basis.global_coordinates().value[0]  # w.x[0] of the form, shape (elements, points)
+    r = basis.default_parameters()["x"][0]  # w.x[0] of the form, shape (elements, points)
     dx = basis.dx
     test = np.array([strain(phi[0], r) for phi in basis.basis])  # (local, 4, elements, points)
     vrr, vzz, vtt, vrz = test[:, 0], test[:, 1], test[:, 2], test[:, 3]
