@@ -29,12 +29,13 @@ import numpy as np
 import qdldl
 import scipy.sparse as sp
 from numpy.typing import NDArray
+from scipy.sparse.linalg import spsolve_triangular
 from skfem import Basis
 
 from rodimpact.solvers.fem_axi.axisym import cross_section_mean_uz
 from rodimpact.solvers.fem_axi.farbar import FarBar
 
-__all__ = ["AxiBody", "spd_solver"]
+__all__ = ["AxiBody", "spd_inverse_rows", "spd_solver"]
 
 
 def spd_solver(matrix: sp.spmatrix) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
@@ -64,6 +65,61 @@ def spd_solver(matrix: sp.spmatrix) -> Callable[[NDArray[np.float64]], NDArray[n
         return np.column_stack([factor.solve(np.ascontiguousarray(column)) for column in b.T])
 
     return solve
+
+
+def spd_inverse_rows(matrix: sp.spmatrix, rows: sp.spmatrix
+                     ) -> tuple[NDArray[np.float64], Callable[[NDArray[np.float64]], NDArray[np.float64]]]:
+    """``rows matrix^-1 rows^T`` of a sparse SPD matrix and sparse rows, from one LDL^T factor.
+
+    With the factor P (I + L) D (I + L)^T P^T of :func:`spd_solver`, the product is Y^T D^-1 Y
+    for Y = (I + L)^-1 P^T rows^T. The columns of Y are nonzero only on the rows the rows'
+    DOFs reach in the factor's elimination tree (their paths to its root: a few per cent of the
+    DOFs for a surface's nodes), so the forward substitution runs on that block of L alone:
+    the c back-substitutions of c full solves are not needed.
+
+    Parameters
+    ----------
+    matrix : sparse matrix, shape (n, n)
+        Symmetric positive definite (only its upper triangle is read).
+    rows : sparse matrix, shape (c, n)
+
+    Returns
+    -------
+    inverse_rows : ndarray, shape (c, c)
+        ``rows matrix^-1 rows^T`` (symmetric).
+    solve : callable
+        The factor's solver, as :func:`spd_solver` returns it.
+    """
+    factor = qdldl.Solver(sp.triu(matrix, format="csc"))
+    lower, diagonal, order = factor.factors()
+    lower = sp.csc_matrix(lower)
+    lower.sort_indices()
+    n = lower.shape[0]
+    # the elimination tree: the parent of column j is its first row below the diagonal
+    parent = np.full(n, -1, dtype=np.int64)
+    filled = np.diff(lower.indptr) > 0
+    parent[filled] = lower.indices[lower.indptr[:-1][filled]]
+    position = np.empty(n, dtype=np.int64)
+    position[order] = np.arange(n)
+    rows_p = sp.csc_matrix(rows)[:, order]  # columns in the factor's order
+    reached = np.zeros(n, dtype=bool)
+    for j in np.flatnonzero(np.diff(rows_p.indptr) > 0):
+        while j != -1 and not reached[j]:
+            reached[j] = True
+            j = parent[j]
+    reach = np.flatnonzero(reached)
+    block = (sp.eye(len(reach), format="csr") + lower[reach][:, reach]).tocsr()
+    Y = spsolve_triangular(block, rows_p[:, reach].T.toarray(), lower=True, unit_diagonal=True)
+    Y = np.asarray(Y).reshape(len(reach), -1)
+    inverse_rows = (Y / diagonal[reach][:, None]).T @ Y
+
+    def solve(b: NDArray[np.float64]) -> NDArray[np.float64]:
+        b = np.asarray(b, dtype=float)
+        if b.ndim == 1:
+            return factor.solve(b)
+        return np.column_stack([factor.solve(np.ascontiguousarray(column)) for column in b.T])
+
+    return 0.5 * (inverse_rows + inverse_rows.T), solve
 
 
 @dataclass

@@ -124,18 +124,34 @@ def axisym_stiffness(basis: Basis, youngs_modulus_pa: float,
     """
     _check_basis(basis)
     lam, mu = _lame(youngs_modulus_pa, poisson_ratio)
-
-    @BilinearForm
-    def form(u, v, w):
-        r = w.x[0]
-        urr, uzz, utt, urz = strain(u, r)
-        vrr, vzz, vtt, vrz = strain(v, r)
-        return (lam * (urr + uzz + utt) * (vrr + vzz + vtt)
-                + 2.0 * mu * (urr * vrr + uzz * vzz + utt * vtt) + mu * urz * vrz) * r
-
-    stiffness = asm(form, basis).tocsr()
+    stiffness = _stiffness_matrix(basis, lam, mu)
     log.debug("axisymmetric stiffness: %d DOFs, %d nonzeros", basis.N, stiffness.nnz)
     return stiffness
+
+
+def _stiffness_matrix(basis: Basis, lam: float, mu: float) -> sp.csr_matrix:
+    """:func:`axisym_stiffness`'s matrix: what ``asm`` of its bilinear form gives, bit for bit
+    (the same products and sums, in the same order, into the same COO layout), with each
+    local function's strains computed once and a trial function's column of the element
+    matrices at a time (scikit-fem calls the form once per pair of local functions)."""
+    r = basis.default_parameters()["x"][0]  # w.x[0] of the form, shape (elements, points)
+    dx = basis.dx
+    test = np.array([strain(phi[0], r) for phi in basis.basis])  # (local, 4, elements, points)
+    vrr, vzz, vtt, vrz = test[:, 0], test[:, 1], test[:, 2], test[:, 3]
+    trace_v = vrr + vzz + vtt
+    nb, nt = len(basis.basis), basis.nelems
+    data = np.empty((nb, nb, nt))
+    for j in range(nb):  # the trial function u = phi_j, every test function v = phi_i at once
+        urr, uzz, utt, urz = test[j]
+        values = (lam * (urr + uzz + utt) * trace_v
+                  + 2.0 * mu * (urr * vrr + uzz * vzz + utt * vtt) + mu * urz * vrz) * r
+        data[j] = np.sum(values * dx, axis=-1)
+    dofs = basis.element_dofs  # (local, elements)
+    rows = np.tile(dofs, (nb, 1)).ravel()  # entry (j, i, e): row dofs[i, e], column dofs[j, e]
+    cols = np.repeat(dofs, nb, axis=0).ravel()
+    matrix = sp.coo_matrix((data.ravel(), (rows, cols)), shape=(basis.N, basis.N))
+    matrix.eliminate_zeros()
+    return matrix.tocsr()
 
 
 def axisym_mass(basis: Basis, density_kg_m3: float) -> sp.csr_matrix:

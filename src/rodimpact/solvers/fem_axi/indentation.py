@@ -23,8 +23,8 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.linalg import cholesky, solve_triangular
 from scipy.optimize import nnls
-from scipy.sparse.linalg import splu
 
+from rodimpact.solvers.fem_axi.axibody import spd_inverse_rows
 from rodimpact.solvers.fem_axi.axisym import cross_section_mean_uz
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact
@@ -88,21 +88,19 @@ def static_indentation(problem: AxiImpact, displacements_m: Sequence[float],
     rod, imp, B_rod, B_imp, gap0, r_c, fine = (model.rod, model.impactor, model.B_rod, model.B_imp, model.gap0,
                                                 model.r_c, model.fine_size_m)
     free = np.arange(imp.n - 1)  # the rigid coordinate W (last) is prescribed
-    solve_rod = splu(rod.K).solve
-    solve_imp = splu(imp.K[free][:, free].tocsc()).solve
-    B_i = B_imp[:, free]
-    # every candidate's column at once: SuperLU solves the columns of a matrix right side one by one
-    G_rod = solve_rod(np.asfortranarray(B_rod.T.toarray()))
-    G_imp = solve_imp(np.asfortranarray(B_i.T.toarray()))
-    chol = cholesky(B_rod @ G_rod + B_i @ G_imp, lower=True)
-    # the rod's displacement is G_rod lam: the mean displacements are rows times G_rod
+    # the Delassus operator B K^-1 B^T of each body from its factor's elimination tree alone
+    # (spd_inverse_rows): no full solve per candidate
+    delassus_rod, solve_rod = spd_inverse_rows(rod.K, B_rod)
+    delassus_imp, _ = spd_inverse_rows(imp.K[free][:, free], B_imp[:, free])
+    chol = cholesky(delassus_rod + delassus_imp, lower=True)
+    # the rod's displacement is K^-1 B^T lam: the mean displacements are (K^-1 rows^T)^T B^T lam
     face = rod.reduce_rows(cross_section_mean_uz(rod.basis, 0.0, problem.rod_radius_m))
     if model.film is None:
         surface = face
     else:
         surface = rod.reduce_rows(cross_section_mean_uz(rod.basis, -model.film.film_thickness_m,
                                                         model.film.film_radius_m))
-    means = np.vstack([(face @ G_rod).ravel(), (surface @ G_rod).ravel()])
+    means = np.asarray(B_rod @ solve_rod(np.column_stack([face.toarray().ravel(), surface.toarray().ravel()]))).T
     # a rigid translation of the whole cap by d closes every gap by d
     forces, radii, moved = [], [], []
     for d in displacements_m:
