@@ -440,7 +440,7 @@ def default_targets():
 
 def field_runs(case):
     """The runs of a case's methods that record the strain field (the wave map's inputs)."""
-    return [f"results/runs/{case['id']}/{m}.h5" for m in case["methods"] if METHOD_REGISTRY[m].records_field]
+    return [run for run, m in zip(runs_of([case]), case["methods"]) if METHOD_REGISTRY[m].records_field]
 
 
 # The sensor as built (sensor.smk): the readings config["sensor"] names, checked by the
