@@ -29,7 +29,7 @@ from helpers.snakemake_cli import Run, snakemake, snakemake_command, snakemake_e
 
 pytestmark = pytest.mark.workflow
 
-SOLVE = "results/runs/model/sem.h5"  # one case file and one SEM solve (about 2 s)
+SOLVE = "results/runs/model/sem/model.h5"  # a run of the batch results/runs/model/sem (one SEM solve, about 2 s)
 TABLE = "results/tables/fig2_comparison.csv"  # reads the four runs of 'model'
 LONG = "results/tables/table2_r10_l30.csv"  # 25 jobs: six cases, four methods each
 BUILD_TIMEOUT_S = 600
@@ -78,9 +78,9 @@ def built(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 @pytest.mark.parametrize("target, expected", [
-    ("results/runs/nosuch/sem.h5", "rodimpact: unknown case 'nosuch'; known: model, "),
-    ("results/runs/short_rod/fem_axi.h5", "rodimpact: case 'short_rod' does not run 'fem_axi'; its methods: "
-                                          "sem, sem_paper, fem1d"),
+    ("results/runs/nosuch/sem", "rodimpact: unknown group of runs 'nosuch'; known: "),
+    ("results/runs/smooth/fem_axi", "rodimpact: no case of group 'smooth' runs 'fem_axi'; its cases' methods: "
+                                    "fem1d, sem, sem_paper"),
     ("results/convergence/model/sem/level99.h5", "rodimpact: no rule makes 'results/convergence/model/sem/"
                                                  "level99.h5' alone: it would be a file of results/convergence/"
                                                  "model/sem, which rule solve_levels writes as a whole"),
@@ -91,7 +91,7 @@ def built(tmp_path_factory: pytest.TempPathFactory) -> Path:
      "rodimpact: no rule makes 'results/sweeps/ball_sweep-r1_l301/sem/ball_diameter_m~0.5.h5' alone: it would be "
      "a file of results/sweeps/ball_sweep-r1_l301/sem, which rule solve_sweep writes as a whole"),
     ("tables", "rodimpact: no rule makes 'tables' and no rule has that name; rules: all, "),
-], ids=["unknown case", "method the case does not run", "a level of a batch", "an unknown method's level",
+], ids=["unknown group", "method no case of the group runs", "a level of a batch", "an unknown method's level",
         "a sweep point of a batch", "unknown rule"])
 def test_a_target_the_configuration_does_not_define_is_one_line(project: Path, target: str, expected: str) -> None:
     assert_one_line_refusal(snakemake(project, "-n", target), expected)
@@ -229,8 +229,9 @@ def _damage(run_file: Path, how: str) -> None:
 
 
 @pytest.mark.parametrize("how, reason", [
-    ("truncated", "results/runs/model/sem.h5: "),
-    ("edited", "results/runs/model/sem.h5: its content differs from its data_sha256 (changed after it was written)"),
+    ("truncated", "results/runs/model/sem/model.h5: "),
+    ("edited", "results/runs/model/sem/model.h5: its content differs from its data_sha256 (changed after it was "
+               "written)"),
 ])
 def test_a_damaged_run_is_named_marked_and_remade(built: Path, tmp_path: Path, how: str, reason: str) -> None:
     path = clone_built(built, tmp_path / "project")

@@ -436,7 +436,7 @@ def test_provenance_audit_fails_on_hand_edits_and_stale_artifacts(dottest: DotTe
     project = clone_build(dottest, tmp_path / "project").workdir
     table = project / "results/tables/table2_r10_l30_film.csv"
     table.write_text(table.read_text().replace("ball_3.16mm", "ball_3.16mm ", 1))
-    with h5py.File(project / "results/runs/model/fem1d.h5", "r+") as h5:
+    with h5py.File(project / run_path("model", "fem1d"), "r+") as h5:
         h5["contact_force"][5] *= 1.01
     (project / "results/tables/old_table.csv").write_text("a,b\n1,2\n")
     model_yaml = project / "config/cases/model.yaml"
@@ -451,13 +451,13 @@ def test_provenance_audit_fails_on_hand_edits_and_stale_artifacts(dottest: DotTe
             path, problem = line[5:].split(": ", 1)
             failed.setdefault(path, []).append(problem)
     assert "bytes differ from those recorded" in " ".join(failed["results/tables/table2_r10_l30_film.csv"])
-    assert "its content differs from its data_sha256" in " ".join(failed["results/runs/model/fem1d.h5"])
+    assert "its content differs from its data_sha256" in " ".join(failed[run_path("model", "fem1d")])
     assert "no provenance record lists it" in " ".join(failed["results/tables/old_table.csv"])
     assert "not an output of the current workflow" in " ".join(failed["results/tables/old_table.csv"])
-    assert "snakemake: params changed" in " ".join(failed["results/runs/model/sem.h5"])
+    assert "snakemake: params changed" in " ".join(failed[run_path("model", "sem")])
     # what was made from the changed case's runs is planned again
     assert "snakemake: an input is out of date" in " ".join(failed["results/figures/fig2_contact_force.png"])
-    untouched = "results/runs/ball_3.16mm-r10_l30/sem.h5"
+    untouched = run_path("ball_3.16mm-r10_l30", "sem")
     assert untouched not in failed and "results/tables/table2_r10_l30.csv" not in failed
 
 

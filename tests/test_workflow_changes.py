@@ -20,7 +20,7 @@ import yaml
 
 from rodimpact.storage.runs import read_run
 
-from helpers.copies import DOTTEST, DotTestBuild, clone_build, copy_project, project_cases, run_path
+from helpers.copies import DOTTEST, DotTestBuild, clone_build, copy_project, project_cases, run_batch, run_path
 from helpers.snakemake_cli import BUILD_TIMEOUT_S, job_stats, pending, pending_runs, snakemake, summary
 
 pytestmark = pytest.mark.workflow
@@ -45,12 +45,12 @@ def test_target_plans_only_its_jobs(tmp_path: Path) -> None:
     target = "results/tables/table2_r1_l30.csv"
     run = snakemake(project, "-n", "-j2", target)
     assert run.returncode == 0, run.describe()
-    assert job_stats(run.output) == {"case_file": 6, "solve": 18, "readings_table": 1}, run.describe()
-    # Which files: the six r1_l30 balls' case files, their runs by the three methods and the
-    # five outputs of the table2 job.
+    assert job_stats(run.output) == {"case_file": 6, "solve": 3, "readings_table": 1}, run.describe()
+    # Which files: the six r1_l30 balls' case files, their runs by each of the three methods (a
+    # batch each) and the five outputs of the table2 job.
     rows = summary(project, target)
     balls = [c["id"] for c in project_cases(project).cases_in("table2", "r1_l30")]
-    assert pending(rows, "solve") == {run_path(ball, m) for ball in balls for m in ("sem", "fem1d", "fem_axi")}
+    assert pending(rows, "solve") == {run_batch(ball, m) for ball in balls for m in ("sem", "fem1d", "fem_axi")}
     assert pending(rows, "readings_table") == {
         f"results/tables/table2_r1_l30.{ext}" for ext in ("csv", "md", "html", "tex", "provenance.json")
     }
@@ -69,7 +69,7 @@ def test_only_the_cases_asking_for_the_field_have_a_wave_map(tmp_path: Path) -> 
     run = snakemake(project, "-n", "-j2", target)
     assert run.returncode == 0, run.describe()
     assert job_stats(run.output) == {"case_file": 1, "solve": 2, "wave_map": 1}, run.describe()
-    assert pending(summary(project, target), "solve") == {run_path("model", m) for m in ("sem", "fem1d")}
+    assert pending(summary(project, target), "solve") == {run_batch("model", m) for m in ("sem", "fem1d")}
     run = snakemake(project, "-n", "-j2", "results/figures/wave_map_ball_4.75mm-r10_l30.png")
     assert run.returncode != 0 and "no rule makes 'results/figures/wave_map_ball_4.75mm-r10_l30.png'" in run.output
 
@@ -141,7 +141,7 @@ def test_new_row_in_table2_yaml_is_computed(changed: DotTestBuild) -> None:
 def test_new_case_file_is_picked_up(tmp_path: Path) -> None:
     project = copy_project(tmp_path / "project")
     (project / "config/cases/my_experiment.yaml").write_text(NEW_CASE_FILE, encoding="utf-8")
-    target = run_path("my_ball", "sem")
+    target = run_batch("my_ball", "sem", group="my_experiment")
     run = snakemake(project, "-n", "-j2", target)
     assert run.returncode == 0, run.describe()
     assert job_stats(run.output) == {"case_file": 1, "solve": 1}, run.describe()
@@ -265,7 +265,7 @@ def test_changed_case_value_reruns_only_that_case(changed: DotTestBuild) -> None
                                      "stability_map": 1, "forces_model": 1, "fig_force_fit": 1,
                                      "wave_map": 1}, run.describe()
     assert pending(rows := summary(changed.project, workdir=DOTTEST), "case_file") == {"results/cases/model.yaml"}
-    assert pending(rows, "solve") == {run_path("model", m) for m in ("sem", "sem_paper", "fem1d", "fem_axi")}
+    assert pending(rows, "solve") == {run_batch("model", m) for m in ("sem", "sem_paper", "fem1d", "fem_axi")}
     assert pending(rows, "fig2") == {
         "results/figures/fig2_contact_force.pdf", "results/figures/fig2_contact_force.png",
         "results/figures/fig2_contact_force.provenance.json",
@@ -303,9 +303,9 @@ def test_a_methods_code_change_reruns_only_its_runs(changed: DotTestBuild) -> No
     # as built; test_a_methods_code_change_reruns_the_law_it_calibrates: the film's)
     calibrated = {c["id"]: c for c in cases if (c.get("contact") or {}).get("law") == "tabulated"}
     assert calibrated
-    assert pending(rows, "solve") == {run_path(c["id"], "fem_axi") for c in cases
+    assert pending(rows, "solve") == {run_batch(c["id"], "fem_axi") for c in cases
                                       if "fem_axi" in c["methods"] and c["set"] in ("model", "table2")} | {
-        run_path(case, m) for case, c in calibrated.items() for m in c["methods"]}
+        run_batch(case, m) for case, c in calibrated.items() for m in c["methods"]}
     assert pending(rows, "indentation") == {f"results/indentation/{case}.h5" for case in calibrated}
     assert pending(rows, "sensor_band") == {f"results/studies/sensor_band/{case}.h5" for case in calibrated}
     # and the calibrated sweeps' points, whose batches indent each point with fem_axi's code
@@ -319,25 +319,29 @@ def test_a_methods_code_change_reruns_only_its_runs(changed: DotTestBuild) -> No
                           for path in reruns), sorted(reruns)
 
 
-#: A run of the law calibrated by fem_axi's indentation (the text's rod without the film).
+#: A run of the law calibrated by fem_axi's indentation (the text's rod without the film), and
+#: its batch (the reading's six balls by sem).
 CALIBRATED_RUN = run_path("ball_3.16mm-r10_l30_cal", "sem")
+CALIBRATED_BATCH = run_batch("ball_3.16mm-r10_l30_cal", "sem")
 
 
 def test_a_methods_code_change_reruns_the_law_it_calibrates(tmp_path: Path) -> None:
-    """The calibrated law's runs read fem_axi's indentation curve: a change to fem_axi reruns
-    the curve and the run (a shrunk copy of the shipped configuration: .test calibrates none)."""
+    """The calibrated law's runs read fem_axi's indentation curves: a change to fem_axi reruns
+    the curves and the runs (a shrunk copy of the shipped configuration: .test calibrates none)."""
     project = copy_project(tmp_path / "project")
     case = project_cases(project).cases["ball_3.16mm-r10_l30_cal"]
     assert case["contact"]["law"] == "tabulated" and case["methods"] == ["sem"]
-    run = snakemake(project, "-j2", CALIBRATED_RUN, timeout=BUILD_TIMEOUT_S)
+    balls = [c["id"] for c in project_cases(project).cases_in("table2", "r10_l30_cal")]
+    run = snakemake(project, "-j2", CALIBRATED_BATCH, timeout=BUILD_TIMEOUT_S)
     assert run.returncode == 0, run.describe()
-    assert job_stats(run.output) == {"case_file": 1, "indentation": 1, "solve": 1}, run.describe()
+    assert job_stats(run.output) == {"case_file": len(balls), "indentation": len(balls), "solve": 1}, run.describe()
+    assert read_run(project / CALIBRATED_RUN).case_id == case["id"]
     with open(project / "src/rodimpact/solvers/fem_axi/solver.py", "a", encoding="utf-8") as handle:
         handle.write("# touched\n")
-    rows = summary(project, CALIBRATED_RUN)
-    assert pending(rows, "indentation") == {"results/indentation/ball_3.16mm-r10_l30_cal.h5"}
-    assert {p for p in pending(rows) if p.endswith(".h5")} == {
-        CALIBRATED_RUN, "results/indentation/ball_3.16mm-r10_l30_cal.h5"}
+    rows = summary(project, CALIBRATED_BATCH)
+    curves = {f"results/indentation/{ball}.h5" for ball in balls}
+    assert pending(rows, "indentation") == curves
+    assert pending_runs(rows, project) == curves | {run_path(ball, "sem") for ball in balls}
 
 
 def test_figure_code_change_reruns_no_solver(changed: DotTestBuild) -> None:

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers.copies import copy_project, run_path
+from helpers.copies import copy_project, run_batch
 from helpers.snakemake_cli import BUILD_TIMEOUT_S, snakemake
 
 pytestmark = pytest.mark.workflow
@@ -21,7 +21,7 @@ def test_jobs_run_the_checkouts_own_code(tmp_path: Path) -> None:
     project = copy_project(tmp_path / "project")
     runner = project / "src" / "rodimpact" / "jobs" / "runner.py"
     runner.write_text(runner.read_text() + '\nraise ImportError("runner.py of the copy")\n')
-    run = snakemake(project, "-j1", run_path("model", "sem"), timeout=BUILD_TIMEOUT_S)
+    run = snakemake(project, "-j1", run_batch("model", "sem"), timeout=BUILD_TIMEOUT_S)
     assert run.returncode != 0, run.describe()
     log = (project / "logs" / "runs" / "model" / "sem.log")
     assert "runner.py of the copy" in run.output + (log.read_text() if log.exists() else ""), run.describe()
@@ -92,7 +92,7 @@ def test_failing_solver_leaves_no_file(tmp_path: Path) -> None:
     project = copy_project(tmp_path / "project")
     with open(project / "config/cases/model.yaml", "a", encoding="utf-8") as handle:
         handle.write(FAILING_NUMERICS)
-    target = run_path("model", "sem")
+    target = run_batch("model", "sem")
     # --keep-incomplete: snakemake must not be the one that cleans up; the rule itself must
     # never leave a (half-)file behind.
     run = snakemake(project, "-j1", "--keep-incomplete", target, timeout=BUILD_TIMEOUT_S)

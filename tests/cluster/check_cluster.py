@@ -16,8 +16,8 @@ What it does, in order:
    ``timeout -s INT`` (on SIGTERM snakemake would wait for the jobs it believes run):
 
    - the build: ``snakemake --workflow-profile profiles/slurm --directory .test``;
-   - a failing job: the same command for one run, ``results/runs/model/sem.h5``, in a copy
-     whose solver script (``workflow/scripts/solve.py``) raises;
+   - a failing job: the same command for one batch, ``results/runs/model/sem``, in a copy
+     whose batch script (``workflow/scripts/solve_batch.py``) raises;
 
 5. checks the build: exit status 0, the sbatch submissions (the scheduler's own list, which
    keeps every job of the run: ``MinJobAge`` is long), the same files as the local build,
@@ -81,7 +81,7 @@ FAILURE_TIMEOUT_S = 900
 #: A single target, planned through the profile and locally.
 SINGLE_TARGET = "results/tables/fig2_comparison.csv"
 #: The run the failure check asks for, and the rule's log it must name.
-FAILING_TARGET = "results/runs/model/sem.h5"
+FAILING_TARGET = "results/runs/model/sem"
 FAILING_RULE_LOG = "logs/runs/model/sem.log"
 FAILURE_MESSAGE = "deliberate failure of the cluster check"
 FAILING_SCRIPT = f'''"""The cluster check's broken solver: it fails inside the rule's logging, as a solver would."""
@@ -394,7 +394,7 @@ def check_cluster_runs(cluster: LocalSlurm, pristine: Path, scratch: Path, refer
     the build is timed), then one target's plan; check each, and write the benchmark."""
     env = user_environment(cluster)
     built, failing = clone_built(pristine, scratch / "slurm"), clone_built(pristine, scratch / "failing")
-    (failing / "workflow" / "scripts" / "solve.py").write_text(FAILING_SCRIPT, encoding="utf-8")
+    (failing / "workflow" / "scripts" / "solve_batch.py").write_text(FAILING_SCRIPT, encoding="utf-8")
     watch = PlanCacheWatch(built / PLAN_CACHE)
     say(f"through SLURM, with SBATCH_PARTITION={PARTITION} (each in a fresh copy of the project):")
     say(f"     the build: snakemake {' '.join(USER_COMMAND)}  ({built})")
@@ -413,7 +413,7 @@ def check_cluster_runs(cluster: LocalSlurm, pristine: Path, scratch: Path, refer
         say(f"     {slurm.jobs} jobs in {slurm.submissions} submissions, {slurm.wall_s:.0f} s{ratio} -> {path}")
 
     say(f"     a failing job: snakemake {' '.join(USER_COMMAND)} {FAILING_TARGET}  ({failing}: "
-        f"workflow/scripts/solve.py raises)")
+        f"workflow/scripts/solve_batch.py raises)")
     failure_process = SnakemakeProcess(failing, (*USER_COMMAND, FAILING_TARGET), env, FAILURE_TIMEOUT_S,
                                        scratch / "failing_run.log")
     wait_until_done({"the failing run": failure_process})

@@ -125,9 +125,21 @@ def project_cases(workdir: Path):
     return load_project(config, root=workdir, schema_dir=project / "workflow" / "schemas")
 
 
-def run_path(case_id: str, method: str) -> str:
-    """Where a run of ``case_id`` by ``method`` lives, relative to the working directory."""
-    return f"results/runs/{case_id}/{method}.h5"
+def group_of(case_id: str) -> str:
+    """The group a case's runs are batched in, from its id: the reading of a ``{row}-{variant}``
+    case, else the case itself (a set named like its one case, such as ``model``)."""
+    return case_id.rpartition("-")[2] if "-" in case_id else case_id
+
+
+def run_batch(case_id: str, method: str, group: str | None = None) -> str:
+    """The batch directory (rule solve's output) holding the run of ``case_id`` by ``method``."""
+    return f"results/runs/{group or group_of(case_id)}/{method}"
+
+
+def run_path(case_id: str, method: str, group: str | None = None) -> str:
+    """Where a run of ``case_id`` by ``method`` lives, relative to the working directory: in its
+    group's batch, ``results/runs/{group}/{method}/{case}.h5``."""
+    return f"{run_batch(case_id, method, group)}/{case_id}.h5"
 
 
 # --------------------------------------------------------------------------------------------

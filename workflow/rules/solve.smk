@@ -16,8 +16,6 @@ rule solve:
         timing=None,
     log:
         "logs/runs/{group}/{method}.log",
-    wildcard_constraints:
-        group=one_of(GROUPS),
     group: GROUP_SOLVERS
     threads: 1
     resources:

@@ -18,6 +18,7 @@ import logging
 from pathlib import Path
 from typing import Any, Mapping
 
+from rodimpact.storage.atomic import atomic_directory
 from rodimpact.storage.casefile import case_file_reference
 from rodimpact.storage.provenance import code_version
 from rodimpact.jobs.runner import run_to_file
@@ -93,8 +94,10 @@ def run_batch(runs: Mapping[str, Mapping[str, Any]], paths: Mapping[str, str | P
 
 
 def run_batch_into(runs: Mapping[str, Mapping[str, Any]], directory: str | Path, **options: Any) -> list[Path]:
-    """:func:`run_batch` with every run written to ``directory/{name}.h5`` (the directory is made
-    first): the batch of a rule whose output is that directory. ``options`` as for :func:`run_batch`.
+    """:func:`run_batch` with every run written to ``directory/{name}.h5``: the batch of a rule whose
+    output is that directory. The runs are written into a temporary directory beside it, renamed
+    onto it when all are written (:func:`~rodimpact.storage.atomic.atomic_directory`): the batch
+    appears whole or not at all, each run in it whole. ``options`` as for :func:`run_batch`.
 
     Raises
     ------
@@ -105,5 +108,6 @@ def run_batch_into(runs: Mapping[str, Mapping[str, Any]], directory: str | Path,
     bad = [name for name in runs if not name or Path(name).name != name or name in (".", "..")]
     if bad:
         raise ValueError(f"runs: {bad[0]!r} is not a file name in {directory}")
-    directory.mkdir(parents=True, exist_ok=True)
-    return run_batch(runs, {name: directory / f"{name}.h5" for name in runs}, **options)
+    with atomic_directory(directory) as tmp:
+        run_batch(runs, {name: tmp / f"{name}.h5" for name in runs}, **options)
+    return [directory / f"{name}.h5" for name in runs]

@@ -1,4 +1,5 @@
-"""Whole-or-nothing file output: write beside the target, then rename onto it."""
+"""Whole-or-nothing output: write beside the target, then rename onto it; a file
+(:func:`atomic_output`) or a directory of files (:func:`atomic_directory`, a batch's runs)."""
 
 from __future__ import annotations
 
@@ -8,10 +9,11 @@ import logging
 import os
 import re
 import secrets
+import shutil
 from pathlib import Path
 from typing import Iterator
 
-__all__ = ["atomic_output", "remove_stale_temporaries"]
+__all__ = ["atomic_directory", "atomic_output", "remove_stale_temporaries"]
 
 logger = logging.getLogger(__name__)
 
@@ -64,6 +66,43 @@ def atomic_output(path: str | Path) -> Iterator[Path]:
     finally:
         if tmp.exists():
             tmp.unlink()
+    with contextlib.suppress(OSError):  # make the rename durable where supported
+        fd = os.open(target.parent, os.O_RDONLY)
+        try:
+            os.fsync(fd)
+        finally:
+            os.close(fd)
+
+
+def _remove_stale_directories(target: Path) -> None:
+    """Remove the temporary directories an interrupted :func:`atomic_directory` of ``target`` left."""
+    pattern = re.compile(re.escape(f".{target.name}.tmp-") + r"[0-9a-f]{8}")
+    for stale in target.parent.glob(f".{glob.escape(target.name)}.tmp-*"):
+        if pattern.fullmatch(stale.name) and stale.is_dir():
+            shutil.rmtree(stale, ignore_errors=True)
+            logger.warning("removed %s, left by an interrupted write of %s", stale, target)
+
+
+@contextlib.contextmanager
+def atomic_directory(path: str | Path) -> Iterator[Path]:
+    """Yield a temporary directory beside ``path`` (``.<name>.tmp-<hex>``); on success it is renamed
+    onto ``path``, which must not exist or be empty: the directory appears whole or not at all.
+
+    First, the temporary directories an earlier, interrupted write of ``path`` left are removed.
+    On any exception the temporary directory is removed and ``path`` is left as it was. The files
+    written into it are fsynced by their own writers (:func:`atomic_output`).
+    """
+    target = Path(path)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    _remove_stale_directories(target)
+    tmp = target.with_name(f".{target.name}.tmp-{secrets.token_hex(4)}")
+    tmp.mkdir()
+    try:
+        yield tmp
+        os.replace(tmp, target)
+    finally:
+        if tmp.exists():
+            shutil.rmtree(tmp, ignore_errors=True)
     with contextlib.suppress(OSError):  # make the rename durable where supported
         fd = os.open(target.parent, os.O_RDONLY)
         try:
