@@ -29,7 +29,7 @@ def _runs(sweep: dict, count: int) -> dict[str, dict]:
 
 
 def test_each_run_is_its_own_file_as_a_single_run_writes_it(sweep: dict, tmp_path: Path) -> None:
-    case_file = write_case_file(sweep, tmp_path / "case.yaml")
+    case_file = write_case_file(sweep["id"], [sweep], tmp_path / "case.yaml")
     runs = _runs(sweep, 3)
     paths = {name: tmp_path / f"{name}.h5" for name in runs}
     assert run_batch(runs, paths, case_file=case_file) == list(paths.values())

@@ -30,7 +30,7 @@ import pytest
 from PIL import Image
 
 from rodimpact.tools.audit import audit
-from rodimpact.storage.casefile import read_case_file
+from rodimpact.storage.casefile import case_record, read_case_file
 from rodimpact.storage.runs import REQUIRED_SUMMARY, read_run, read_summary
 
 from helpers.copies import DOTTEST, SMALL_STRESS, DotTestBuild, clone_build, project_cases, run_path
@@ -210,13 +210,15 @@ def test_full_build_produces_every_artifact(built: Path, expected: dict) -> None
 
 
 def test_every_run_records_the_case_file_it_was_made_from(built: Path, expected: dict) -> None:
-    """The chain's first stage: each run's case, with its scales and costs, is a file the run
-    names (path, SHA-256 and case hash), and the file holds exactly the run's case."""
+    """The chain's first stage: each run's case, with its scales and costs, is in a file the run
+    names (path, SHA-256 and case hash): its group's case file, which holds exactly the run's case."""
     for path in expected["runs"]:
         record = read_summary(built / path)
         reference = record.config["run"]["case_file"]
-        assert reference["path"] == f"results/cases/{record.case_id}.yaml"
-        case_file = read_case_file(built / reference["path"])
+        group = Path(path).parts[2]  # results/runs/{group}/{method}/{case}.h5
+        assert reference["path"] == f"results/cases/{group}.yaml"
+        case_file = case_record(read_case_file(built / reference["path"]), record.case_id)
+        assert case_file["case_id"] == record.case_id
         assert reference["config_sha256"] == case_file["config_sha256"]
         assert case_file["case"] == {key: value for key, value in record.config.items() if key != "run"}
         derived = case_file["derived"]

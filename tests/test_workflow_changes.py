@@ -45,16 +45,16 @@ def test_target_plans_only_its_jobs(tmp_path: Path) -> None:
     target = "results/tables/table2_r1_l30.csv"
     run = snakemake(project, "-n", "-j2", target)
     assert run.returncode == 0, run.describe()
-    assert job_stats(run.output) == {"case_file": 6, "solve": 3, "readings_table": 1}, run.describe()
-    # Which files: the six r1_l30 balls' case files, their runs by each of the three methods (a
-    # batch each) and the five outputs of the table2 job.
+    assert job_stats(run.output) == {"case_file": 1, "solve": 3, "readings_table": 1}, run.describe()
+    # Which files: the case file of the six r1_l30 balls, their runs by each of the three methods
+    # (a batch each) and the five outputs of the table2 job.
     rows = summary(project, target)
     balls = [c["id"] for c in project_cases(project).cases_in("table2", "r1_l30")]
     assert pending(rows, "solve") == {run_batch(ball, m) for ball in balls for m in ("sem", "fem1d", "fem_axi")}
     assert pending(rows, "readings_table") == {
         f"results/tables/table2_r1_l30.{ext}" for ext in ("csv", "md", "html", "tex", "provenance.json")
     }
-    assert pending(rows, "case_file") == {f"results/cases/{ball}.yaml" for ball in balls}
+    assert pending(rows, "case_file") == {"results/cases/r1_l30.yaml"}  # the reading's cases, one file
     assert pending(rows) == pending(rows, "case_file") | pending(rows, "solve") | pending(rows, "readings_table")
     assert not (project / "results").exists(), "a dry run must not write results"
 
@@ -145,7 +145,7 @@ def test_new_case_file_is_picked_up(tmp_path: Path) -> None:
     run = snakemake(project, "-n", "-j2", target)
     assert run.returncode == 0, run.describe()
     assert job_stats(run.output) == {"case_file": 1, "solve": 1}, run.describe()
-    assert pending(summary(project, target)) == {target, "results/cases/my_ball.yaml"}
+    assert pending(summary(project, target)) == {target, "results/cases/my_experiment.yaml"}
     resolved = project_cases(project)
     assert resolved.sets["my_experiment"] == ["my_ball"]
     assert resolved.cases["my_ball"]["rod"]["area_m2"] == pytest.approx(1.0e-4)
@@ -334,7 +334,7 @@ def test_a_methods_code_change_reruns_the_law_it_calibrates(tmp_path: Path) -> N
     balls = [c["id"] for c in project_cases(project).cases_in("table2", "r10_l30_cal")]
     run = snakemake(project, "-j2", CALIBRATED_BATCH, timeout=BUILD_TIMEOUT_S)
     assert run.returncode == 0, run.describe()
-    assert job_stats(run.output) == {"case_file": len(balls), "indentation": len(balls), "solve": 1}, run.describe()
+    assert job_stats(run.output) == {"case_file": 1, "indentation": len(balls), "solve": 1}, run.describe()
     assert read_run(project / CALIBRATED_RUN).case_id == case["id"]
     with open(project / "src/rodimpact/solvers/fem_axi/solver.py", "a", encoding="utf-8") as handle:
         handle.write("# touched\n")

@@ -248,9 +248,30 @@ def resolved_case_of(wildcards):
     return case
 
 
+def case_file_of(case_id):
+    """The case file holding a case: its group's (results/cases/{group}.yaml), or a sweep case's own."""
+    if case_id in PROJECT.sweeps:
+        return f"results/cases/{case_id}.yaml"
+    case = PROJECT.cases.get(case_id)
+    if case is None:
+        refuse(f"unknown case {case_id!r}; known: {', '.join([*PROJECT.cases, *PROJECT.sweeps])}")
+    return f"results/cases/{group_of(case)}.yaml"
+
+
 def case_file(case_id):
-    """The case file a solver rule takes as input (``case_id(wildcards)`` or a fixed id)."""
-    return lambda w: f"results/cases/{case_id(w) if callable(case_id) else case_id}.yaml"
+    """The case file a solver rule takes as input, of the case ``case_id(wildcards)`` (or a fixed id)."""
+    return lambda w: case_file_of(case_id(w) if callable(case_id) else case_id)
+
+
+@per_job
+def case_file_cases(wildcards):
+    """The cases of the case file of the wildcard ``name``: a group's, or a sweep case."""
+    if wildcards.name in GROUPS:
+        return GROUPS[wildcards.name]
+    if wildcards.name in PROJECT.sweeps:
+        return [PROJECT.sweeps[wildcards.name]]
+    refuse(f"no case file {wildcards.name!r}: neither a group of runs ({', '.join(GROUPS)}) nor a sweep case "
+           f"({', '.join(PROJECT.sweeps) or 'none'})")
 
 
 @per_job
@@ -276,6 +297,10 @@ _CLASH = sorted({c["variant"] for c in PROJECT.cases.values() if c.get("variant"
 if _CLASH:
     sys.exit(f"rodimpact: a variant may not be named like a case set ({_CLASH[0]!r}): both name a group of runs, "
              f"results/runs/{_CLASH[0]}/")
+_CLASH = sorted(set(GROUPS) & set(PROJECT.sweeps))
+if _CLASH:
+    sys.exit(f"rodimpact: a sweep case may not be named like a group of runs ({_CLASH[0]!r}): both name a case file, "
+             f"results/cases/{_CLASH[0]}.yaml")
 
 
 def runs_of(cases):
@@ -304,7 +329,7 @@ def group_runs(wildcards):
     for case in cases:
         if wildcards.method in case["methods"]:
             curve = curve_rule_of(case)
-            runs[case["id"]] = {"case": case, "method": wildcards.method, "case_file": f"results/cases/{case['id']}.yaml"}
+            runs[case["id"]] = {"case": case, "method": wildcards.method, "case_file": case_file_of(case["id"])}
             if curve is not None:
                 runs[case["id"]]["contact_curve"] = CURVE_FILES[curve].format(case=case["id"])
     if not runs:

@@ -31,7 +31,7 @@ rule film_band:
     """The film's prediction band for one reading with a film (of a set with variants): the SEM's contact time
     at the corners of the film constants' ranges, and along each range (monotonicity)."""
     input:
-        cases=lambda w: [f"results/cases/{c['id']}.yaml" for c in reading_cases(w.variant)],
+        cases=lambda w: sorted({case_file_of(c["id"]) for c in reading_cases(w.variant)}),
     output:
         h5="results/studies/film_band_{variant}.h5",
     params:

@@ -49,8 +49,8 @@ def stress_runs(wildcards):
     if wildcards.stress_method == "reference":
         tolerance = config["stability"]["reference_tolerance"]
         return {c["id"]: {"case": reference_case(c, config["numerics"], tolerance), "method": "sem",
-                          "case_file": f"results/cases/{c['id']}.yaml"} for c in cases}
-    runs = {c["id"]: {"case": c, "method": wildcards.stress_method, "case_file": f"results/cases/{c['id']}.yaml"}
+                          "case_file": case_file_of(c["id"])} for c in cases}
+    runs = {c["id"]: {"case": c, "method": wildcards.stress_method, "case_file": case_file_of(c["id"])}
             for c in cases if wildcards.stress_method in c["methods"]}
     if not runs:
         refuse(f"no case of the stress set {wildcards.set!r} runs {wildcards.stress_method!r}")

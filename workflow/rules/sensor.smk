@@ -35,7 +35,7 @@ rule sensor_band_table:
     """The sensor's band of every case of the band readings."""
     input:
         bands=sensor_band_files([v for v, band in SENSOR_READINGS.items() if band]),
-        cases=[f"results/cases/{case}.yaml" for case, v in SENSOR_READING_OF.items() if SENSOR_READINGS[v]],
+        cases=sorted({case_file_of(case) for case, v in SENSOR_READING_OF.items() if SENSOR_READINGS[v]}),
     output:
         csv=report(
             "results/tables/sensor_band.csv",
@@ -66,7 +66,7 @@ rule sensor_fit:
     input:
         fitted=sensor_band_files([SENSOR_FIT["reading"]] if SENSOR_FIT else []),
         applied=sensor_band_files(SENSOR_FIT.get("apply_to", []) if SENSOR_FIT else []),
-        cases=[f"results/cases/{c}.yaml" for c in SENSOR_READING_OF],
+        cases=sorted({case_file_of(c) for c in SENSOR_READING_OF}),
     output:
         csv=report(
             "results/tables/sensor_fit.csv",
@@ -99,7 +99,7 @@ rule fig_sensor_fit:
     input:
         fitted=sensor_band_files([SENSOR_FIT["reading"]] if SENSOR_FIT else []),
         applied=sensor_band_files(SENSOR_FIT.get("apply_to", []) if SENSOR_FIT else []),
-        cases=[f"results/cases/{c}.yaml" for c in SENSOR_READING_OF],
+        cases=sorted({case_file_of(c) for c in SENSOR_READING_OF}),
     output:
         pdf=report(
             "results/figures/sensor_fit.pdf",

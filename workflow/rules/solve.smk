@@ -5,7 +5,7 @@ rule solve:
     """One method on every case of one group (a reading of a set with variants, else a set) that
     lists it: one file per case, results/runs/{group}/{method}/{case}.h5, each written whole."""
     input:
-        cases=lambda w: [run["case_file"] for run in group_runs(w).values()],
+        cases=lambda w: sorted({run["case_file"] for run in group_runs(w).values()}),
         curves=lambda w: [run["contact_curve"] for run in group_runs(w).values() if "contact_curve" in run],
     output:
         runs=directory("results/runs/{group}/{method}"),
@@ -60,7 +60,7 @@ rule solve_stress:
     each case at the study's reference tolerance: one file per case,
     results/stress/{set}/{stress_method}/{case}.h5; a failure is stored as data (the study checks it)."""
     input:
-        cases=lambda w: [run["case_file"] for run in stress_runs(w).values()],
+        cases=lambda w: sorted({run["case_file"] for run in stress_runs(w).values()}),
     output:
         runs=directory("results/stress/{set}/{stress_method}"),
     params:

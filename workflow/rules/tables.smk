@@ -145,7 +145,7 @@ rule film_band_table:
     """The film's prediction band of every case of every reading with the film."""
     input:
         bands=expand("results/studies/film_band_{variant}.h5", variant=FILM_VARIANTS),
-        cases=[f"results/cases/{c['id']}.yaml" for v in FILM_VARIANTS for c in reading_cases(v)],
+        cases=sorted({case_file_of(c["id"]) for v in FILM_VARIANTS for c in reading_cases(v)}),
     output:
         csv=report(
             "results/tables/film_band.csv",

@@ -1,7 +1,7 @@
-"""Snakemake adapter: write the case file of one case (the chain's first stage)."""
+"""Snakemake adapter: write the case file of one group of runs, or of one sweep case (the chain's first stage)."""
 
 from rodimpact.jobs.cases import write_case_file
 from rodimpact.jobs.logs import script_logging
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
-    write_case_file(snakemake.params.case, snakemake.output.yaml)  # noqa: F821
+    write_case_file(snakemake.params.name, snakemake.params.cases, snakemake.output.yaml)  # noqa: F821

@@ -70,7 +70,7 @@ def run_batch(runs: Mapping[str, Mapping[str, Any]], paths: Mapping[str, str | P
     """
     if set(runs) != set(paths):
         raise ValueError(f"runs and paths differ: runs {sorted(runs)}, paths {sorted(paths)}")
-    references: dict[str, dict[str, str]] = {}
+    references: dict[tuple[str, str], dict[str, str]] = {}
     version = code_version()
     timed = Timing(**timing) if timing is not None else None
     written = []
@@ -83,11 +83,12 @@ def run_batch(runs: Mapping[str, Mapping[str, Any]], paths: Mapping[str, str | P
             module, function = CURVE_BUILDERS[rule]
             curve = getattr(importlib.import_module(module), function)(run["case"], run["curve"].get("settings"))
         source = run.get("case_file", case_file)
-        if source is not None and str(source) not in references:
-            references[str(source)] = case_file_reference(source)
+        key = (str(source), str(run["case"]["id"]))
+        if source is not None and key not in references:
+            references[key] = case_file_reference(source, run["case"]["id"])
         written.append(run_to_file(run["case"], run["method"], paths[name], level=run.get("level"),
                                    keep_failed=keep_failed, timing=timed, study=run.get("study"),
-                                   case_file=None if source is None else references[str(source)],
+                                   case_file=None if source is None else references[key],
                                    contact_curve=curve, code_version=version))
     log.info("batch of %d runs written", len(written))
     return written

@@ -1,16 +1,17 @@
 """The case file: the first stage of the chain case -> runs -> tables and figures.
 
-``results/cases/{case}.yaml`` holds what every run of a case computes and why it costs what
-it does: the resolved case (defaults filled in, the variant applied), the scales derived from
-it (contact law, rod impedance and wave speed, the wave round trip, the impact on a rigid rod,
-the contact-time estimate) and, per method, the time step, the number of steps, the solve
-time and memory of the cost model, and the job's request. A sweep case's file lists the same
-for each point of its grid.
+``results/cases/{name}.yaml`` holds what every run of the cases of one group (the cases whose
+runs are batched together: a reading of a set with variants, else a set) computes and why it
+costs what it does: for each case the resolved case (defaults filled in, the variant applied),
+the scales derived from it (contact law, rod impedance and wave speed, the wave round trip,
+the impact on a rigid rod, the contact-time estimate) and, per method, the time step, the
+number of steps, the solve time and memory of the cost model, and the job's request. A sweep
+case has a file of its own, which lists the same for each point of its grid.
 
 Every solver rule takes the file as an input and every run records it (``run.case_file`` in
-the run's config: its path, its SHA-256 and the hash of the case it holds), so a run traces
-back to it; a change of the case rewrites the file and reruns that case's runs only. The
-costs are the cost model's estimates: a new calibration rewrites the files, and reruns the
+the run's config: its path, its SHA-256 and the hash of the run's case in it), so a run traces
+back to it; a change of a case rewrites its group's file and reruns that group's runs only.
+The costs are the cost model's estimates: a new calibration rewrites the files, and reruns the
 runs whose file changed.
 """
 
@@ -20,10 +21,10 @@ import copy
 import logging
 import math
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Mapping, Sequence
 
 from rodimpact.analysis.sweeps import sweep_point_case, sweep_points
-from rodimpact.storage.casefile import CASE_FILE_VERSION, write_case_record
+from rodimpact.storage.casefile import write_case_records
 from rodimpact.storage.provenance import config_sha256
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.registry import METHODS
@@ -85,8 +86,7 @@ def case_file_record(case: Mapping[str, Any]) -> dict[str, Any]:
         A resolved case (``rodimpact.config.load``), or a resolved sweep case (with ``sweep``).
     """
     case = copy.deepcopy(dict(case))
-    record: dict[str, Any] = {"format": CASE_FILE_VERSION, "case_id": case["id"],
-                              "config_sha256": config_sha256(case), "case": case}
+    record: dict[str, Any] = {"case_id": case["id"], "config_sha256": config_sha256(case), "case": case}
     if "sweep" in case:
         record["points"] = {}
         for point in sweep_points(case["sweep"]):
@@ -98,9 +98,9 @@ def case_file_record(case: Mapping[str, Any]) -> dict[str, Any]:
     return record
 
 
-def write_case_file(case: Mapping[str, Any], path: str | Path) -> Path:
-    """Write the case file of ``case`` to ``path`` (YAML, atomically); returns the path."""
-    record = case_file_record(case)
-    write_case_record(record, path)
-    log.info("wrote the case file of %s to %s", record["case_id"], path)
+def write_case_file(name: str, cases: Sequence[Mapping[str, Any]], path: str | Path) -> Path:
+    """Write the case file ``name`` of ``cases`` (a group's cases, or one sweep case) to ``path``
+    (YAML, atomically); returns the path."""
+    write_case_records(name, [case_file_record(case) for case in cases], path)
+    log.info("wrote the case file %s (%d case(s)) to %s", name, len(cases), path)
     return Path(path)

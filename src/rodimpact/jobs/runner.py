@@ -115,7 +115,7 @@ def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: i
     study : mapping, optional
         The study this run belongs to and its sweep parameters, stored in the config.
     case_file : path or mapping, optional
-        The case file the run was made from (``results/cases/{case}.yaml``): its path, its
+        The case file the run was made from (``results/cases/{name}.yaml``): its path, its
         SHA-256 and its case's hash are stored in the config (``run.case_file``); a mapping
         is that record already read (:func:`rodimpact.storage.casefile.case_file_reference`).
     contact_curve : path or ContactCurve, optional
@@ -138,7 +138,8 @@ def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: i
     if study is not None:
         config["run"]["study"] = dict(study)
     if case_file is not None:
-        config["run"]["case_file"] = dict(case_file) if isinstance(case_file, Mapping) else case_file_reference(case_file)
+        config["run"]["case_file"] = dict(case_file) if isinstance(case_file, Mapping) else \
+            case_file_reference(case_file, case["id"])
     case = _with_curve(case, contact_curve)
     if isinstance(contact_curve, ContactCurve):
         config["run"]["contact_curve"] = {"computed_in_job": True, "summary": dict(contact_curve.summary)}

@@ -215,7 +215,7 @@ def make_film_table(runs: Sequence[str | Path], variants: Mapping[str, str], ban
 def make_film_band_table(bands: Sequence[str | Path], case_files: Sequence[str | Path], *, csv: str | Path,
                          md: str | Path, provenance: str | Path, html: str | Path | None = None) -> None:
     """Every case of every band file (:func:`film_band_frame`); rows and masses from the case files."""
-    cases = {record["case_id"]: record["case"] for record in map(read_case_file, case_files)}
+    cases = {record["case_id"]: record["case"] for path in case_files for record in read_case_file(path)["cases"]}
     frame = film_band_frame(dict(read_band(p) for p in bands), cases)
     write_table(frame, csv=csv, md=md, html=html, views=film_band_views(frame), caption=(
         "The sensor film's prediction band per Table 2 row and film reading: the SEM's contact time at the "

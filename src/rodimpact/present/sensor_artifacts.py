@@ -28,7 +28,7 @@ def _outputs(*paths: str | Path | None) -> list[str | Path]:
 def make_sensor_band_table(bands: Sequence[str | Path], case_files: Sequence[str | Path], *, csv: str | Path,
                            md: str | Path, provenance: str | Path, html: str | Path | None = None) -> None:
     """Every case's band (:func:`sensor_band_frame`); rows and masses from the case files."""
-    cases = {record["case_id"]: record["case"] for record in map(read_case_file, case_files)}
+    cases = {record["case_id"]: record["case"] for path in case_files for record in read_case_file(path)["cases"]}
     read = [read_band(p) for p in bands]
     frame = sensor_band_frame([(variant, band) for variant, group in read for band in group], cases)
     views = panels(frame, "The sensor as built: the continuum's prediction and its band", ["row"],
@@ -46,7 +46,7 @@ def make_sensor_band_table(bands: Sequence[str | Path], case_files: Sequence[str
 
 
 def _fit(fitted: Sequence[str | Path], applied: Sequence[str | Path], case_files: Sequence[str | Path], layer: str):
-    cases = {record["case_id"]: record["case"] for record in map(read_case_file, case_files)}
+    cases = {record["case_id"]: record["case"] for path in case_files for record in read_case_file(path)["cases"]}
     variants, bands = {}, {}
     for path in [*fitted, *applied]:
         variant, group = read_band(path)

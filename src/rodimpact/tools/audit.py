@@ -143,21 +143,21 @@ def case_file_problems(reference: Mapping[str, Any] | None) -> list[str]:
     if not reference:
         return []
     try:
-        record = read_case_file(reference["path"])
+        document = read_case_file(reference["path"])
     except (OSError, ValueError) as error:
         return [f"its case file {reference['path']} is not readable: {error}"]
-    if record["config_sha256"] != reference["config_sha256"]:
+    if reference["config_sha256"] not in {record["config_sha256"] for record in document["cases"]}:
         return [f"its case file {reference['path']} holds another case now (the case was edited)"]
     return []
 
 
 def audit_case_file(path: str | Path) -> Finding:
-    """Check one case file: it is one, and its case has the hash it was written with."""
+    """Check one case file: it is one, and each of its cases has the hash it was written with."""
     try:
-        record = read_case_file(path)
+        document = read_case_file(path)
     except (OSError, ValueError) as error:
         return Finding(str(path), "case", (str(error),))
-    return Finding(str(path), "case", (), (), (record["config_sha256"],))
+    return Finding(str(path), "case", (), (), tuple(record["config_sha256"] for record in document["cases"]))
 
 
 def _input_problems(entry: Mapping[str, Any], runs: dict[str, Any]) -> list[str]:
