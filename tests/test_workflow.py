@@ -181,7 +181,7 @@ def test_full_build_produces_every_artifact(built: Path, expected: dict) -> None
             for ext in ("csv", "md", "provenance.json")]
     film += [f"results/figures/film_force.{ext}" for ext in ("pdf", "png")]
     film += [f"results/studies/film_band_{FILM_VARIANT}.h5"]
-    film += [f"results/indentation/{c['id']}.h5" for v in expected["calibrated_variants"]
+    film += [f"results/indentation/{v}/{c['id']}.h5" for v in expected["calibrated_variants"]
              for c in expected["project"].cases_in("table2", v)]
     artifacts = [
         *(f"results/tables/table2_{v}.{ext}" for v in expected["variants"]

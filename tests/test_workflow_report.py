@@ -103,7 +103,7 @@ def _expected_report(workdir: Path) -> dict[str, list[str]]:
         "Table 2 without the sensor, with the film alone and with the sensor as built", "Against the paper"]
     if config.get("sensor", {}).get("band"):
         expected["results/tables/sensor_band.csv"] = [
-            "The sensor as built: the continuum's prediction and its band", "What to see", "sensor_band/*.h5"]
+            "The sensor as built: the continuum's prediction and its band", "What to see", "sensor_band/{reading}/*.h5"]
     if config.get("sensor", {}).get("fit"):
         expected["results/tables/sensor_fit.csv"] = ["A fit, not a prediction", "Held out", "never extrapolates"]
         for ext in ("png", "pdf"):

@@ -31,7 +31,7 @@ VOLATILE_ATTRIBUTES: dict[str, str] = {
 #: Entries of a run's ``config_json`` that differ between two builds of the same results, and why.
 VOLATILE_CONFIG_ENTRIES: dict[tuple[str, ...], str] = {
     ("run", "contact_curve", "sha256"): "the SHA-256 of the contact-law curve file's bytes "
-                                        "(results/indentation/*.h5), which hold that file's "
+                                        "(results/indentation/*/*.h5), which hold that file's "
                                         "created_utc and code_version; the curve's data are "
                                         "compared as a file of their own",
 }

@@ -210,7 +210,8 @@ READING_DESCRIPTIONS = {v: spec.get("description", "") for name in READING_SETS
 FILM_VARIANTS = [v for v in READING_SET_OF if all(law_of(c.get("contact")).needs.film for c in reading_cases(v))]
 # The rules that compute a law's curve per case (a law declares its rule: needs.curve_rule) -> the
 # curve file of a case; a law that names another rule is refused here, before any job.
-CURVE_FILES = {"indentation": "results/indentation/{case}.h5"}
+# (computed per group: one job writes the curves of a group's cases into its directory)
+CURVE_FILES = {"indentation": "results/indentation/{group}/{case}.h5"}
 # ... the settings each rule computes a curve with (a sweep point's batch computes its own), and
 # its cost model (module:function, imported when a batch needs it: the continuum's modules are heavy)
 CURVE_SETTINGS = {"indentation": config["numerics"]["fem_axi"]}
@@ -225,6 +226,11 @@ if _NO_CURVE_FILE:
 def curve_rule_of(case):
     """Which rule computes the curve of a resolved case's contact law (None when the law needs none)."""
     return law_of(case.get("contact")).needs.curve_rule
+
+
+def curve_file_of(case):
+    """The curve file of a case whose law needs one: in its group's directory of curves."""
+    return CURVE_FILES[curve_rule_of(case)].format(group=group_of(case), case=case["id"])
 
 
 def one_of(names):
@@ -275,13 +281,13 @@ def case_file_cases(wildcards):
 
 
 @per_job
-def indentation_case_of(wildcards):
-    """The resolved case of an indentation; refuses a case whose law needs no indentation curve."""
-    case = resolved_case_of(wildcards)
-    if curve_rule_of(case) != "indentation":
-        refuse(f"case {wildcards.case!r} has no contact law calibrated by the indentation; cases that have: "
-               f"{', '.join(c for c, v in PROJECT.cases.items() if curve_rule_of(v) == 'indentation')}")
-    return case
+def indentation_cases_of(wildcards):
+    """The cases of a group whose law the indentation calibrates; refuses a group that has none."""
+    cases = [c for c in GROUPS.get(wildcards.group, []) if curve_rule_of(c) == "indentation"]
+    if not cases:
+        refuse(f"group {wildcards.group!r} has no case whose contact law the indentation calibrates; groups that "
+               f"have: {', '.join(g for g, cs in GROUPS.items() if any(curve_rule_of(c) == 'indentation' for c in cs))}")
+    return cases
 
 
 def group_of(case):
@@ -331,7 +337,7 @@ def group_runs(wildcards):
             curve = curve_rule_of(case)
             runs[case["id"]] = {"case": case, "method": wildcards.method, "case_file": case_file_of(case["id"])}
             if curve is not None:
-                runs[case["id"]]["contact_curve"] = CURVE_FILES[curve].format(case=case["id"])
+                runs[case["id"]]["contact_curve"] = curve_file_of(case)
     if not runs:
         refuse(f"no case of group {wildcards.group!r} runs {wildcards.method!r}; its cases' methods: "
                f"{', '.join(sorted({m for c in cases for m in c['methods']}))}")
@@ -488,6 +494,8 @@ def _sensor_readings():
 SENSOR_READINGS = _sensor_readings()
 SENSOR_READING_OF = {c["id"]: v for v in SENSOR_READINGS for c in PROJECT.cases.values() if c.get("variant") == v}
 SENSOR_GRID = {f"{SENSOR_FIT['layer']}: thickness_m": SENSOR_FIT["thickness_grid_m"]} if SENSOR_FIT else {}
+# the readings the fit reads: the one it is fitted on and those it is applied to
+SENSOR_FIT_READINGS = [SENSOR_FIT["reading"], *SENSOR_FIT.get("apply_to", [])] if SENSOR_FIT else []
 
 
 def sensor_variants(set_name):
@@ -498,8 +506,14 @@ def sensor_variants(set_name):
 
 
 def sensor_band_files(variants):
-    return [f"results/studies/sensor_band/{case}.h5" for v in variants for case, reading in SENSOR_READING_OF.items()
-            if reading == v]
+    """The band files of every case of the given readings (rule sensor_band: one directory per reading)."""
+    return [f"results/studies/sensor_band/{reading}/{case}.h5" for v in variants
+            for case, reading in SENSOR_READING_OF.items() if reading == v]
+
+
+def sensor_band_dirs(variants):
+    """The directories of the given readings' bands (rule sensor_band's outputs)."""
+    return sorted({os.path.dirname(f) for f in sensor_band_files(variants)})
 
 
 def sensor_targets():

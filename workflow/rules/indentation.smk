@@ -1,22 +1,24 @@
 # The contact law calibrated by the continuum: for each case whose law needs the indentation's
-# curve (its needs.curve_rule, rodimpact.contact.law), fem_axi's
-# static indentation of the case's ball, film and rod, as the force-approach curve its 1-D runs
-# take (results/indentation/{case}.h5). The case file is its input, so a change of the case's
-# ball, film or rod reruns the indentation and the runs that read it, and nothing else.
+# curve (its needs.curve_rule, rodimpact.contact.law), fem_axi's static indentation of the
+# case's ball, film and rod, as the force-approach curve its 1-D runs take
+# (results/indentation/{group}/{case}.h5, one job per group of runs). The group's case file is
+# its input, so a change of a case's ball, film or rod reruns its group's indentations and the
+# runs that read them, and nothing else.
 
 
 rule indentation:
-    """Static indentation of one case's bodies by the continuum: its contact-law curve."""
+    """Static indentation of each case of one group whose law the continuum calibrates: one curve
+    file per case, results/indentation/{group}/{case}.h5."""
     input:
-        case=case_file(lambda w: w.case),
+        case=lambda w: case_file_of(indentation_cases_of(w)[0]["id"]),
     output:
-        h5=CURVE_FILES["indentation"],
+        curves=directory("results/indentation/{group}"),
     params:
         code=SRC_INDENTATION,
-        case=indentation_case_of,
+        cases=indentation_cases_of,
         numerics=lambda w: config["numerics"]["fem_axi"],
     log:
-        "logs/indentation/{case}.log",
+        "logs/indentation/{group}.log",
     group: GROUP_SOLVERS
     threads: 1
     resources:

@@ -3,24 +3,26 @@
 # (results/studies/sensor_band/{case}.h5; a reading of the fit only gets its layer's thickness
 # grid); then the bands' table and the inverse analysis, labelled as a fit.
 rule sensor_band:
-    """The calibrated SEM over one case's sensor stack: its band, and the fit's thickness grid."""
+    """The calibrated SEM over the sensor stack of each case of one reading: its band, and the fit's
+    thickness grid; one file per case, results/studies/sensor_band/{variant}/{case}.h5."""
     input:
-        case=case_file(lambda w: w.case),
-        # the nominal stack's calibrated law: the curve the case's own runs take
-        curve=CURVE_FILES["indentation"],
+        case=lambda w: case_file_of(reading_cases(w.variant)[0]["id"]),
+        # the nominal stacks' calibrated laws: the curves the cases' own runs take
+        curves=lambda w: sorted({os.path.dirname(curve_file_of(c)) for c in reading_cases(w.variant)}),
     output:
-        h5="results/studies/sensor_band/{case}.h5",
+        bands=directory("results/studies/sensor_band/{variant}"),
     params:
         code=SRC_SENSOR,
-        case=lambda w: PROJECT.cases[w.case],
-        variant=lambda w: SENSOR_READING_OF[w.case],
-        band=lambda w: SENSOR_READINGS[SENSOR_READING_OF[w.case]],
+        cases=lambda w: reading_cases(w.variant),
+        curves=lambda w: {c["id"]: curve_file_of(c) for c in reading_cases(w.variant)},
+        variant="{variant}",
+        band=lambda w: SENSOR_READINGS[w.variant],
         grid=SENSOR_GRID,
         numerics=lambda w: config["numerics"]["fem_axi"],
     wildcard_constraints:
-        case=one_of(SENSOR_READING_OF),
+        variant=one_of(SENSOR_READINGS),
     log:
-        "logs/studies/sensor_band/{case}.log",
+        "logs/studies/sensor_band/{variant}.log",
     group: GROUP_SOLVERS
     threads: 1
     resources:
@@ -34,7 +36,7 @@ rule sensor_band:
 rule sensor_band_table:
     """The sensor's band of every case of the band readings."""
     input:
-        bands=sensor_band_files([v for v, band in SENSOR_READINGS.items() if band]),
+        bands=sensor_band_dirs([v for v, band in SENSOR_READINGS.items() if band]),
         cases=sorted({case_file_of(case) for case, v in SENSOR_READING_OF.items() if SENSOR_READINGS[v]}),
     output:
         csv=report(
@@ -49,6 +51,7 @@ rule sensor_band_table:
         provenance="results/tables/sensor_band.provenance.json",
     params:
         code=SRC_SENSOR_TABLES,
+        bands=sensor_band_files([v for v, band in SENSOR_READINGS.items() if band]),
     log:
         "logs/tables/sensor_band.log",
     group: GROUP_TABLES
@@ -64,8 +67,7 @@ rule sensor_band_table:
 rule sensor_fit:
     """The inverse analysis: one layer's thickness fitted to the measurements, with leave-one-out."""
     input:
-        fitted=sensor_band_files([SENSOR_FIT["reading"]] if SENSOR_FIT else []),
-        applied=sensor_band_files(SENSOR_FIT.get("apply_to", []) if SENSOR_FIT else []),
+        bands=sensor_band_dirs(SENSOR_FIT_READINGS),
         cases=sorted({case_file_of(c) for c in SENSOR_READING_OF}),
     output:
         csv=report(
@@ -81,6 +83,8 @@ rule sensor_fit:
         provenance="results/tables/sensor_fit.provenance.json",
     params:
         code=SRC_SENSOR_TABLES,
+        fitted=sensor_band_files([SENSOR_FIT["reading"]] if SENSOR_FIT else []),
+        applied=sensor_band_files(SENSOR_FIT.get("apply_to", []) if SENSOR_FIT else []),
         layer=SENSOR_FIT["layer"] if SENSOR_FIT else "",
     log:
         "logs/tables/sensor_fit.log",
@@ -97,8 +101,7 @@ rule sensor_fit:
 rule fig_sensor_fit:
     """The inverse analysis as a figure: measured, the sourced stack, the fitted one, the rows held out."""
     input:
-        fitted=sensor_band_files([SENSOR_FIT["reading"]] if SENSOR_FIT else []),
-        applied=sensor_band_files(SENSOR_FIT.get("apply_to", []) if SENSOR_FIT else []),
+        bands=sensor_band_dirs(SENSOR_FIT_READINGS),
         cases=sorted({case_file_of(c) for c in SENSOR_READING_OF}),
     output:
         pdf=report(
@@ -118,6 +121,8 @@ rule fig_sensor_fit:
         provenance="results/figures/sensor_fit.provenance.json",
     params:
         code=SRC_SENSOR_TABLES,
+        fitted=sensor_band_files([SENSOR_FIT["reading"]] if SENSOR_FIT else []),
+        applied=sensor_band_files(SENSOR_FIT.get("apply_to", []) if SENSOR_FIT else []),
         layer=SENSOR_FIT["layer"] if SENSOR_FIT else "",
         descriptions=READING_DESCRIPTIONS,
     log:

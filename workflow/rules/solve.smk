@@ -6,7 +6,8 @@ rule solve:
     lists it: one file per case, results/runs/{group}/{method}/{case}.h5, each written whole."""
     input:
         cases=lambda w: sorted({run["case_file"] for run in group_runs(w).values()}),
-        curves=lambda w: [run["contact_curve"] for run in group_runs(w).values() if "contact_curve" in run],
+        curves=lambda w: sorted({os.path.dirname(run["contact_curve"]) for run in group_runs(w).values()
+                                 if "contact_curve" in run}),
     output:
         runs=directory("results/runs/{group}/{method}"),
     params:

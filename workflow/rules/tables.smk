@@ -111,7 +111,7 @@ rule film_table:
     input:
         runs=run_batches([run for v in FILM_TABLE.values() for run in reading_runs(v)] if FILM_TABLE_SETS else []),
         band=f"results/studies/film_band_{FILM_TABLE.get('film')}.h5",
-        sensor_bands=sensor_band_files([v for v in [FILM_TABLE.get("sensor_calibrated")] if SENSOR_READINGS.get(v)]),
+        sensor_bands=sensor_band_dirs([v for v in [FILM_TABLE.get("sensor_calibrated")] if SENSOR_READINGS.get(v)]),
     output:
         csv=report(
             "results/tables/{set}_film.csv",
@@ -125,6 +125,7 @@ rule film_table:
         provenance="results/tables/{set}_film.provenance.json",
     params:
         code=SRC_PRESENT,
+        sensor_bands=sensor_band_files([v for v in [FILM_TABLE.get("sensor_calibrated")] if SENSOR_READINGS.get(v)]),
         runs=[run for v in FILM_TABLE.values() for run in reading_runs(v)] if FILM_TABLE_SETS else [],
         variants=FILM_TABLE,
     wildcard_constraints:
@@ -175,7 +176,7 @@ rule film_band_table:
 rule film_indentation_table:
     """The continuum's indentation curves (the calibrated laws) against the analytic laws."""
     input:
-        curves=expand("results/indentation/{case}.h5", case=CALIBRATED_CASES),
+        curves=sorted({os.path.dirname(curve_file_of(PROJECT.cases[c])) for c in CALIBRATED_CASES}),
     output:
         csv=report(
             "results/tables/film_indentation.csv",
@@ -189,6 +190,7 @@ rule film_indentation_table:
         provenance="results/tables/film_indentation.provenance.json",
     params:
         code=SRC_PRESENT,
+        curves=[curve_file_of(PROJECT.cases[c]) for c in CALIBRATED_CASES],
         cases=CALIBRATED_CASES,
     log:
         "logs/tables/film_indentation.log",

@@ -12,5 +12,5 @@ with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (
                     band_files=snakemake.input.bands,  # noqa: F821
                     descriptions=snakemake.params.descriptions,  # noqa: F821
                     sensors=snakemake.params.sensors,  # noqa: F821
-                    sensor_band_files=snakemake.input.sensor_bands,  # noqa: F821
+                    sensor_band_files=snakemake.params.sensor_bands,  # noqa: F821
                     title=snakemake.params.title)  # noqa: F821

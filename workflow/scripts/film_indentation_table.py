@@ -5,5 +5,5 @@ from rodimpact.jobs.logs import script_logging
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821
-    make_film_indentation_table(snakemake.input.curves,  # noqa: F821
+    make_film_indentation_table(snakemake.params.curves,  # noqa: F821
                                 csv=out.csv, md=out.md, html=out.html, provenance=out.provenance)

@@ -7,4 +7,4 @@ with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (
     out = snakemake.output  # noqa: F821
     make_film_table(snakemake.params.runs, snakemake.params.variants, snakemake.input.band,  # noqa: F821
                      csv=out.csv, md=out.md, html=out.html, provenance=out.provenance,
-                     sensor_bands=snakemake.input.sensor_bands)  # noqa: F821
+                     sensor_bands=snakemake.params.sensor_bands)  # noqa: F821

@@ -1,7 +1,8 @@
-"""Snakemake adapter: the continuum's static indentation of one case, as its contact-law curve."""
+"""Snakemake adapter: the continuum's static indentation of each calibrated case of one group, as
+its contact-law curve (one file per case in the rule's output directory)."""
 
-from rodimpact.jobs.indentation import indentation_to_file
+from rodimpact.jobs.indentation import indentations_into
 from rodimpact.jobs.logs import script_logging
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
-    indentation_to_file(snakemake.params.case, snakemake.output.h5, snakemake.params.numerics)  # noqa: F821
+    indentations_into(snakemake.params.cases, snakemake.output.curves, snakemake.params.numerics)  # noqa: F821

@@ -1,9 +1,10 @@
-"""Snakemake adapter: the sensor stack's band (and the fit's grid) of one case by the calibrated SEM."""
+"""Snakemake adapter: the sensor stack's band (and the fit's grid) of each case of one reading by the
+calibrated SEM (one file per case in the rule's output directory)."""
 
 from rodimpact.jobs.logs import script_logging
-from rodimpact.jobs.sensor_band import sensor_band_to_file
+from rodimpact.jobs.sensor_band import sensor_bands_into
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     params = snakemake.params  # noqa: F821
-    sensor_band_to_file(params.case, params.variant, snakemake.output.h5, params.numerics,  # noqa: F821
-                        grid=params.grid, band=params.band, curve_file=snakemake.input.curve)  # noqa: F821
+    sensor_bands_into(params.cases, params.variant, snakemake.output.bands, params.numerics,  # noqa: F821
+                      grid=params.grid, band=params.band, curve_files=params.curves)

@@ -5,5 +5,5 @@ from rodimpact.present.sensor_artifacts import make_sensor_band_table
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821
-    make_sensor_band_table(snakemake.input.bands, snakemake.input.cases,  # noqa: F821
+    make_sensor_band_table(snakemake.params.bands, snakemake.input.cases,  # noqa: F821
                            csv=out.csv, md=out.md, html=out.html, provenance=out.provenance)

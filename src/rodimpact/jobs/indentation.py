@@ -21,19 +21,21 @@ from __future__ import annotations
 import dataclasses
 import logging
 import math
-from typing import Any, Mapping
+from pathlib import Path
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 
 from rodimpact.contact.laws import bodies_contact, build_law
 from rodimpact.contact.tabulated import TabulatedLaw
+from rodimpact.storage.atomic import atomic_directory
 from rodimpact.storage.curves import ContactCurve, write_contact_curve
 from rodimpact.model.materials import Material
 from rodimpact.solvers.fem_axi.indentation import static_indentation
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact
 
-__all__ = ["LOAD_MARGIN", "POINTS", "indentation_curve", "indentation_to_file"]
+__all__ = ["LOAD_MARGIN", "POINTS", "indentation_curve", "indentation_to_file", "indentations_into"]
 
 log = logging.getLogger(__name__)
 
@@ -122,3 +124,15 @@ def indentation_to_file(case: Mapping[str, Any], path: str, settings: Mapping[st
     if not math.isfinite(float(case["rod"]["length_m"])):
         raise ValueError(f"case {case['id']!r}: the indentation needs a finite rod")
     write_contact_curve(path, indentation_curve(case, settings))
+
+
+def indentations_into(cases: Sequence[Mapping[str, Any]], directory: str | Path,
+                      settings: Mapping[str, Any] | None = None) -> list[Path]:
+    """:func:`indentation_to_file` of every case, to ``directory/{case}.h5``: the curves of one group's
+    cases, the directory appearing whole or not at all
+    (:func:`~rodimpact.storage.atomic.atomic_directory`); the files written."""
+    directory = Path(directory)
+    with atomic_directory(directory) as tmp:
+        for case in cases:
+            indentation_to_file(case, str(tmp / f"{case['id']}.h5"), settings)
+    return [directory / f"{case['id']}.h5" for case in cases]

@@ -23,17 +23,19 @@ import copy
 import logging
 import math
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any, Mapping, Sequence
 
 import numpy as np
 
 from rodimpact.jobs.indentation import indentation_curve
 from rodimpact.jobs.runner import run_case
+from rodimpact.storage.atomic import atomic_directory
 from rodimpact.storage.bands import CaseBand, write_band
 from rodimpact.storage.curves import read_contact_curve
 
-__all__ = ["StackParameter", "calibrated_time_us", "sensor_band", "sensor_band_to_file", "stack_parameters",
-           "with_values"]
+__all__ = ["StackParameter", "calibrated_time_us", "sensor_band", "sensor_band_to_file", "sensor_bands_into",
+           "stack_parameters", "with_values"]
 
 log = logging.getLogger(__name__)
 
@@ -206,3 +208,18 @@ def sensor_band_to_file(case: Mapping[str, Any], variant: str, path: str, settin
         nominal = curve.law_curve()
     write_band(path, [sensor_band(case, settings, method, grid, band=band, nominal_curve=nominal)], variant=variant,
                method=method, config=dict(case))
+
+
+def sensor_bands_into(cases: Sequence[Mapping[str, Any]], variant: str, directory: str | Path,
+                      settings: Mapping[str, Any] | None = None, method: str = "sem",
+                      grid: Mapping[str, Sequence[float]] | None = None, *, band: bool = True,
+                      curve_files: Mapping[str, str] | None = None) -> list[Path]:
+    """:func:`sensor_band_to_file` of every case of one reading, to ``directory/{case}.h5`` (the
+    nominal stack's law from ``curve_files[case id]`` where given), the directory appearing whole
+    or not at all (:func:`~rodimpact.storage.atomic.atomic_directory`); the files written."""
+    directory = Path(directory)
+    with atomic_directory(directory) as tmp:
+        for case in cases:
+            sensor_band_to_file(case, variant, str(tmp / f"{case['id']}.h5"), settings, method, grid, band=band,
+                                curve_file=(curve_files or {}).get(case["id"]))
+    return [directory / f"{case['id']}.h5" for case in cases]
