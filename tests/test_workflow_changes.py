@@ -174,8 +174,7 @@ def test_a_new_experiment_with_measurements_gets_its_comparison(tmp_path: Path) 
                "results/figures/compare_my_lab_my_ball.png"]
     run = snakemake(project, "-j2", *targets, timeout=BUILD_TIMEOUT_S)
     assert run.returncode == 0, run.describe()
-    assert job_stats(run.output) == {"case_file": 1, "solve": 1, "compare_table": 1, "compare_figure": 1,
-                                     "compare_history": 1}, run.describe()
+    assert job_stats(run.output) == {"case_file": 1, "solve": 1, "compare": 1, "compare_history": 1}, run.describe()
     table = pd.read_csv(project / targets[0])
     assert set(table["quantity"]) == {"contact_time_us", "peak_force_n", "signal_contact_time_us",
                                       "history_l2_pct", "history_max_pct"}
@@ -223,9 +222,9 @@ def test_a_new_experiment_with_readings_gets_the_tables_of_table2(tmp_path: Path
     run = snakemake(project, "-j2", *targets, timeout=BUILD_TIMEOUT_S)
     assert run.returncode == 0, run.describe()
     stats = job_stats(run.output)
-    assert {k: stats.get(k) for k in ("readings_table", "readings_summary", "fig_readings", "compare_table",
+    assert {k: stats.get(k) for k in ("readings_table", "readings_summary", "fig_readings", "compare",
                                       "film_table", "sensor_band", "indentation")} == {
-        "readings_table": 2, "readings_summary": 1, "fig_readings": 1, "compare_table": 1, "film_table": None,
+        "readings_table": 2, "readings_summary": 1, "fig_readings": 1, "compare": 1, "film_table": None,
         "sensor_band": None, "indentation": None}, run.describe()
     for variant, length in (("short", 0.20), ("long", 0.21)):
         table = pd.read_csv(project / f"results/tables/drops_{variant}.csv")
@@ -259,17 +258,17 @@ def test_changed_case_value_reruns_only_that_case(changed: DotTestBuild) -> None
     # model's runs and what shows them (its forces handed on too), and the studies built on model: its work-precision
     # levels (3 methods x 3 levels in .test, a job per method) and the stability map, whose
     # base case it is (a job per method and one for the references)
-    assert job_stats(run.output) == {"case_file": 1, "solve": 4, "fig2": 1, "fig4": 1, "fig2_comparison": 1,
+    assert job_stats(run.output) == {"case_file": 1, "solve": 4, "paper_model": 1,
                                      "all": 1, "solve_levels": 3, "work_precision_table": 1,
                                      "work_precision_figure": 1, "solve_map": 3,
                                      "stability_map": 1, "forces_model": 1, "fig_force_fit": 1,
                                      "wave_map": 1}, run.describe()
     assert pending(rows := summary(changed.project, workdir=DOTTEST), "case_file") == {"results/cases/model.yaml"}
     assert pending(rows, "solve") == {run_batch("model", m) for m in ("sem", "sem_paper", "fem1d", "fem_axi")}
-    assert pending(rows, "fig2") == {
-        "results/figures/fig2_contact_force.pdf", "results/figures/fig2_contact_force.png",
-        "results/figures/fig2_contact_force.provenance.json",
-    }  # fmt: skip
+    assert pending(rows, "paper_model") == {
+        f"results/figures/{name}.{ext}" for name in ("fig2_contact_force", "fig4_midrod_displacement")
+        for ext in ("pdf", "png", "provenance.json")} | {
+        f"results/tables/fig2_comparison.{ext}" for ext in ("csv", "md", "html", "provenance.json")}
     assert not {p for p in pending(rows) if "table2" in p or "ball_" in p}
 
 
@@ -352,7 +351,7 @@ def test_figure_code_change_reruns_no_solver(changed: DotTestBuild) -> None:
     assert run.returncode == 0, run.describe()
     stats = job_stats(run.output)
     assert "solve" not in stats, run.describe()
-    assert stats.get("fig2") == 1 and stats.get("fig_readings") == 1, run.describe()
+    assert stats.get("paper_model") == 1 and stats.get("fig_readings") == 1, run.describe()
 
 
 def test_the_studys_separate_cases_are_a_target_of_their_own(tmp_path: Path) -> None:

@@ -349,7 +349,7 @@ STABILITY = config.get("stability", {})
 MAP = STABILITY.get("map", {})
 MAP_POINTS = map_point_names(MAP) if MAP else []
 # The stress runs: each set's cases by each method some case of it lists, and the references
-# (rule solve_stress: one directory per set and method, one file per case)
+# (one directory per set and method, one file per case, by the rule solve_stress)
 STRESS_DIRS = {(name, m): f"results/stress/{name}/{m}" for name in STABILITY.get("sets", [])
                for m in METHOD_REGISTRY if any(m in c["methods"] for c in PROJECT.cases_in(name))}
 STRESS_RUNS = [f"results/stress/{name}/{m}/{c['id']}.h5" for name in STABILITY.get("sets", [])
@@ -506,7 +506,7 @@ def sensor_variants(set_name):
 
 
 def sensor_band_files(variants):
-    """The band files of every case of the given readings (rule sensor_band: one directory per reading)."""
+    """The band files of every case of the given readings (one directory per reading, by the rule sensor_band)."""
     return [f"results/studies/sensor_band/{reading}/{case}.h5" for v in variants
             for case, reading in SENSOR_READING_OF.items() if reading == v]
 

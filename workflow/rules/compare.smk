@@ -5,8 +5,10 @@
 # files are inputs: a changed record reruns its comparison.
 
 
-rule compare_table:
-    """One case set's runs against its measurements: per case, method and quantity, with a summary."""
+rule compare:
+    """One case set's runs against its measurements: the table per case, method and quantity with a
+    summary, and the figure of the measured and computed values against the impactor's mass (or
+    its compare.x); one job, as both read the same runs."""
     input:
         runs=run_batches(lambda w: compare_runs(w.set)),
         histories=lambda w: compare_histories(w.set),
@@ -23,30 +25,6 @@ rule compare_table:
         html="results/tables/compare_{set}.html",
         tex="results/tables/compare_{set}.tex",
         provenance="results/tables/compare_{set}.provenance.json",
-    params:
-        code=SRC_COMPARE,
-        runs=lambda w: compare_runs(w.set),
-        set_name="{set}",
-    wildcard_constraints:
-        set=one_of(COMPARE_SETS),
-    log:
-        "logs/tables/compare_{set}.log",
-    group: GROUP_TABLES
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
-    script:
-        "../scripts/compare_table.py"
-
-
-rule compare_figure:
-    """One case set's measured and computed values against the impactor's mass (or its compare.x)."""
-    input:
-        runs=run_batches(lambda w: compare_runs(w.set)),
-        histories=lambda w: compare_histories(w.set),
-    output:
         pdf=report(
             "results/figures/compare_{set}.pdf",
             caption="../report/compare_figure.rst",
@@ -61,7 +39,7 @@ rule compare_figure:
             subcategory="{set}",
             labels={"set": "{set}", "artifact": "Measured and computed against the mass", "format": "PNG"},
         ),
-        provenance="results/figures/compare_{set}.provenance.json",
+        figure_provenance="results/figures/compare_{set}.provenance.json",
     params:
         code=SRC_COMPARE,
         runs=lambda w: compare_runs(w.set),
@@ -73,7 +51,7 @@ rule compare_figure:
     wildcard_constraints:
         set=one_of(COMPARE_SETS),
     log:
-        "logs/figures/compare_{set}.log",
+        "logs/tables/compare_{set}.log",
     group: GROUP_TABLES
     threads: 1
     resources:
@@ -81,7 +59,7 @@ rule compare_figure:
     conda:
         "../envs/rodimpact.yaml"
     script:
-        "../scripts/compare_figure.py"
+        "../scripts/compare.py"
 
 
 rule compare_history:

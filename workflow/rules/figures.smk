@@ -1,67 +1,59 @@
 # Figures: read HDF5 runs only; rendered headless.
 
 
-rule fig2:
-    """Fig. 2: contact force against time for the case 'model', every method it runs."""
+rule paper_model:
+    """Fig. 2 (contact force against time), its numbers (contact time and maxima per method against
+    the SEM and the paper's) and Fig. 4 (displacement of the cross-section at half the rod length),
+    from the runs of the case 'model' by every method it runs: one job, as they read the same runs."""
     input:
         runs=run_batches(lambda w: runs_of([PROJECT.cases["model"]])),
     output:
-        pdf=report(
+        fig2_pdf=report(
             "results/figures/fig2_contact_force.pdf",
             caption="../report/fig2.rst",
             category="Paper, Fig. 2 and Fig. 4",
             subcategory="Fig. 2",
             labels={"artifact": "Fig. 2: contact force", "format": "PDF"},
         ),
-        png=report(
+        fig2_png=report(
             "results/figures/fig2_contact_force.png",
             caption="../report/fig2.rst",
             category="Paper, Fig. 2 and Fig. 4",
             subcategory="Fig. 2",
             labels={"artifact": "Fig. 2: contact force", "format": "PNG"},
         ),
-        provenance="results/figures/fig2_contact_force.provenance.json",
-    params:
-        code=SRC_PRESENT,
-        runs=lambda w: runs_of([PROJECT.cases["model"]]),
-    log:
-        "logs/figures/fig2_contact_force.log",
-    group: GROUP_TABLES
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
-    script:
-        "../scripts/fig2.py"
-
-
-rule fig4:
-    """Fig. 4: displacement of the cross-section at half the rod length, case 'model'."""
-    input:
-        runs=run_batches(lambda w: runs_of([PROJECT.cases["model"]])),
-    output:
-        pdf=report(
+        fig2_provenance="results/figures/fig2_contact_force.provenance.json",
+        csv=report(
+            "results/tables/fig2_comparison.csv",
+            caption="../report/fig2_comparison.rst",
+            category="Paper, Fig. 2 and Fig. 4",
+            subcategory="Fig. 2",
+            labels={"artifact": "Fig. 2 in numbers", "format": "CSV"},
+        ),
+        md="results/tables/fig2_comparison.md",
+        html="results/tables/fig2_comparison.html",
+        table_provenance="results/tables/fig2_comparison.provenance.json",
+        fig4_pdf=report(
             "results/figures/fig4_midrod_displacement.pdf",
             caption="../report/fig4.rst",
             category="Paper, Fig. 2 and Fig. 4",
             subcategory="Fig. 4",
             labels={"artifact": "Fig. 4: displacement half-way along the rod", "format": "PDF"},
         ),
-        png=report(
+        fig4_png=report(
             "results/figures/fig4_midrod_displacement.png",
             caption="../report/fig4.rst",
             category="Paper, Fig. 2 and Fig. 4",
             subcategory="Fig. 4",
             labels={"artifact": "Fig. 4: displacement half-way along the rod", "format": "PNG"},
         ),
-        provenance="results/figures/fig4_midrod_displacement.provenance.json",
+        fig4_provenance="results/figures/fig4_midrod_displacement.provenance.json",
     params:
         code=SRC_PRESENT,
         runs=lambda w: runs_of([PROJECT.cases["model"]]),
         fraction=0.5,
     log:
-        "logs/figures/fig4_midrod_displacement.log",
+        "logs/figures/paper_model.log",
     group: GROUP_TABLES
     threads: 1
     resources:
@@ -69,7 +61,7 @@ rule fig4:
     conda:
         "../envs/rodimpact.yaml"
     script:
-        "../scripts/fig4.py"
+        "../scripts/paper_model.py"
 
 
 rule fig_readings:

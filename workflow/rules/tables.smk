@@ -73,36 +73,6 @@ rule readings_summary:
         "../scripts/readings_summary.py"
 
 
-rule fig2_comparison:
-    """Fig. 2's numbers: contact time and maxima per method against the SEM and the paper's."""
-    input:
-        runs=run_batches(lambda w: runs_of([PROJECT.cases["model"]])),
-    output:
-        csv=report(
-            "results/tables/fig2_comparison.csv",
-            caption="../report/fig2_comparison.rst",
-            category="Paper, Fig. 2 and Fig. 4",
-            subcategory="Fig. 2",
-            labels={"artifact": "Fig. 2 in numbers", "format": "CSV"},
-        ),
-        md="results/tables/fig2_comparison.md",
-        html="results/tables/fig2_comparison.html",
-        provenance="results/tables/fig2_comparison.provenance.json",
-    params:
-        code=SRC_PRESENT,
-        runs=lambda w: runs_of([PROJECT.cases["model"]]),
-    log:
-        "logs/tables/fig2_comparison.log",
-    group: GROUP_TABLES
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
-    script:
-        "../scripts/fig2_comparison.py"
-
-
 # The sensor film: one rod's readings by role (config["sensor"]["film_table"]), side by side.
 rule film_table:
     """One rod without and with the film (for the paper's set: Table 2 on the text's rod): every
