@@ -29,7 +29,8 @@ from helpers.snakemake_cli import Run, snakemake, snakemake_command, snakemake_e
 
 pytestmark = pytest.mark.workflow
 
-SOLVE = "results/runs/model/sem/model.h5"  # a run of the batch results/runs/model/sem (one SEM solve, about 2 s)
+SOLVE_BATCH = "results/runs/model/sem"  # the batch of one SEM solve (about 2 s): a target
+SOLVE = f"{SOLVE_BATCH}/model.h5"  # its run
 TABLE = "results/tables/fig2_comparison.csv"  # reads the four runs of 'model'
 LONG = "results/tables/table2_r10_l30.csv"  # 25 jobs: six cases, four methods each
 BUILD_TIMEOUT_S = 600
@@ -107,7 +108,7 @@ def test_a_broken_config_yaml_is_one_line(project: Path, text: str, expected: st
     original = config.read_text(encoding="utf-8")
     try:
         config.write_text(original + text if text.startswith("targets") else text, encoding="utf-8")
-        run = snakemake(project, "-n", SOLVE)
+        run = snakemake(project, "-n", SOLVE_BATCH)
     finally:
         config.write_text(original, encoding="utf-8")
     assert_one_line_refusal(run, expected)
@@ -117,12 +118,12 @@ def test_a_broken_config_yaml_is_one_line(project: Path, text: str, expected: st
 
 def test_a_directory_among_the_case_files_is_refused_also_with_the_plan_cache(project: Path) -> None:
     """The first dry run leaves the plan cache; the second must still read config/cases/ anew."""
-    assert snakemake(project, "-n", SOLVE).returncode == 0
+    assert snakemake(project, "-n", SOLVE_BATCH).returncode == 0
     assert (project / CACHE_FILE).is_file()
     odd = project / "config" / "cases" / "dir.yaml"
     odd.mkdir()
     try:
-        run = snakemake(project, "-n", SOLVE)
+        run = snakemake(project, "-n", SOLVE_BATCH)
     finally:
         odd.rmdir()
     assert_one_line_refusal(run, "rodimpact: invalid configuration: ")
@@ -137,7 +138,7 @@ def test_a_killed_build_leaves_a_lock_that_the_next_run_releases(tmp_path: Path,
     """The same command again releases the killed run's lock, also under a wrapper whose own
     command line names snakemake (it is no live run)."""
     path = copy_project(tmp_path / "project")
-    build = start(path, "-j1", SOLVE)
+    build = start(path, "-j1", SOLVE_BATCH)
     try:
         wait_for(lambda: locks(path) or build.poll() is not None, 120, "the build to lock the directory")
         os.killpg(build.pid, signal.SIGKILL)  # a power cut: snakemake and its job die at once
@@ -146,11 +147,12 @@ def test_a_killed_build_leaves_a_lock_that_the_next_run_releases(tmp_path: Path,
     assert locks(path), "the killed run left no lock: the test did not kill it in time"
     target = path / SOLVE
     assert not target.exists() or read_run(target).case_id == "model"  # nothing readable is half-written
-    # what a kill during the rename-to-target write leaves beside the target
-    target.parent.mkdir(parents=True, exist_ok=True)
-    stale = target.with_name("sem.tmp-0123abcd.h5")
-    stale.write_bytes(b"\x89HDF\r\n\x1a\n" + bytes(64))
-    rerun = snakemake(path, "-j1", SOLVE, timeout=BUILD_TIMEOUT_S, wrapper=wrapper)
+    # what a kill during the batch's write leaves beside its directory: the temporary directory,
+    # a run half-written in it
+    stale = path / "results/runs/model/.sem.tmp-0123abcd"
+    stale.mkdir(parents=True, exist_ok=True)
+    (stale / "model.tmp-0123abcd.h5").write_bytes(b"\x89HDF\r\n\x1a\n" + bytes(64))
+    rerun = snakemake(path, "-j1", SOLVE_BATCH, timeout=BUILD_TIMEOUT_S, wrapper=wrapper)
     assert rerun.returncode == 0, rerun.describe()
     assert "rodimpact: released snakemake's lock of " in rerun.output
     assert not stale.exists() and read_run(target).case_id == "model"
@@ -198,7 +200,7 @@ def test_a_job_parsing_the_workflow_on_another_host_keeps_a_live_builds_lock(tmp
                  "the build to lock the directory and register itself")
         held = locks(path)
         assert held and build.poll() is None, "the build ended before the node's parse: nothing was tested"
-        node = subprocess.run(_on_another_host(path, "-n", SOLVE), cwd=path, env=snakemake_environment(), capture_output=True,
+        node = subprocess.run(_on_another_host(path, "-n", SOLVE_BATCH), cwd=path, env=snakemake_environment(), capture_output=True,
                               text=True, timeout=BUILD_TIMEOUT_S, check=False)
         still_live = build.poll() is None
         kept = all(lock.exists() for lock in held)
@@ -237,12 +239,16 @@ def test_a_damaged_run_is_named_marked_and_remade(built: Path, tmp_path: Path, h
     path = clone_built(built, tmp_path / "project")
     run_file = path / SOLVE
     _damage(run_file, how)
-    failed = snakemake(path, "-j1", TABLE, timeout=BUILD_TIMEOUT_S)
+    # a run inside a batch's directory: snakemake dates the directory by its own timestamp file,
+    # so the edit alone plans nothing; the job that reads the run (here forced) refuses it
+    assert "Nothing to be done" in snakemake(path, "-n", TABLE).output
+    failed = snakemake(path, "-j1", "--forcerun", "paper_model", "--", TABLE, timeout=BUILD_TIMEOUT_S)
     assert failed.returncode != 0, failed.describe()
     assert "Traceback" not in failed.output, failed.describe()
     refusal = [line for line in failed.output.splitlines() if "failed: " in line and reason in line]
     assert refusal and refusal[0].endswith(REBUILD_HINT), failed.describe()
-    assert run_file.stat().st_mtime == 0.0  # marked out of date
+    assert run_file.stat().st_mtime == 0.0  # marked out of date, and so its batch
+    assert (path / SOLVE_BATCH / DIRECTORY_TIMESTAMP).stat().st_mtime == 0.0
     table = path / TABLE
     assert not table.exists() or table.read_text(encoding="utf-8").count("\n") > 1
     recovered = snakemake(path, "-j1", TABLE, timeout=BUILD_TIMEOUT_S)
@@ -291,7 +297,7 @@ def test_a_full_disk_is_one_line_and_leaves_no_temporary(tmp_path: Path) -> None
                     handle.write(bytes(4096))
         except OSError:
             pass
-        failed = snakemake(path, "-j1", SOLVE, timeout=BUILD_TIMEOUT_S)
+        failed = snakemake(path, "-j1", SOLVE_BATCH, timeout=BUILD_TIMEOUT_S)
         assert failed.returncode != 0, failed.describe()
         assert "Traceback" not in failed.output, failed.describe()
         assert any("failed: " in line and "No space left on device" in line for line in failed.output.splitlines()), \
@@ -299,7 +305,7 @@ def test_a_full_disk_is_one_line_and_leaves_no_temporary(tmp_path: Path) -> None
         left = sorted(p.name for p in (mount / "model").iterdir()) if (mount / "model").is_dir() else []
         assert left == []  # no temporary, no half-written run
         filler.unlink()
-        recovered = snakemake(path, "-j1", SOLVE, timeout=BUILD_TIMEOUT_S)
+        recovered = snakemake(path, "-j1", SOLVE_BATCH, timeout=BUILD_TIMEOUT_S)
         assert recovered.returncode == 0, recovered.describe()
         assert read_run(path / SOLVE).case_id == "model"
     finally:
