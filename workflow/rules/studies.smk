@@ -183,7 +183,7 @@ rule stability_map:
         provenance="results/tables/stability_map.provenance.json",
     params:
         code=SRC_PRESENT,
-        runs=[f"results/stability_map/{m}/{p}.h5" for m in MAP.get("methods", []) for p in MAP_POINTS],
+        runs=[f"results/stability_map/{m}/{p}.h5" for p in MAP_POINTS for m in MAP.get("methods", [])],
         references=[f"results/stability_map/reference/{p}.h5" for p in MAP_POINTS],
         spec=MAP,
     log:
