@@ -33,7 +33,7 @@ from rodimpact.tools.audit import audit
 from rodimpact.storage.casefile import case_record, read_case_file
 from rodimpact.storage.runs import REQUIRED_SUMMARY, read_run, read_summary
 
-from helpers.copies import DOTTEST, SMALL_STRESS, DotTestBuild, clone_build, project_cases, run_path
+from helpers.copies import DOTTEST, SMALL_STRESS, DotTestBuild, case_run, clone_build, project_cases, run_path
 from helpers.snakemake_cli import job_stats, snakemake
 
 pytestmark = pytest.mark.workflow
@@ -108,7 +108,7 @@ def assert_inputs_match(inputs: list[dict], runs: list[str], hashes: dict[str, s
     assert sorted(entry["path"] for entry in inputs) == sorted(runs)
     for entry in inputs:
         assert entry["config_sha256"] == hashes[entry["path"]], entry["path"]
-        case_id, method = Path(entry["path"]).parent.name, Path(entry["path"]).stem
+        case_id, method = Path(entry["path"]).stem, Path(entry["path"]).parent.name  # {group}/{method}/{case}.h5
         assert (entry["case_id"], entry["method"]) == (case_id, method)
 
 
@@ -133,11 +133,11 @@ def expected(built: Path) -> dict:
     """What the build must contain, from its own configuration."""
     project = project_cases(built)
     variants = sorted(project.variants["table2"])
-    by_variant = {v: [run_path(c["id"], m) for c in project.cases_in("table2", v) for m in c["methods"]]
+    by_variant = {v: [case_run(c, m) for c in project.cases_in("table2", v) for m in c["methods"]]
                   for v in variants}
-    runs = [run_path(c["id"], m) for name in ("model", "table2", "example")
+    runs = [case_run(c, m) for name in ("model", "table2", "example")
             for c in project.cases_in(name) for m in c["methods"]]  # fmt: skip
-    example = [run_path(c["id"], m) for c in project.cases_in("example") for m in c["methods"]]
+    example = [case_run(c, m) for c in project.cases_in("example") for m in c["methods"]]
     plain = [v for v in variants if "contact" not in project.variants["table2"][v]]
     calibrated = [v for v in variants if (project.variants["table2"][v].get("contact") or {}).get("law") == "tabulated"]
     # What the checks below need of the configuration: 'model' by the four methods, the text's
@@ -234,7 +234,7 @@ def test_every_run_file_has_provenance_and_summary(built: Path, expected: dict) 
             assert set(ROOT_ATTRS) <= set(h5.attrs), path
             assert set(SUMMARY_ATTRS) <= set(h5["summary"].attrs), path
         record = read_run(built / path)  # verifies config_sha256 against config_json
-        case_id, method = Path(path).parent.name, Path(path).stem
+        case_id, method = Path(path).stem, Path(path).parent.name  # {group}/{method}/{case}.h5
         assert (record.case_id, record.method) == (case_id, method)
         assert record.config["id"] == case_id
         assert record.config["run"]["method"] == method
@@ -280,7 +280,7 @@ def test_table2_csvs(built: Path, expected: dict) -> None:
         table = pd.read_csv(built / f"results/tables/table2_{variant}.csv")
         assert set(TABLE2_COLUMNS) <= set(table.columns), variant
         assert len(table) == len(expected["project"].cases_in("table2", variant)), variant
-        assert sorted(table["case_id"]) == sorted({Path(r).parent.name for r in runs})
+        assert sorted(table["case_id"]) == sorted({Path(r).stem for r in runs})
         for row in table.itertuples():
             case = cases[row.case_id]
             assert row.measured_us == pytest.approx(case["measured"]["contact_time_us"])

@@ -136,6 +136,12 @@ def run_batch(case_id: str, method: str, group: str | None = None) -> str:
     return f"results/runs/{group or group_of(case_id)}/{method}"
 
 
+def case_run(case: dict, method: str) -> str:
+    """Where the run of a resolved ``case`` by ``method`` lives: in the batch of its group (its
+    reading, else its set)."""
+    return run_path(case["id"], method, group=case.get("variant") or case["set"])
+
+
 def run_path(case_id: str, method: str, group: str | None = None) -> str:
     """Where a run of ``case_id`` by ``method`` lives, relative to the working directory: in its
     group's batch, ``results/runs/{group}/{method}/{case}.h5``."""
