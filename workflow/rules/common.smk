@@ -427,14 +427,9 @@ def sweep_point_runs(sweep_cases):
             for point in SWEEPS[c["id"]].instance_patterns]
 
 
-def rule_name(text):
-    """``text`` (a case id) as a part of a rule's name."""
-    return re.sub(r"\W", "_", text)
-
-
 def force_files(cases, ext):
     """The exported contact forces (forces.smk) of every run of ``cases``: ext csv or json."""
-    return [f"results/forces/{c['id']}/{m}.{ext}" for c in cases for m in c["methods"]]
+    return [f"results/forces/{c['set']}/{c['id']}/{m}.{ext}" for c in cases for m in c["methods"]]
 
 
 def default_targets():
@@ -451,7 +446,7 @@ def default_targets():
     for name in sets:
         targets += run_batches(runs_of(PROJECT.cases_in(name)))
         # the contact force handed on (forces.smk)
-        targets += force_files(PROJECT.cases_in(name), "csv") + force_files(PROJECT.cases_in(name), "json")
+        targets += [f"results/forces/{name}", f"results/forces/{name}.provenance.json"]
         # the waves in the rod (waves.smk), for the cases that list strain_field
         targets += expand("results/figures/wave_map_{case}.{ext}", ext=["pdf", "png"],
                           case=[c["id"] for c in PROJECT.cases_in(name) if c["id"] in WAVE_CASES])

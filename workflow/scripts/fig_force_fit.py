@@ -5,5 +5,5 @@ from rodimpact.jobs.logs import script_logging
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821
-    make_fig_force_fit(snakemake.params.runs, snakemake.input.jsons,  # noqa: F821
+    make_fig_force_fit(snakemake.params.runs, snakemake.params.jsons,  # noqa: F821
                        pdf=out.pdf, png=out.png, provenance=out.provenance)

@@ -2,12 +2,15 @@
 
 For a run ``results/runs/{group}/{method}/{case}.h5`` the workflow writes
 
-* ``results/forces/{case}/{method}.csv``: ``time_s,contact_force_N`` at every stored sample, SI
+* ``results/forces/{set}/{case}/{method}.csv``: ``time_s,contact_force_N`` at every stored sample, SI
   units, under ``#`` lines that carry the provenance (the run file, its case's and content's
   hashes, the code that made the run and the code that exported it);
-* ``results/forces/{case}/{method}.json``: the Chebyshev closed form of
+* ``results/forces/{set}/{case}/{method}.json``: the Chebyshev closed form of
   :mod:`rodimpact.analysis.force_fit` (formula, intervals, coefficients) with its error
   measured against every sample of the CSV, and the same provenance.
+
+One job exports a whole case set (:func:`export_forces_into`): its directory appears whole or not
+at all, with one provenance sidecar beside it.
 
 A figure draws the closed form over the computed force for one case (``model``;
 :func:`rodimpact.present.artifacts.make_fig_force_fit`).
@@ -22,12 +25,12 @@ from typing import Any, Sequence
 import numpy as np
 
 from rodimpact.analysis.force_fit import DEFAULT_REL_TOL, ForceFit, fit_force
-from rodimpact.storage.atomic import atomic_output
+from rodimpact.storage.atomic import atomic_directory, atomic_output
 from rodimpact.storage.provenance import code_version
 from rodimpact.storage.sidecar import write_provenance
 from rodimpact.storage.runs import RunRecord, read_run
 
-__all__ = ["export_forces", "force_fit_of", "read_force_json"]
+__all__ = ["export_forces", "export_forces_into", "force_fit_of", "read_force_json"]
 
 
 def force_fit_of(record: RunRecord, rel_tol: float = DEFAULT_REL_TOL) -> ForceFit:
@@ -66,9 +69,10 @@ def read_force_json(path: str | Path) -> ForceFit:
 
 
 def export_forces(runs: Sequence[str | Path], csvs: Sequence[str | Path], jsons: Sequence[str | Path], *,
-                  provenance: str | Path, rel_tol: float = DEFAULT_REL_TOL) -> None:
+                  provenance: str | Path | None, rel_tol: float = DEFAULT_REL_TOL) -> list[RunRecord]:
     """Write each run's force as CSV and its closed form as JSON (``runs[i]`` to ``csvs[i]``,
-    ``jsons[i]``), and one provenance sidecar listing them all."""
+    ``jsons[i]``), and one provenance sidecar listing them all (none when ``provenance`` is None);
+    the runs read."""
     if not len(runs) == len(csvs) == len(jsons):
         raise ValueError(f"runs, csvs and jsons must be of one length, got {len(runs)}, {len(csvs)}, {len(jsons)}")
     records = []
@@ -80,4 +84,21 @@ def export_forces(runs: Sequence[str | Path], csvs: Sequence[str | Path], jsons:
         fit = force_fit_of(record, rel_tol)
         with atomic_output(json_path) as tmp:
             tmp.write_text(json.dumps({**meta, "fit": fit.to_mapping()}, indent=1) + "\n", encoding="utf-8")
-    write_provenance(provenance, records, [*csvs, *jsons])
+    if provenance is not None:
+        write_provenance(provenance, records, [*csvs, *jsons])
+    return records
+
+
+def export_forces_into(runs: Sequence[str | Path], names: Sequence[str], directory: str | Path, *,
+                       provenance: str | Path, rel_tol: float = DEFAULT_REL_TOL) -> None:
+    """:func:`export_forces` of every run of a case set into ``directory``: ``runs[i]`` to
+    ``directory/{names[i]}.csv`` and ``.json`` (``names[i]`` is ``{case}/{method}``), the
+    directory written whole or not at all (:func:`~rodimpact.storage.atomic.atomic_directory`),
+    then the provenance sidecar listing the files where they are."""
+    if len(runs) != len(names):
+        raise ValueError(f"runs and names must be of one length, got {len(runs)} and {len(names)}")
+    directory = Path(directory)
+    with atomic_directory(directory) as tmp:
+        records = export_forces(runs, [tmp / f"{name}.csv" for name in names], [tmp / f"{name}.json" for name in names],
+                                provenance=None, rel_tol=rel_tol)
+    write_provenance(provenance, records, [directory / f"{name}.{ext}" for ext in ("csv", "json") for name in names])
