@@ -261,7 +261,7 @@ def test_changed_case_value_reruns_only_that_case(changed: DotTestBuild) -> None
     assert job_stats(run.output) == {"case_file": 1, "solve": 4, "paper_model": 1,
                                      "all": 1, "solve_levels": 3, "work_precision_table": 1,
                                      "work_precision_figure": 1, "solve_map": 3,
-                                     "stability_map": 1, "forces_model": 1, "fig_force_fit": 1,
+                                     "stability_map": 1, "forces": 1, "fig_force_fit": 1,
                                      "wave_map": 1}, run.describe()
     assert pending(rows := summary(changed.project, workdir=DOTTEST), "case_file") == {"results/cases/model.yaml"}
     assert pending(rows, "solve") == {run_batch("model", m) for m in ("sem", "sem_paper", "fem1d", "fem_axi")}
@@ -280,8 +280,9 @@ def test_code_change_reruns_the_solvers(changed: DotTestBuild) -> None:
     assert run.returncode == 0, run.describe()
     stats = job_stats(run.output)
     project = project_cases(changed.workdir)
-    runs = [c for name in ("model", "table2", "example") for c in project.cases_in(name) for _ in c["methods"]]
-    assert stats.get("solve") == len(runs), run.describe()  # every run of the target sets
+    batches = {(c.get("variant") or c["set"], m) for name in ("model", "table2", "example")
+               for c in project.cases_in(name) for m in c["methods"]}
+    assert stats.get("solve") == len(batches), run.describe()  # every batch of runs of the target sets
     # the code is a param (the digest of the sources a rule runs), not sixty input files
     assert "Params have changed since last execution" in run.output, run.describe()
     assert "src/rodimpact" not in run.output, run.describe()
@@ -312,7 +313,7 @@ def test_a_methods_code_change_reruns_only_its_runs(changed: DotTestBuild) -> No
               if (c.get("contact") or {}).get("law") == "tabulated"}
     assert sweeps and {p for p in reruns if p.startswith("results/sweeps/")} == {
         p.relative_to(changed.workdir).as_posix() for s in sweeps for p in (changed.workdir / "results/sweeps" / s).rglob("*.h5")}
-    assert reruns and all("fem_axi" in path or Path(path).parent.name in calibrated
+    assert reruns and all("fem_axi" in path or Path(path).stem in calibrated
                           or path.startswith(("results/indentation/", "results/studies/sensor_band/"))
                           or Path(path).parts[2:3] and Path(path).parts[2] in sweeps
                           for path in reruns), sorted(reruns)

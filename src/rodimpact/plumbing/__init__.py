@@ -6,7 +6,7 @@ on its own, why that is not enough here, and which test fails when snakemake's i
 What lives here: :mod:`.plan_cache` (the checked project and the jobs' estimates, kept between
 snakemake runs), :mod:`.locks` (snakemake's lock left by a killed run, released),
 :mod:`.targets` (command-line targets no rule makes, read with snakemake's own argument parser)
-and :mod:`.sources` (the package files a rule depends on, from the static import graph).
+and :mod:`.sources` (the package files a rule runs, from the static import graph, and their digest).
 
 What it may import: everything below it (:mod:`rodimpact.jobs` and the layers under it; it uses
 only :mod:`rodimpact.storage.atomic`), and snakemake's command-line parser, inside
