@@ -35,33 +35,7 @@ from skfem import Basis
 from rodimpact.solvers.fem_axi.axisym import cross_section_mean_uz
 from rodimpact.solvers.fem_axi.farbar import FarBar
 
-__all__ = ["DOT_CHUNK", "AxiBody", "dot", "spd_inverse_rows", "spd_solver"]
-
-#: Length of the pieces :func:`dot` sums (below OpenBLAS's threading threshold of 10,000).
-DOT_CHUNK = 8192
-
-
-def dot(a: NDArray[np.float64], b: NDArray[np.float64]) -> float:
-    """``a . b`` of two vectors, summed in pieces of :data:`DOT_CHUNK` entries (BLAS on each).
-
-    OpenBLAS splits a dot product of more than 10,000 entries between threads; with the
-    cores busy (a parallel build) each such call waits for a scheduler slice, milliseconds
-    for microseconds of work, and a run's per-step products (energies, means) came to
-    most of its time. Pieces below the threshold run in the calling thread; the result no
-    longer depends on the thread count (it equals ``a @ b`` bit for bit up to DOT_CHUNK entries).
-
-    Parameters
-    ----------
-    a, b : ndarray, shape (n,)
-
-    Returns
-    -------
-    float
-    """
-    n = len(a)
-    if n <= DOT_CHUNK:
-        return float(a @ b)
-    return float(sum(a[i:i + DOT_CHUNK] @ b[i:i + DOT_CHUNK] for i in range(0, n, DOT_CHUNK)))
+__all__ = ["AxiBody", "spd_inverse_rows", "spd_solver"]
 
 
 def spd_solver(matrix: sp.spmatrix) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
@@ -313,11 +287,11 @@ class AxiBody:
     # -- measures ------------------------------------------------------------------------
     def kinetic_energy(self) -> float:
         """Total (3D) kinetic energy, J."""
-        return math.pi * dot(self.v, self.Mv)
+        return math.pi * float(self.v @ self.Mv)
 
     def strain_energy(self) -> float:
         """Total (3D) strain energy, J."""
-        return math.pi * dot(self.q, self.Kq)
+        return math.pi * float(self.q @ self.Kq)
 
     def reduce_rows(self, rows: sp.spmatrix) -> sp.csr_matrix:
         """Rows acting on full DOFs (e.g. probes), expressed on the free coordinates."""

@@ -47,7 +47,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from rodimpact.solvers.fem_axi.axibody import AxiBody, dot, spd_solver
+from rodimpact.solvers.fem_axi.axibody import AxiBody, spd_solver
 from rodimpact.solvers.fem_axi.contact import ContactOperator
 
 __all__ = ["COMPLIANCE_MARGIN", "ENERGY_MARGIN", "BodyBound", "Flight", "SeparationBound"]
@@ -178,7 +178,7 @@ class Flight:
         lower = self.bound.gap0 - self.reach
         for part, body in ((self.bound.rod, rod), (self.bound.impactor, impactor)):
             if part.free:
-                lower = lower + part.sign * dot(part.weights, body.q)
+                lower = lower + part.sign * float(part.weights @ body.q)
         return float(lower.min())
 
     def holds(self, rod: AxiBody, impactor: AxiBody) -> bool:

@@ -28,7 +28,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 from skfem import Basis, ElementTriP1, ElementTriP2, ElementVector
 
-from rodimpact.solvers.fem_axi.axibody import AxiBody, dofs_of, dot
+from rodimpact.solvers.fem_axi.axibody import AxiBody, dofs_of
 from rodimpact.solvers.fem_axi.axisym import axis_dofs, axisym_mass, axisym_stiffness
 from rodimpact.solvers.fem_axi.contact import ContactOperator
 from rodimpact.solvers.fem_axi.farbar import FarBar, continuum_length
@@ -263,12 +263,12 @@ def solve_fem_axi(problem: AxiImpact, options: FEMAxiOptions | None = None,
     hist = _History()
 
     def record(t: float, force: float, radius: float) -> None:
-        x, u_face = dot(mean_weights, imp.q), float((face @ rod.q)[0])
+        x, u_face = float(mean_weights @ imp.q), float((face @ rod.q)[0])
         hist.t.append(t)
         hist.force.append(force)
         hist.radius.append(radius)
         hist.x.append(x)
-        hist.w.append(dot(mean_weights, imp.v))
+        hist.w.append(float(mean_weights @ imp.v))
         hist.u_end.append(u_face)
         hist.alpha.append(x - u_face)
         hist.kin_i.append(imp.kinetic_energy())
