@@ -24,6 +24,16 @@ def _fsync_file(path: Path) -> None:
         os.fsync(handle.fileno())
 
 
+def _fsync_directory(path: Path) -> None:
+    """Flush a directory's entries (a rename in it) to the disk, where the system allows."""
+    with contextlib.suppress(OSError):
+        fd = os.open(path, os.O_RDONLY)
+        try:
+            os.fsync(fd)
+        finally:
+            os.close(fd)
+
+
 def _temporary_name(target: Path) -> re.Pattern[str]:
     return re.compile(re.escape(target.stem) + r"\.tmp-[0-9a-f]{8}" + re.escape(target.suffix))
 
@@ -66,12 +76,7 @@ def atomic_output(path: str | Path) -> Iterator[Path]:
     finally:
         if tmp.exists():
             tmp.unlink()
-    with contextlib.suppress(OSError):  # make the rename durable where supported
-        fd = os.open(target.parent, os.O_RDONLY)
-        try:
-            os.fsync(fd)
-        finally:
-            os.close(fd)
+    _fsync_directory(target.parent)  # make the rename durable where supported
 
 
 def _remove_stale_directories(target: Path) -> None:
@@ -103,9 +108,4 @@ def atomic_directory(path: str | Path) -> Iterator[Path]:
     finally:
         if tmp.exists():
             shutil.rmtree(tmp, ignore_errors=True)
-    with contextlib.suppress(OSError):  # make the rename durable where supported
-        fd = os.open(target.parent, os.O_RDONLY)
-        try:
-            os.fsync(fd)
-        finally:
-            os.close(fd)
+    _fsync_directory(target.parent)  # make the rename durable where supported
