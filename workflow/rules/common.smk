@@ -122,17 +122,8 @@ def per_job(function):
     return once
 
 
-# A solver rule depends on the runner and on its own method's solver (the registry names it).
-SRC_RUN = ("rodimpact.jobs.runner", "rodimpact.jobs.logs")
-SOLVER_SOURCES = {name: sources(*SRC_RUN, spec.solver_module) for name, spec in METHOD_REGISTRY.items()}
-
-
-def solver_sources(method=None):
-    """Params function: the code digest of the method ``method(wildcards)`` (default: the wildcard) runs."""
-    return lambda wildcards: SOLVER_SOURCES[method(wildcards) if method else wildcards.method]
-
-
-# A batch rule (several runs in one job, scripts/solve_batch.py) runs them through the batch module.
+# A solver rule runs its batch of runs (scripts/solve_batch.py) through the batch module and the solver
+# of its method (the registry names it): a change to one method's code reruns that method's batches only.
 SRC_BATCH = ("rodimpact.jobs.batch", "rodimpact.jobs.logs")
 BATCH_SOURCES = {name: sources(*SRC_BATCH, spec.solver_module) for name, spec in METHOD_REGISTRY.items()}
 
@@ -243,15 +234,6 @@ wildcard_constraints:
     variant=one_of(READING_SET_OF),
     row="[0-9]+",
     map_method=one_of(["sem", "sem_paper", "reference"]),
-
-
-@per_job
-def resolved_case_of(wildcards):
-    """The resolved case (or sweep case) of a case file."""
-    case = PROJECT.cases.get(wildcards.case) or PROJECT.sweeps.get(wildcards.case)
-    if case is None:
-        refuse(f"unknown case {wildcards.case!r}; known: {', '.join([*PROJECT.cases, *PROJECT.sweeps])}")
-    return case
 
 
 def case_file_of(case_id):

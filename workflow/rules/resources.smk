@@ -6,7 +6,7 @@
 import importlib
 
 from rodimpact.tools.bench_plan import fem_bench_runs, sem_bench_runs, sem_scaling_runs
-from rodimpact.jobs.resources import PRESENTATION, estimate_resources, estimate_sequence
+from rodimpact.jobs.resources import PRESENTATION, estimate_sequence
 
 
 @per_job
@@ -81,16 +81,6 @@ def _resources(estimate):
     estimate = per_job(estimate)
     return {"mem_mb": lambda wildcards, attempt: estimate(wildcards).for_attempt(attempt).mem_mb,
             "runtime": lambda wildcards, attempt: estimate(wildcards).for_attempt(attempt).runtime_min}
-
-
-def solver_resources(case, method=None, timing=None):
-    """Resources of a solver rule: ``case(wildcards)`` is the case its params run, ``method(wildcards)``
-    the method (default: the wildcard), ``timing`` the study's timing when the solve is repeated."""
-    return _resources(lambda w: PLAN.remember((case(w), method(w) if method else w.method, timing), _estimate))
-
-
-def _estimate(case, method, timing):
-    return estimate_resources(case, method, timing=timing)
 
 
 def batch_resources(runs, timing=None):
