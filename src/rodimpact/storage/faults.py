@@ -46,12 +46,11 @@ def mark_out_of_date(path: str | Path) -> bool:
     with contextlib.suppress(OSError):
         os.utime(path, (0, 0))
         logger.warning("%s: marked out of date (modification time set to the epoch)", path)
-        for parent in Path(path).parents:
-            if (parent / DIRECTORY_TIMESTAMP).is_file():
-                with contextlib.suppress(OSError):
-                    os.utime(parent / DIRECTORY_TIMESTAMP, (0, 0))
-                    logger.warning("%s: its batch %s marked out of date", path, parent)
-                break
+        batch = Path(path).parent  # a file a reader refuses lies directly in its batch's directory
+        if (batch / DIRECTORY_TIMESTAMP).is_file():
+            with contextlib.suppress(OSError):
+                os.utime(batch / DIRECTORY_TIMESTAMP, (0, 0))
+                logger.warning("%s: its batch %s marked out of date", path, batch)
         return True
     return False
 
