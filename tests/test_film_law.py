@@ -70,6 +70,39 @@ def test_film_law_is_consistent_with_itself():
     assert law.force(-1e-6) == 0.0 and law.stiffness(0.0) == 0.0 and float(law.energy(-1.0)) == 0.0
 
 
+def test_energy_between_is_the_quadrature_without_cancellation():
+    """The closed form of int P d alpha over [lower, upper] against adaptive quadrature of the
+    force (ContactLaw's generic method) to 1e-12, and on an interval of 1e-13 relative width,
+    where E(upper) - E(lower) loses 13 digits, against the midpoint rule P(mid) times the width
+    to 1e-9 (its error is of the order of the squared relative width)."""
+    from rodimpact.contact.law import ContactLaw
+
+    law = film_law()
+    for lower, upper in ((0.0, 1e-6), (-1e-7, 2e-6), (1e-7, 2e-5), (2e-6, 3e-6)):
+        assert law.energy_between(lower, upper) == pytest.approx(ContactLaw.energy_between(law, lower, upper),
+                                                                 rel=1e-12)
+    assert law.energy_between(3e-6, 2e-6) == pytest.approx(-law.energy_between(2e-6, 3e-6), rel=1e-15)
+    assert law.energy_between(1e-6, 1e-6) == 0.0
+    alpha = 2e-6
+    upper = alpha * (1 + 1e-13)
+    width = upper - alpha  # exact (Sterbenz)
+    narrow = law.energy_between(alpha, upper)
+    assert narrow == pytest.approx(law.force(alpha + 0.5 * width) * width, rel=1e-9)
+    difference = float(law.energy(upper)) - float(law.energy(alpha))
+    assert abs(difference / narrow - 1) > 1e-6  # the naive difference has lost those digits
+
+
+def test_step_force_is_the_force_at_the_step_root():
+    """solve_step_force's P is P(alpha) of its root to 1e-14: one root, not two."""
+    law = film_law()
+    for a in (1e-8, 2e-6):
+        for b in (0.0, 1e-9, 1e-6):
+            alpha, force, _ = law.solve_step_force(a, b, 0.0)
+            assert alpha == law.solve_step(a, b, 0.0)[0]
+            assert force == pytest.approx(law.force(alpha), rel=1e-14)
+    assert law.solve_step_force(-1.0, 1e-6, 0.0) == (0.0, 0.0, 0)
+
+
 def test_vanishing_film_is_hertz():
     """h -> 0: the film's share (P h / (pi M R))^(1/2) of the approach goes as sqrt(h); at
     h = 1e-30 m it is ~1e-14 of the approach, and the sem runs of the two laws agree to 1e-9."""

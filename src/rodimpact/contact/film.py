@@ -29,6 +29,7 @@ law holds (measured against the continuum) are in docs/contact-laws.md.
 
 from __future__ import annotations
 
+import functools
 import logging
 import math
 from dataclasses import dataclass
@@ -266,11 +267,12 @@ class HertzFilmLaw(ContactLaw):
                    sphere_radius_m=sphere_radius_m, thickness_m=film.thickness_m)
 
     # -- the law in s = P^(1/6) ---------------------------------------------------------
-    @property
+    # (computed once per law: every force and every step asks for them)
+    @functools.cached_property
     def _a(self) -> float:
         return self.k ** (-2.0 / 3.0)
 
-    @property
+    @functools.cached_property
     def _b(self) -> float:
         return 0.0 if math.isinf(self.c) else self.c ** -0.5
 
@@ -294,6 +296,32 @@ class HertzFilmLaw(ContactLaw):
         s = np.vectorize(self._s, otypes=[float])(alpha) if alpha.ndim else np.float64(self._s(float(alpha)))
         energy = (0.4 * self._a * s + self._b / 3.0) * s**9
         return energy if alpha.ndim else float(energy)
+
+    def energy_between(self, lower_m: float, upper_m: float) -> float:
+        """int_lower^upper P d alpha, J, in closed form and without cancellation.
+
+        With alpha = A s^4 + B s^3 and E = 0.4 A s^10 + B s^9 / 3 (s = P^(1/6)), the differences
+        factor as alpha_1 - alpha_0 = (s_1 - s_0) (A S_4 + B S_3) and E_1 - E_0 = (s_1 - s_0)
+        (0.4 A S_10 + B S_9 / 3), where S_n = sum_k s_1^k s_0^(n-1-k) has no cancellation: s_1 -
+        s_0 follows from the approaches' difference, never from two nearly equal roots.
+        """
+        lower, upper = max(lower_m, 0.0), max(upper_m, 0.0)
+        if upper == lower:
+            return 0.0
+        if upper < lower:
+            return -self.energy_between(upper, lower)
+        s0, s1 = self._s(lower), self._s(upper)
+        a, b = self._a, self._b
+        s_sum = [0.0] * 11  # s_sum[n] = S_n
+        power0 = [1.0] * 10  # s_0^j
+        power1 = [1.0] * 10  # s_1^j
+        for j in range(1, 10):
+            power0[j] = power0[j - 1] * s0
+            power1[j] = power1[j - 1] * s1
+        for n in (3, 4, 9, 10):
+            s_sum[n] = math.fsum(power1[k] * power0[n - 1 - k] for k in range(n))
+        ds = (upper - lower) / (a * s_sum[4] + b * s_sum[3])
+        return ds * (0.4 * a * s_sum[10] + b * s_sum[9] / 3.0)
 
     def approach(self, force_N: float) -> float:
         force = max(force_N, 0.0)
@@ -342,3 +370,10 @@ class HertzFilmLaw(ContactLaw):
             return 0.0, 0
         s, iterations = _root((max(b, 0.0), self._a, self._b), a)
         return (self._a * s + self._b) * s**3, iterations
+
+    def solve_step_force(self, a: float, b: float, guess: float) -> tuple[float, float, int]:
+        """:meth:`solve_step` with the force s^6 from the same root."""
+        if a <= 0.0:
+            return 0.0, 0.0, 0
+        s, iterations = _root((max(b, 0.0), self._a, self._b), a)
+        return (self._a * s + self._b) * s**3, s**6, iterations

@@ -205,6 +205,15 @@ class ContactLaw(abc.ABC):
         raise StepNotConverged(f"the step of the {self.name or type(self).__name__} law did not converge "
                                f"(a={a!r}, b={b!r})")
 
+    def solve_step_force(self, a: float, b: float, guess: float) -> tuple[float, float, int]:
+        """:meth:`solve_step` and the force there: (alpha, P(alpha), iterations).
+
+        A law whose step is solved in another variable (the film's s = P^(1/6)) gives the force
+        from it, without a second root.
+        """
+        alpha, iterations = self.solve_step(a, b, guess)
+        return alpha, self.force(alpha), iterations
+
     def energy_between(self, lower_m: float, upper_m: float) -> float:
         """int_lower^upper P d alpha, J, without the cancellation of E(upper) - E(lower)
         (generic: adaptive quadrature of :meth:`force`)."""

@@ -51,7 +51,7 @@ def contact_steps(st: Any, t_max: float, force_bound: float, max_nodes: int) -> 
     impedance, m = hist.impedance, st.m
     coef = c / impedance
     b = h * h / (6.0 * m) + coef
-    solve, force = st.law.solve_step, st.law.force
+    solve = st.law.solve_step_force
     T, P, Q, W = hist.t, hist.P, hist.Q, hist.W
     X, V, U, A = st.x, st.w, st.u_end, st.alpha
     t_app, p_app, q_app, w_app = T.append, P.append, Q.append, W.append
@@ -76,9 +76,8 @@ def contact_steps(st: Any, t_max: float, force_bound: float, max_nodes: int) -> 
         if a <= 0.0:
             break
         guess = 3.0 * (alpha_n - alpha_prev) + alpha_prev2
-        alpha_new, iterations = solve(a, b, guess)
+        alpha_new, p_new, iterations = solve(a, b, guess)
         newton += iterations
-        p_new = force(alpha_new)
         x_new = x + v * h - h * h * (p_n / 3.0 + p_new / 6.0) / m
         v_new = v - 0.5 * h * (p_n + p_new) / m
         u_new = known + coef * p_new

@@ -95,9 +95,8 @@ class _Stepper(StepHistory):
                 return
         if a > 0.0:
             guess = extrapolated(self.alpha, a)
-            alpha_new, iterations = law.solve_step(a, b, guess)
+            alpha_new, p_new, iterations = law.solve_step_force(a, b, guess)
             self.n_newton += iterations
-            p_new = law.force(alpha_new)
             x_new, v_new = self._impactor(h, p_new)
             self._accept(t_new, p_new, known + coef * p_new, x_new, v_new)
             if not self.in_contact:
