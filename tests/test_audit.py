@@ -10,14 +10,15 @@ import h5py
 import numpy as np
 import pytest
 
-from rodimpact.tools import audit as audit_module
-from rodimpact.tools.audit import audit, audit_run, audit_sidecar, code_problems
 from rodimpact.storage.faults import REBUILD_HINT
 from rodimpact.storage.provenance import library_versions
 from rodimpact.storage.runs import read_summary, write_run
 from rodimpact.storage.sidecar import write_provenance
+from rodimpact.tools import audit as audit_module
+from rodimpact.tools.audit import audit, audit_run, audit_sidecar, code_problems
 
 from helpers.repo import ROOT
+
 HEAD = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
                       check=True).stdout.strip()
 VERSION = f"0.1.0+g{HEAD}"

@@ -8,11 +8,27 @@ import math
 
 import numpy as np
 import pytest
-from skfem import Basis, ElementTriP1, ElementTriP2, ElementVector, Functional, LinearForm
-from skfem import MeshTri, asm, condense, solve
+from skfem import (
+    Basis,
+    ElementTriP1,
+    ElementTriP2,
+    ElementVector,
+    Functional,
+    LinearForm,
+    MeshTri,
+    asm,
+    condense,
+    solve,
+)
 
 from rodimpact.solvers.fem_axi.axisym import (
-    axis_dofs, axisym_load, axisym_mass, axisym_stiffness, component_dofs, cross_section_mean_uz, strain
+    axis_dofs,
+    axisym_load,
+    axisym_mass,
+    axisym_stiffness,
+    component_dofs,
+    cross_section_mean_uz,
+    strain,
 )
 
 from helpers.paper import STEEL

@@ -8,10 +8,10 @@ from pathlib import Path
 import pytest
 
 from rodimpact.analysis.sweeps import sweep_point_case, sweep_points
-from rodimpact.storage.runs import read_run
 from rodimpact.jobs.batch import run_batch, run_batch_into
 from rodimpact.jobs.cases import write_case_file
 from rodimpact.jobs.runner import SolverFailed, run_to_file
+from rodimpact.storage.runs import read_run
 
 
 @pytest.fixture(scope="module")

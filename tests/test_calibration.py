@@ -20,12 +20,12 @@ import numpy as np
 import pytest
 
 from rodimpact.contact.hertz import HertzLaw, hertz_constant
+from rodimpact.jobs.indentation import indentation_curve
+from rodimpact.jobs.runner import run_case, run_to_file
+from rodimpact.model.materials import Material
 from rodimpact.storage.curves import read_contact_curve, write_contact_curve
 from rodimpact.storage.faults import StoredFileError
 from rodimpact.storage.runs import read_summary
-from rodimpact.model.materials import Material
-from rodimpact.jobs.indentation import indentation_curve
-from rodimpact.jobs.runner import run_case, run_to_file
 
 
 @pytest.fixture(scope="module")

@@ -12,8 +12,8 @@ import pytest
 import yaml
 
 import rodimpact
-from rodimpact.tools.cli import main, run_file
 from rodimpact.jobs.runner import run_case
+from rodimpact.tools.cli import main, run_file
 
 from helpers.repo import ROOT
 

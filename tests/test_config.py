@@ -17,10 +17,11 @@ import yaml
 from jsonschema import Draft202012Validator
 
 from rodimpact.config.load import METHODS, OUTPUTS, Project, load_global_config, load_project, registry_schema
-from rodimpact.solvers.registry import METHODS as REGISTRY
 from rodimpact.config.project import ConfigError
+from rodimpact.solvers.registry import METHODS as REGISTRY
 
 from helpers.repo import ROOT
+
 SCHEMAS = ROOT / "workflow" / "schemas"
 ROWS = ["ball_3.16mm", "ball_4.75mm", "ball_5.56mm", "ball_6.34mm", "ball_9.51mm", "ball_12.73mm"]
 VARIANTS = {  # name -> (rod radius, rod length), m

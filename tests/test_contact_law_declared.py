@@ -19,17 +19,18 @@ from __future__ import annotations
 
 import math
 import shutil
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import pytest
 import yaml
 
-from rodimpact.contact import laws
-from rodimpact.contact.law import LawSettings
 from rodimpact.config.load import load_global_config, load_project
 from rodimpact.config.project import ConfigError
+from rodimpact.contact import laws
+from rodimpact.contact.law import LawSettings
 from rodimpact.settings.declare import REQUIRED, setting
 from rodimpact.solvers.registry import METHODS
 
@@ -53,7 +54,7 @@ class LinearSpringLaw(LinearSpring):
 
     @classmethod
     def from_bodies(cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: Any,
-                    rod: Any) -> "LinearSpringLaw":
+                    rod: Any) -> LinearSpringLaw:
         return cls(float(spec["stiffness_n_per_m"]))
 
 

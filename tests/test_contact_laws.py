@@ -27,7 +27,6 @@ from rodimpact.solvers.sem.stability import paper_step_limit
 from helpers.laws import LinearSpring
 from helpers.paper import STEEL
 
-
 MASS, VELOCITY, SPRING = 0.5, 1.0, 1.0e7  # kg, m/s, N/m
 HALF_PERIOD = math.pi * math.sqrt(MASS / SPRING)
 PEAK = VELOCITY * math.sqrt(MASS * SPRING)

@@ -8,8 +8,14 @@ import numpy as np
 import pytest
 
 from rodimpact.analysis.convergence import (
-    changes_sign, constant_ratio, fitted_order, grid_convergence_index, is_monotone, numerical_uncertainty,
-    oscillatory_uncertainty)
+    changes_sign,
+    constant_ratio,
+    fitted_order,
+    grid_convergence_index,
+    is_monotone,
+    numerical_uncertainty,
+    oscillatory_uncertainty,
+)
 
 
 @pytest.mark.parametrize("order", [1.0, 1.5, 2.0, 4.0])

@@ -12,7 +12,13 @@ import pytest
 
 from rodimpact.analysis.studies import level_case
 from rodimpact.analysis.work_precision import (
-    ORDER_TOLERANCE, _history, expected_order, levels_in, observed_orders, work_precision_frame)
+    ORDER_TOLERANCE,
+    _history,
+    expected_order,
+    levels_in,
+    observed_orders,
+    work_precision_frame,
+)
 from rodimpact.contact.spring import semi_infinite_rod_contact
 from rodimpact.jobs.runner import run_to_file
 from rodimpact.model.materials import Material, wave_speed

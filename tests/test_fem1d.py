@@ -4,13 +4,13 @@ observed orders in element size and time step, energy, d'Alembert's wave field."
 import numpy as np
 import pytest
 
+from rodimpact.jobs.runner import run_case
 from rodimpact.solvers.fem1d.bar import bar_model
 from rodimpact.solvers.fem1d.options import FEM1DOptions
 from rodimpact.solvers.fem1d.solver import solve_fem1d
-from rodimpact.jobs.runner import run_case
+from rodimpact.solvers.sem.history import ForceHistory
 from rodimpact.solvers.sem.options import SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
-from rodimpact.solvers.sem.history import ForceHistory
 
 from helpers.paper import model_problem, two_contact_problem
 

@@ -9,16 +9,20 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementTriP2, ElementVector
 
+from rodimpact.contact.hertz import effective_modulus, hertz_constant
 from rodimpact.solvers.fem_axi.axibody import AxiBody, dofs_of
 from rodimpact.solvers.fem_axi.axisym import (
-    axis_dofs, axisym_load, axisym_mass, axisym_stiffness, cross_section_mean_uz
+    axis_dofs,
+    axisym_load,
+    axisym_mass,
+    axisym_stiffness,
+    cross_section_mean_uz,
 )
-from rodimpact.solvers.fem_axi.problem import AxiImpact
-from rodimpact.solvers.fem_axi.options import FEMAxiOptions
-from rodimpact.solvers.fem_axi.solver import solve_fem_axi
 from rodimpact.solvers.fem_axi.indentation import static_indentation
 from rodimpact.solvers.fem_axi.meshes import rod_mesh
-from rodimpact.contact.hertz import effective_modulus, hertz_constant
+from rodimpact.solvers.fem_axi.options import FEMAxiOptions
+from rodimpact.solvers.fem_axi.problem import AxiImpact
+from rodimpact.solvers.fem_axi.solver import solve_fem_axi
 from rodimpact.solvers.sem.options import SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
 

@@ -13,9 +13,8 @@ import scipy.linalg as la
 import scipy.sparse as sp
 from skfem import Basis, ElementTriP2, ElementVector
 
-from rodimpact.solvers.fem_axi import separation
 from rodimpact.solvers.fem_axi.axibody import AxiBody, dofs_of
-from rodimpact.solvers.fem_axi.axisym import axis_dofs, axisym_load, axisym_mass, axisym_stiffness
+from rodimpact.solvers.fem_axi.axisym import axis_dofs, axisym_mass, axisym_stiffness
 from rodimpact.solvers.fem_axi.contact import ContactOperator
 from rodimpact.solvers.fem_axi.meshes import ball_mesh, rod_mesh
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions

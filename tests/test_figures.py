@@ -24,21 +24,26 @@ import pytest  # noqa: E402
 import rodimpact.present.figures as figures  # noqa: E402
 from rodimpact.analysis.studies import level_case, map_point_case, map_point_names  # noqa: E402
 from rodimpact.analysis.sweeps import sweep_point_case, sweep_points  # noqa: E402
-from rodimpact.storage.bands import BAND_PARAMETERS, CaseBand, write_band  # noqa: E402
-from rodimpact.storage.runs import read_run, read_summary  # noqa: E402
+from rodimpact.jobs.indentation import indentation_to_file  # noqa: E402
+from rodimpact.jobs.runner import run_to_file  # noqa: E402
 from rodimpact.present.artifacts import (  # noqa: E402
-    make_fig2, make_fig4, make_fig_film_force, make_fig_force_fit, make_fig_readings, make_stability_map,
-    make_work_precision_figure
+    make_fig2,
+    make_fig4,
+    make_fig_film_force,
+    make_fig_force_fit,
+    make_fig_readings,
+    make_stability_map,
+    make_work_precision_figure,
 )
+from rodimpact.present.figures import METHOD_LABELS  # noqa: E402
 from rodimpact.present.forces import export_forces  # noqa: E402
+from rodimpact.present.sensor_figures import plot_sensor_fit  # noqa: E402
+from rodimpact.present.sensor_tables import sensor_fit_frame  # noqa: E402
 from rodimpact.present.study_figures import order_text, quantity_words  # noqa: E402
 from rodimpact.present.table2_figures import SECOND_CONTACT_LABEL, short_source  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
-from rodimpact.jobs.indentation import indentation_to_file  # noqa: E402
-from rodimpact.jobs.runner import run_to_file  # noqa: E402
-from rodimpact.present.figures import METHOD_LABELS  # noqa: E402
-from rodimpact.present.sensor_figures import plot_sensor_fit  # noqa: E402
-from rodimpact.present.sensor_tables import sensor_fit_frame  # noqa: E402
+from rodimpact.storage.bands import BAND_PARAMETERS, CaseBand, write_band  # noqa: E402
+from rodimpact.storage.runs import read_summary  # noqa: E402
 
 from helpers.figures import MAX_LEGEND_ENTRIES, assert_journal_ready  # noqa: E402
 

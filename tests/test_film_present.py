@@ -4,24 +4,28 @@ with the project's own writers (rodimpact.storage): the numbers of each frame, a
 from __future__ import annotations
 
 import json
-import math
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
 
-from rodimpact.storage.bands import BAND_PARAMETERS, CaseBand, read_band, write_band
-from rodimpact.storage.curves import ContactCurve, read_contact_curve, write_contact_curve
-from rodimpact.storage.runs import read_run, read_summary, write_run
 from rodimpact.present.artifacts import make_fig_film_force, make_film_indentation_table, make_film_table
-from rodimpact.present.film_figures import plot_film_force
 from rodimpact.present.columns import headers_with_units
+from rodimpact.present.film_figures import plot_film_force
 from rodimpact.present.film_tables import (
-    INDENTATION_COLUMNS, film_band_frame, film_indentation_frame, film_table_frame, readings_frame, table2_panels
+    INDENTATION_COLUMNS,
+    film_band_frame,
+    film_indentation_frame,
+    film_table_frame,
+    readings_frame,
+    table2_panels,
 )
 from rodimpact.present.table2_figures import plot_table2_contact_time
 from rodimpact.present.tables import table2_frame, variants_summary
+from rodimpact.storage.bands import BAND_PARAMETERS, CaseBand, read_band, write_band
+from rodimpact.storage.curves import ContactCurve, read_contact_curve, write_contact_curve
+from rodimpact.storage.runs import read_run, read_summary, write_run
 
 FILM = {"thickness_m": 2.8e-5, "area_m2": 2.1e-5,
         "material": {"name": "pvdf", "youngs_modulus_pa": 3.0e9, "poisson_ratio": 0.35, "density_kg_m3": 1780.0}}

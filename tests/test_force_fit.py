@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from rodimpact.analysis.force_fit import MAX_DEGREE, fit_force
-from rodimpact.storage.runs import read_run, write_run
 from rodimpact.present.forces import export_forces, read_force_json
+from rodimpact.storage.runs import read_run, write_run
 
 from helpers.paper import model_problem
 

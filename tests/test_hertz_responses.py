@@ -9,11 +9,17 @@ from scipy.integrate import cumulative_trapezoid, quad, solve_ivp
 from rodimpact.contact.hertz import HERTZ_TIME_FACTOR, effective_modulus, hertz_constant, hertz_rigid_impact
 from rodimpact.model.materials import Material
 from rodimpact.model.responses import (
-    Rod, impactor_impulse_response, impactor_ramp_response, paper_rod_ramp_response, rod_impulse_response,
-    rod_ramp_response, rod_step_response
+    Rod,
+    impactor_impulse_response,
+    impactor_ramp_response,
+    paper_rod_ramp_response,
+    rod_impulse_response,
+    rod_ramp_response,
+    rod_step_response,
 )
 
-from helpers.paper import ALUMINIUM as ALU, STEEL, model_problem
+from helpers.paper import ALUMINIUM as ALU
+from helpers.paper import STEEL, model_problem
 
 
 def test_hertz_constant_one_material_is_the_papers_formula():

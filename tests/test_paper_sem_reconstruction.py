@@ -13,10 +13,11 @@ import pytest
 
 from rodimpact.contact.hertz import HertzLaw, hertz_constant
 from rodimpact.model.materials import Material
-from rodimpact.model.responses import Rod
 from rodimpact.model.problem import ImpactProblem
+from rodimpact.model.responses import Rod
 from rodimpact.solvers.sem.options import SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
+
 
 def contact_times(project, variant: str, radius_factor: float) -> tuple[np.ndarray, np.ndarray]:
     ours, paper = [], []

@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from rodimpact.plumbing.plan_cache import PlanCache, code_fingerprint, project_key
 from rodimpact.jobs.resources import estimate_resources
+from rodimpact.plumbing.plan_cache import PlanCache, code_fingerprint, project_key
 
 from helpers.repo import ROOT
 

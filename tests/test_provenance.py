@@ -16,6 +16,7 @@ import rodimpact
 from rodimpact.storage import provenance
 
 from helpers.repo import ROOT as REPO_ROOT
+
 VERSION_RE = re.compile(
     rf"^{re.escape(rodimpact.__version__)}\+(unknown|g[0-9a-f]{{4,40}}(\.dirty)?)$"
 )

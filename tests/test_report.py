@@ -21,8 +21,9 @@ from pathlib import Path
 import pytest
 from PIL import Image
 
-from helpers.repo import ROOT as REPO_ROOT
 from rodimpact.tools.report_check import CHROMEDRIVER, CHROMIUM, TitleBox, check_report, main
+
+from helpers.repo import ROOT as REPO_ROOT
 
 needs_chromium = pytest.mark.skipif(
     not (CHROMIUM.is_file() and CHROMEDRIVER.is_file()),

@@ -4,27 +4,33 @@ cover what a real run takes, and that bad input is refused by name."""
 from __future__ import annotations
 
 import copy
-import math
 import json
+import math
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
 
-from rodimpact.model.problem import ImpactProblem
-
-from rodimpact.tools.bench_plan import fem_bench_runs, sem_bench_runs
-from rodimpact.tools.bench import resource_margins
-from rodimpact.jobs.resources import (
-    MIN_MEM_MB, MIN_RUNTIME_MIN, PRESENTATION, SAFETY, JobResources, estimate_resources, estimate_sequence
-)
-from rodimpact.solvers.fem_axi.cost import fem_axi_dofs, fem_axi_indentation_cost
-from rodimpact.analysis.sweeps import sweep_point_case, sweep_points
-from rodimpact.plumbing.sources import module_sources
 from rodimpact.analysis.studies import level_case
+from rodimpact.analysis.sweeps import sweep_point_case, sweep_points
+from rodimpact.jobs.resources import (
+    MIN_MEM_MB,
+    MIN_RUNTIME_MIN,
+    PRESENTATION,
+    SAFETY,
+    JobResources,
+    estimate_resources,
+    estimate_sequence,
+)
+from rodimpact.model.problem import ImpactProblem
+from rodimpact.plumbing.sources import module_sources
+from rodimpact.solvers.fem_axi.cost import fem_axi_dofs, fem_axi_indentation_cost
+from rodimpact.tools.bench import resource_margins
+from rodimpact.tools.bench_plan import fem_bench_runs, sem_bench_runs
 
 from helpers.repo import ROOT as REPO
+
 SRC = REPO / "src"
 #: A coarse fem_axi run (the level the workflow tests use): a few seconds.
 COARSE_AXI = {"elements_across": 4, "steps_per_contact": 80}
@@ -165,8 +171,8 @@ def test_resources_are_not_solver_code():
 
 def test_dof_bound_covers_the_meshes(model):
     """The closed-form DOF bound against the meshes fem_axi builds (coarse, so quick)."""
-    from rodimpact.solvers.fem_axi.problem import AxiImpact
     from rodimpact.solvers.fem_axi.options import FEMAxiOptions
+    from rodimpact.solvers.fem_axi.problem import AxiImpact
     from rodimpact.solvers.fem_axi.solver import build_model as _build
 
     for case in (with_numerics(model, "fem_axi", **COARSE_AXI),

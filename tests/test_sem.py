@@ -7,11 +7,11 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from rodimpact.contact.hertz import HertzLaw, hertz_constant
-from rodimpact.model.responses import Rod
-from rodimpact.model.problem import ImpactProblem
-from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
 from rodimpact.analysis.signals import local_maxima, peak_prominences
+from rodimpact.contact.hertz import HertzLaw, hertz_constant
+from rodimpact.model.problem import ImpactProblem
+from rodimpact.model.responses import Rod
+from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
 
 from helpers.paper import STEEL, model_problem, two_contact_problem

@@ -8,7 +8,6 @@ import numpy as np
 import pytest
 
 import rodimpact.solvers.sem.stepper as stepper
-from rodimpact.model.problem import ImpactProblem
 from rodimpact.model.responses import Rod
 from rodimpact.solvers.sem.grid import CommensurateGrid, commensurate_step
 from rodimpact.solvers.sem.history import ForceHistory

@@ -6,15 +6,15 @@ import math
 import numpy as np
 import pytest
 
-from rodimpact.config.project import ConfigError
-from rodimpact.config.load import load_global_config, load_project
-from rodimpact.contact.hertz import HertzLaw, hertz_constant
-from rodimpact.model.responses import Rod
-from rodimpact.model.problem import ImpactProblem
-from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
-from rodimpact.solvers.sem.stability import UnstableStepError, paper_step_limit
-from rodimpact.solvers.sem.solver import solve_sem
 from rodimpact.analysis.signals import sawtooth_amplitude
+from rodimpact.config.load import load_global_config, load_project
+from rodimpact.config.project import ConfigError
+from rodimpact.contact.hertz import HertzLaw, hertz_constant
+from rodimpact.model.problem import ImpactProblem
+from rodimpact.model.responses import Rod
+from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
+from rodimpact.solvers.sem.solver import solve_sem
+from rodimpact.solvers.sem.stability import UnstableStepError, paper_step_limit
 
 from helpers.paper import STEEL, model_problem
 

@@ -9,12 +9,11 @@ import math
 import numpy as np
 import pytest
 
-from rodimpact.jobs.runner import SolverFailed, Timing, run_to_file
-from rodimpact.storage.runs import read_run
 from rodimpact.analysis.stability_study import map_frame, stability_frame, violations
 from rodimpact.analysis.studies import level_case, map_point_case, map_point_names, reference_case
 from rodimpact.analysis.work_precision import observed_orders, work_precision_frame
-
+from rodimpact.jobs.runner import SolverFailed, Timing, run_to_file
+from rodimpact.storage.runs import read_run
 
 
 @pytest.fixture(scope="module")

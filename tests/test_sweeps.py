@@ -13,7 +13,6 @@ from rodimpact.analysis.sweeps import SWEEP_PARAMETERS, sweep_frame, sweep_point
 from rodimpact.present.tables import sweep_results_frame
 
 
-
 @pytest.fixture(scope="module")
 def project(shipped_project):
     return shipped_project

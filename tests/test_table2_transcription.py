@@ -14,8 +14,6 @@ import math
 
 import pytest
 
-
-
 # Table 2 as printed: diameter ("m", in fact mm), mass (g), contact time (us): experiment,
 # FEM, SEM; error of the method (%): FEM, SEM.
 PRINTED = [

@@ -19,15 +19,22 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from rodimpact.storage.runs import RunRecord
 from rodimpact.present import table_views
 from rodimpact.present.columns import Column, column, headers_with_units, method_header
 from rodimpact.present.table_formats import (
-    LATEX_CHAR_PT, MAX_COLUMNS, Panel, header_lines, html_tables, latex_escape, latex_tables, latex_width_pt,
-    panels
+    LATEX_CHAR_PT,
+    MAX_COLUMNS,
+    Panel,
+    header_lines,
+    html_tables,
+    latex_escape,
+    latex_tables,
+    latex_width_pt,
+    panels,
 )
 from rodimpact.present.tables import table2_frame, write_table
 from rodimpact.solvers.registry import METHODS
+from rodimpact.storage.runs import RunRecord
 
 #: The widest table a one-column journal page takes: a 6 in text block, pt (1 in = 72.27 pt).
 PAGE_WIDTH_PT = 6.0 * 72.27

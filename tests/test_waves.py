@@ -24,15 +24,15 @@ import yaml  # noqa: E402
 from rodimpact.analysis.waves import characteristic  # noqa: E402
 from rodimpact.config.load import load_global_config, load_project  # noqa: E402
 from rodimpact.config.project import ConfigError  # noqa: E402
-from rodimpact.storage.provenance import canonical_json, data_sha256  # noqa: E402
-from rodimpact.storage.runs import CorruptRun, read_run, read_summary, write_run  # noqa: E402
+from rodimpact.jobs.runner import run_to_file  # noqa: E402
 from rodimpact.model.problem import ImpactProblem  # noqa: E402
 from rodimpact.present.wave_figures import make_wave_map, plot_wave_map  # noqa: E402
 from rodimpact.solvers.fem1d.solver import solve_fem1d  # noqa: E402
 from rodimpact.solvers.field import FieldGrid  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
 from rodimpact.solvers.sem.solver import solve_sem  # noqa: E402
-from rodimpact.jobs.runner import run_to_file  # noqa: E402
+from rodimpact.storage.provenance import canonical_json, data_sha256  # noqa: E402
+from rodimpact.storage.runs import CorruptRun, read_run, read_summary, write_run  # noqa: E402
 
 from helpers.figures import assert_journal_ready  # noqa: E402
 from helpers.paper import model_problem, two_contact_problem  # noqa: E402

@@ -29,9 +29,9 @@ import pandas as pd
 import pytest
 from PIL import Image
 
-from rodimpact.tools.audit import audit
 from rodimpact.storage.casefile import case_record, read_case_file
 from rodimpact.storage.runs import REQUIRED_SUMMARY, read_run, read_summary
+from rodimpact.tools.audit import audit
 
 from helpers.copies import DOTTEST, SMALL_STRESS, DotTestBuild, case_run, clone_build, project_cases, run_path
 from helpers.snakemake_cli import job_stats, snakemake

@@ -58,14 +58,14 @@ HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent)]  # this folder's modules, and tests/helpers
 
 import yte  # noqa: E402 (after the path set-up above)
-
 from compare import TIMING_COLUMNS, VOLATILE_ATTRIBUTES, VOLATILE_CONFIG_ENTRIES, compare_builds  # noqa: E402
+from local_slurm import LocalSlurm, SlurmError, install  # noqa: E402
+from timing import CLUSTER_CSV, BuildTiming, job_count, recorded_build, write_cluster_csv  # noqa: E402
+
 from helpers.copies import DOTTEST, clone_built, copy_dottest, reuse_refusal  # noqa: E402
 from helpers.repo import ROOT  # noqa: E402
 from helpers.snakemake_cli import BUILD_TIMEOUT_S as LOCAL_BUILD_TIMEOUT_S  # noqa: E402
 from helpers.snakemake_cli import DRY_RUN_TIMEOUT_S, job_stats, snakemake  # noqa: E402
-from local_slurm import LocalSlurm, SlurmError, install  # noqa: E402
-from timing import CLUSTER_CSV, BuildTiming, job_count, recorded_build, write_cluster_csv  # noqa: E402
 
 #: The profile under test, and what docs/cluster.md tells a user to run.
 PROFILE = Path("profiles") / "slurm"

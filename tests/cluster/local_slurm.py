@@ -31,9 +31,9 @@ import signal
 import socket
 import subprocess
 import time
+from collections.abc import Callable
 from pathlib import Path
 from types import TracebackType
-from typing import Callable
 
 #: The Debian packages of SLURM and munge, and the programs they must provide.
 PACKAGES = ("slurm-wlm", "munge")
@@ -96,7 +96,7 @@ def node_line() -> tuple[str, str]:
     """The node's name and its hardware as ``slurmd -C`` prints it (``NodeName=... RealMemory=...``),
     with ``RealMemory`` lowered by :data:`MEMORY_RESERVE_MB` (at least 1000 MB left)."""
     proc = subprocess.run([_program("slurmd"), "-C"], capture_output=True, text=True, check=False)
-    line = next((l for l in proc.stdout.splitlines() if l.startswith("NodeName=")), None)
+    line = next((text for text in proc.stdout.splitlines() if text.startswith("NodeName=")), None)
     if proc.returncode != 0 or line is None:
         raise SlurmError(f"slurmd -C printed no node line: {(proc.stdout + proc.stderr).strip()[-300:]}")
     name = re.match(r"NodeName=(\S+)", line).group(1)

@@ -63,7 +63,7 @@ def write_cluster_csv(path: Path, local: BuildTiming | None, slurm: BuildTiming,
     """Write the local and SLURM rows (the SLURM row with its ratio to the local one)."""
     commit = subprocess.run(["git", "-C", str(root), "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True, check=False).stdout.strip()
-    when = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+    when = datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%dT%H:%M:%SZ")
     columns = ["build", "jobs", "submissions", "wall_s", "ratio_to_local", "target_ratio", "measured", "commit",
                "date"]
     rows = []

@@ -2,8 +2,8 @@
 
 import pandas as pd
 
-from rodimpact.tools.bench import benchmark_fem1d, benchmark_fem_axi, write_benchmark
 from rodimpact.jobs.logs import script_logging
+from rodimpact.tools.bench import benchmark_fem1d, benchmark_fem_axi, write_benchmark
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     frame = pd.concat([benchmark_fem1d(snakemake.params.case),  # noqa: F821

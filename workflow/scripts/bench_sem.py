@@ -1,7 +1,7 @@
 """Snakemake adapter: SEM wall time against accuracy on the case 'model'."""
 
-from rodimpact.tools.bench import benchmark_sem, write_benchmark
 from rodimpact.jobs.logs import script_logging
+from rodimpact.tools.bench import benchmark_sem, write_benchmark
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     frame = benchmark_sem(snakemake.params.case)  # noqa: F821

@@ -1,7 +1,7 @@
 """Snakemake adapter: the contact force with and without the sensor film."""
 
-from rodimpact.present.artifacts import make_fig_film_force
 from rodimpact.jobs.logs import script_logging
+from rodimpact.present.artifacts import make_fig_film_force
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821

@@ -1,7 +1,7 @@
 """Snakemake adapter: the contact force's closed form over the computed force, case 'model'."""
 
-from rodimpact.present.artifacts import make_fig_force_fit
 from rodimpact.jobs.logs import script_logging
+from rodimpact.present.artifacts import make_fig_force_fit
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821

@@ -1,7 +1,7 @@
 """Snakemake adapter: a set's readings, contact time against ball mass, per rod, with and without the film."""
 
-from rodimpact.present.artifacts import make_fig_readings
 from rodimpact.jobs.logs import script_logging
+from rodimpact.present.artifacts import make_fig_readings
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     make_fig_readings(snakemake.params.runs, snakemake.params.variants,  # noqa: F821

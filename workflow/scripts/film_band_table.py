@@ -1,7 +1,7 @@
 """Snakemake adapter: the film's prediction band of every case of every film reading."""
 
-from rodimpact.present.artifacts import make_film_band_table
 from rodimpact.jobs.logs import script_logging
+from rodimpact.present.artifacts import make_film_band_table
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821

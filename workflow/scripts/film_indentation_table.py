@@ -1,7 +1,7 @@
 """Snakemake adapter: the continuum's indentation curves against the analytic contact laws."""
 
-from rodimpact.present.artifacts import make_film_indentation_table
 from rodimpact.jobs.logs import script_logging
+from rodimpact.present.artifacts import make_film_indentation_table
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821

@@ -1,7 +1,7 @@
 """Snakemake adapter: one rod's readings without and with the sensor film, side by side."""
 
-from rodimpact.present.artifacts import make_film_table
 from rodimpact.jobs.logs import script_logging
+from rodimpact.present.artifacts import make_film_table
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821

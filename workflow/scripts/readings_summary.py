@@ -1,7 +1,7 @@
 """Snakemake adapter: the per-reading error summary of a set with variants."""
 
-from rodimpact.present.artifacts import make_readings_summary
 from rodimpact.jobs.logs import script_logging
+from rodimpact.present.artifacts import make_readings_summary
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821

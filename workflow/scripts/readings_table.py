@@ -1,7 +1,7 @@
 """Snakemake adapter: one reading of a set with variants (for the paper's set: Table 2 for one reading of the rod)."""
 
-from rodimpact.present.artifacts import make_readings_table
 from rodimpact.jobs.logs import script_logging
+from rodimpact.present.artifacts import make_readings_table
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out, params = snakemake.output, snakemake.params  # noqa: F821

@@ -1,7 +1,7 @@
 """Snakemake adapter: the stress runs checked against their stated tolerances."""
 
-from rodimpact.present.artifacts import make_stability
 from rodimpact.jobs.logs import script_logging
+from rodimpact.present.artifacts import make_stability
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821

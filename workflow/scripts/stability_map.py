@@ -1,7 +1,7 @@
 """Snakemake adapter: the stability map of the SEM schemes (table and figure)."""
 
-from rodimpact.present.artifacts import make_stability_map
 from rodimpact.jobs.logs import script_logging
+from rodimpact.present.artifacts import make_stability_map
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out, params = snakemake.output, snakemake.params  # noqa: F821

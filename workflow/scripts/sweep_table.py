@@ -1,7 +1,7 @@
 """Snakemake adapter: the table of every sweep point of one case set."""
 
-from rodimpact.present.artifacts import make_sweep_table
 from rodimpact.jobs.logs import script_logging
+from rodimpact.present.artifacts import make_sweep_table
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821

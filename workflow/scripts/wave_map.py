@@ -1,7 +1,7 @@
 """Snakemake adapter: the axial strain over the rod against time, for one case."""
 
-from rodimpact.present.wave_figures import make_wave_map
 from rodimpact.jobs.logs import script_logging
+from rodimpact.present.wave_figures import make_wave_map
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out = snakemake.output  # noqa: F821

@@ -1,7 +1,7 @@
 """Snakemake adapter: the work-precision table and the fitted orders."""
 
-from rodimpact.present.artifacts import make_work_precision
 from rodimpact.jobs.logs import script_logging
+from rodimpact.present.artifacts import make_work_precision
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out, params = snakemake.output, snakemake.params  # noqa: F821

@@ -1,7 +1,7 @@
 """Snakemake adapter: error against wall time for one case."""
 
-from rodimpact.present.artifacts import make_work_precision_figure
 from rodimpact.jobs.logs import script_logging
+from rodimpact.present.artifacts import make_work_precision_figure
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     out, params = snakemake.output, snakemake.params  # noqa: F821

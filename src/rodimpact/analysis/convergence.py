@@ -34,8 +34,8 @@ References are repeated in docs/studies.md in our own words.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import numpy as np
 

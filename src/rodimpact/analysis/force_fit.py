@@ -15,8 +15,9 @@ the computed force, including those outside the intervals, and reports it.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, Sequence
+from typing import Any
 
 import numpy as np
 from numpy.polynomial import chebyshev

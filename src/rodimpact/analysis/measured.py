@@ -16,9 +16,10 @@ from __future__ import annotations
 
 import csv
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -40,7 +41,7 @@ MIN_ROWS = 8
 MAX_ROWS = 1_000_000
 
 
-def measured_cases(cases: "list[Mapping[str, Any]]") -> "list[Mapping[str, Any]]":
+def measured_cases(cases: list[Mapping[str, Any]]) -> list[Mapping[str, Any]]:
     """The resolved cases that carry something measured to compare with (:data:`MEASURED_KEYS`)."""
     return [c for c in cases if any((c.get("measured") or {}).get(key) is not None for key in MEASURED_KEYS)]
 

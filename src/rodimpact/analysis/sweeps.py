@@ -13,9 +13,12 @@ import itertools
 import logging
 import math
 from collections.abc import Callable, Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:  # the annotation only; pandas is imported where the frame is built
+    import pandas as pd
 
 logger = logging.getLogger(__name__)
 
@@ -165,7 +168,7 @@ def sweep_points(sweep: Mapping[str, Any]) -> list[dict[str, float]]:
     return [dict(zip(columns, row)) for row in itertools.product(*columns.values())]
 
 
-def sweep_frame(sweep: Mapping[str, Any]) -> "pd.DataFrame":
+def sweep_frame(sweep: Mapping[str, Any]) -> pd.DataFrame:
     """:func:`sweep_points` as a :class:`pandas.DataFrame` (one float column per parameter), the
     form snakemake's ``Paramspace`` takes; same errors."""
     import pandas as pd  # only the workflow's Paramspace needs it; the configuration check does not

@@ -31,13 +31,20 @@ expected order ``max_at_arrival`` (docs/studies.md, "Error against run time").
 from __future__ import annotations
 
 import math
-from typing import Any, Mapping, Sequence
+from collections.abc import Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import pandas as pd
 
 from rodimpact.analysis.convergence import (
-    FittedOrder, changes_sign, constant_ratio, fitted_order, is_monotone, numerical_uncertainty)
+    FittedOrder,
+    changes_sign,
+    constant_ratio,
+    fitted_order,
+    is_monotone,
+    numerical_uncertainty,
+)
 from rodimpact.analysis.records import StoredRun as RunRecord
 from rodimpact.analysis.signals import first_contact_maxima
 from rodimpact.model.materials import Material, wave_speed

@@ -7,7 +7,8 @@ point and study level; the errors carry the setting at fault as data
 
 from __future__ import annotations
 
-from typing import Any, Callable, Mapping
+from collections.abc import Callable, Mapping
+from typing import Any
 
 from rodimpact.analysis.studies import level_case
 from rodimpact.config.bodies import runs_law

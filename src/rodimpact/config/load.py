@@ -25,16 +25,21 @@ from pathlib import Path
 from typing import Any
 
 from rodimpact.analysis.sweeps import SweepError, sweep_point_case, sweep_points
-from rodimpact.contact.laws import contact_schema
-from rodimpact.config.bodies import MATERIAL_FIELDS, check_law, check_material_ranges, resolve_contact, resolve_material
-from rodimpact.config.measured import resolve_measured
+from rodimpact.config.bodies import check_law, check_material_ranges, resolve_contact, resolve_material
 from rodimpact.config.checks import (
-    check_outputs, check_run, check_sensor, check_set_declarations, check_stability, check_work_precision
+    check_outputs,
+    check_run,
+    check_sensor,
+    check_set_declarations,
+    check_stability,
+    check_work_precision,
 )
+from rodimpact.config.measured import resolve_measured
 from rodimpact.config.plausible import Budget, check_plausible
 from rodimpact.config.project import ConfigError, Project, _File
 from rodimpact.config.schema import Schemas, deep_merge, format_path, with_floats
 from rodimpact.config.yamlfile import YamlError
+from rodimpact.contact.laws import contact_schema
 from rodimpact.solvers.field import FIELD_OUTPUT, FieldGrid
 from rodimpact.solvers.options import OptionError
 from rodimpact.solvers.registry import METHODS as METHOD_REGISTRY

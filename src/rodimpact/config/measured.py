@@ -9,8 +9,9 @@ the project root, which the jobs read.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Mapping
 from pathlib import Path, PurePosixPath
-from typing import Any, Callable, Mapping
+from typing import Any
 
 from rodimpact.analysis.measured import HistoryError, read_force_history
 from rodimpact.config.project import ConfigError

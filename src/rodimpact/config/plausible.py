@@ -24,8 +24,9 @@ from __future__ import annotations
 import copy
 import math
 import os
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Any, Callable, Mapping
+from typing import Any
 
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.options import OptionError
@@ -68,7 +69,7 @@ class Budget:
     memory_mib: float
 
     @classmethod
-    def of(cls, limits: Mapping[str, Any]) -> "Budget":
+    def of(cls, limits: Mapping[str, Any]) -> Budget:
         """From config.yaml's ``limits`` (``memory_mib`` null: this machine's memory)."""
         memory = limits.get("memory_mib")
         return cls(float(limits["run_time_s"]), machine_memory_mib() if memory is None else float(memory))
@@ -276,7 +277,7 @@ def check_plausible(case: Mapping[str, Any], budget: Budget) -> Finding | None:
     for method in case["methods"]:
         cost = _cost_finding(case, method, budget)
         if cost is not None:
-            found = culprit(case, _badness(lambda c: _cost_finding(c, method, budget)), method)
+            found = culprit(case, _badness(lambda c, method=method: _cost_finding(c, method, budget)), method)
             if found is None:  # an ordinary case: the budget itself is the field at fault
                 limit = "memory_mib" if "limits.memory_mib" in cost[1] else "run_time_s"
                 return Finding(f"limits.{limit}", cost[1], budget=True)

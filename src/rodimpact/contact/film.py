@@ -32,8 +32,9 @@ from __future__ import annotations
 import functools
 import logging
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -176,7 +177,7 @@ class FilmLayer:
             raise ValueError(f"area_m2 must be > 0 or None, got {self.area_m2!r}")
 
     @classmethod
-    def from_mapping(cls, film: Mapping[str, Any]) -> "FilmLayer":
+    def from_mapping(cls, film: Mapping[str, Any]) -> FilmLayer:
         """From a resolved ``contact.film`` mapping (its material resolved to its constants)."""
         material = film["material"]
         area = film.get("area_m2")
@@ -259,7 +260,7 @@ class HertzFilmLaw(ContactLaw):
 
     @classmethod
     def from_bodies(cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial,
-                    rod: ElasticMaterial) -> "HertzFilmLaw":
+                    rod: ElasticMaterial) -> HertzFilmLaw:
         """The law of a case: ``spec["film"]`` is the resolved film (see :class:`FilmLayer`)."""
         film = FilmLayer.from_mapping(spec["film"])
         return cls(k=hertz_constant(sphere_radius_m, impactor, rod),

@@ -15,8 +15,9 @@ takes a contact law; the functions are the paper's closed forms it is built from
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, Mapping, Protocol
+from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -169,7 +170,7 @@ class HertzLaw(ContactLaw):
 
     @classmethod
     def from_bodies(cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial,
-                    rod: ElasticMaterial) -> "HertzLaw":
+                    rod: ElasticMaterial) -> HertzLaw:
         """The law of a case (``spec`` is its ``contact`` block; Hertz has no parameters)."""
         return cls(hertz_constant(sphere_radius_m, impactor, rod), sphere_radius_m)
 

@@ -14,7 +14,8 @@ table changes: they read the declarations through the functions below.
 from __future__ import annotations
 
 import dataclasses
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from rodimpact.contact.film import HertzFilmLaw
 from rodimpact.contact.hertz import ElasticMaterial, HertzLaw

@@ -17,8 +17,9 @@ and resolves the contact itself, cannot run it (``method_contact``).
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -61,7 +62,7 @@ class SpringLaw(ContactLaw):
 
     @classmethod
     def from_bodies(cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial,
-                    rod: ElasticMaterial) -> "SpringLaw":
+                    rod: ElasticMaterial) -> SpringLaw:
         """The law of a case (``spec`` is its ``contact`` block); the bodies play no part."""
         return cls(float(spec["stiffness_n_per_m"]))
 

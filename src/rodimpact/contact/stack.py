@@ -24,8 +24,9 @@ measures its error: ``results/tables/film_indentation.csv``); docs/contact-laws.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, Mapping
+from typing import Any
 
 from rodimpact.contact.film import FilmLayer, HertzFilmLaw, film_constant
 from rodimpact.contact.hertz import ElasticMaterial, hertz_constant
@@ -108,7 +109,7 @@ class Stack:
             raise ValueError("names: one per layer")
 
     @classmethod
-    def of(cls, contact: Mapping[str, Any] | None) -> "Stack | None":
+    def of(cls, contact: Mapping[str, Any] | None) -> Stack | None:
         """The layers of a case's resolved contact block: its ``film`` (one layer) or its
         ``stack``, whatever the law; None when it has neither."""
         contact = contact or {}
@@ -164,7 +165,7 @@ class HertzStackLaw(HertzFilmLaw):
 
     @classmethod
     def from_bodies(cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial,
-                    rod: ElasticMaterial) -> "HertzStackLaw":
+                    rod: ElasticMaterial) -> HertzStackLaw:
         """The law of a case: ``spec["stack"]`` is the resolved stack (see :class:`Stack`)."""
         stack = Stack.of({"stack": spec["stack"]})
         law = stack.thin_layer_law(sphere_radius_m, impactor, rod)

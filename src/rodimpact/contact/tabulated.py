@@ -21,8 +21,9 @@ from __future__ import annotations
 import logging
 import math
 from bisect import bisect_right
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -182,7 +183,7 @@ class TabulatedLaw(ContactLaw):
 
     @classmethod
     def from_bodies(cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial,
-                    rod: ElasticMaterial) -> "TabulatedLaw":
+                    rod: ElasticMaterial) -> TabulatedLaw:
         """The law of a case: ``spec["curve"]`` holds ``approach_m``, ``force_N`` and
         optionally ``contact_radius_m`` (put there by the runner from the indentation file).
 

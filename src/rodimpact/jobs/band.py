@@ -14,13 +14,14 @@ from __future__ import annotations
 import itertools
 import logging
 import math
-from typing import Any, Mapping, Sequence
+from collections.abc import Mapping, Sequence
+from typing import Any
 
 import numpy as np
 
 from rodimpact.analysis.sweeps import sweep_point_case
-from rodimpact.storage.bands import BAND_PARAMETERS, CaseBand, write_band
 from rodimpact.jobs.runner import run_case
+from rodimpact.storage.bands import BAND_PARAMETERS, CaseBand, write_band
 
 __all__ = ["AXIS_POINTS", "case_band", "film_ranges", "band_to_file"]
 

@@ -15,14 +15,15 @@ from __future__ import annotations
 
 import importlib
 import logging
+from collections.abc import Mapping
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
+from rodimpact.jobs.runner import run_to_file
+from rodimpact.jobs.timing import Timing
 from rodimpact.storage.atomic import atomic_directory
 from rodimpact.storage.casefile import case_file_reference
 from rodimpact.storage.provenance import code_version
-from rodimpact.jobs.runner import run_to_file
-from rodimpact.jobs.timing import Timing
 
 __all__ = ["CURVE_BUILDERS", "run_batch", "run_batch_into"]
 

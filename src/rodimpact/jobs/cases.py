@@ -20,15 +20,16 @@ from __future__ import annotations
 import copy
 import logging
 import math
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 from rodimpact.analysis.sweeps import sweep_point_case, sweep_points
-from rodimpact.storage.casefile import write_case_records
-from rodimpact.storage.provenance import config_sha256
+from rodimpact.jobs.resources import estimate_resources
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.registry import METHODS
-from rodimpact.jobs.resources import estimate_resources
+from rodimpact.storage.casefile import write_case_records
+from rodimpact.storage.provenance import config_sha256
 
 __all__ = ["case_file_record", "case_scales", "write_case_file"]
 

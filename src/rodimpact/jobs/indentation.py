@@ -21,19 +21,20 @@ from __future__ import annotations
 import dataclasses
 import logging
 import math
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 
 from rodimpact.contact.laws import bodies_contact, build_law
 from rodimpact.contact.tabulated import TabulatedLaw
-from rodimpact.storage.atomic import atomic_directory
-from rodimpact.storage.curves import ContactCurve, write_contact_curve
 from rodimpact.model.materials import Material
 from rodimpact.solvers.fem_axi.indentation import static_indentation
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact
+from rodimpact.storage.atomic import atomic_directory
+from rodimpact.storage.curves import ContactCurve, write_contact_curve
 
 __all__ = ["LOAD_MARGIN", "POINTS", "indentation_curve", "indentation_to_file", "indentations_into"]
 

@@ -13,12 +13,13 @@ with the solver's steps, time and memory from its method's cost model (the regis
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, replace
-from typing import Any, Iterable, Mapping
+from typing import Any
 
+from rodimpact.jobs.timing import Timing
 from rodimpact.solvers.cost import Cost
 from rodimpact.solvers.registry import METHODS
-from rodimpact.jobs.timing import Timing
 
 __all__ = ["JobResources", "PRESENTATION", "SAFETY", "estimate_resources", "estimate_sequence"]
 
@@ -62,7 +63,7 @@ class JobResources:
             if isinstance(value, bool) or not isinstance(value, int) or value < 1:
                 raise ValueError(f"{name} must be an integer >= 1, got {value!r}")
 
-    def for_attempt(self, attempt: int) -> "JobResources":
+    def for_attempt(self, attempt: int) -> JobResources:
         """Memory and run time times ``attempt`` (1 for the first try; a retry gets more)."""
         if isinstance(attempt, bool) or not isinstance(attempt, int) or attempt < 1:
             raise ValueError(f"attempt must be an integer >= 1, got {attempt!r}")

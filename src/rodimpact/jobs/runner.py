@@ -5,19 +5,20 @@ from __future__ import annotations
 import logging
 import math
 import time
+from collections.abc import Mapping
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 
 from rodimpact.contact.laws import law_of
+from rodimpact.jobs.timing import Timing
+from rodimpact.solvers.registry import METHODS, UnknownMethod
+from rodimpact.solvers.result import ImpactResult
 from rodimpact.storage.casefile import case_file_reference
 from rodimpact.storage.curves import ContactCurve, read_contact_curve
 from rodimpact.storage.provenance import file_sha256
 from rodimpact.storage.runs import write_run
-from rodimpact.solvers.registry import METHODS, UnknownMethod
-from rodimpact.solvers.result import ImpactResult
-from rodimpact.jobs.timing import Timing
 
 __all__ = ["SolverFailed", "Timing", "run_case", "run_to_file", "run_config"]
 

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, Mapping
+from typing import Any
 
 __all__ = ["Material", "wave_speed"]
 
@@ -40,7 +41,7 @@ class Material:
             raise ValueError(f"{label}poisson_ratio must lie in (-1, 0.5), got {self.poisson_ratio!r}")
 
     @classmethod
-    def from_mapping(cls, data: Mapping[str, Any]) -> "Material":
+    def from_mapping(cls, data: Mapping[str, Any]) -> Material:
         """Build from a resolved config mapping (keys as in ``config/materials.yaml``)."""
         return cls(
             youngs_modulus_pa=float(data["youngs_modulus_pa"]),

@@ -10,8 +10,9 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, Mapping
+from typing import Any
 
 from rodimpact.contact.law import ContactLaw, RigidImpact
 from rodimpact.contact.laws import build_law
@@ -51,7 +52,7 @@ class ImpactProblem:
             raise TypeError(f"contact must be a ContactLaw, got {type(self.contact).__name__}")
 
     @classmethod
-    def from_case(cls, case: Mapping[str, Any], *, estimate: bool = False) -> "ImpactProblem":
+    def from_case(cls, case: Mapping[str, Any], *, estimate: bool = False) -> ImpactProblem:
         """Build from a resolved case mapping (see :mod:`rodimpact.config.load`).
 
         ``estimate=True``: for checks and cost estimates before any job, a law whose data

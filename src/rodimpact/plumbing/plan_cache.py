@@ -49,8 +49,9 @@ import json
 import logging
 import pickle
 import sys
+from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import Any, Callable, Mapping, TypeVar
+from typing import Any, TypeVar
 
 from rodimpact.storage.atomic import atomic_output
 

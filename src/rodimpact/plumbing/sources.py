@@ -24,8 +24,8 @@ from __future__ import annotations
 
 import ast
 import hashlib
+from collections.abc import Iterable
 from pathlib import Path
-from typing import Iterable
 
 __all__ = ["module_sources", "source_digest"]
 

@@ -32,8 +32,8 @@ If snakemake's internals change
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from pathlib import Path
-from typing import Iterable, Sequence
 
 __all__ = ["MAX_LISTED", "command_line_targets", "plain_pattern", "unknown_target_message"]
 

@@ -7,28 +7,46 @@ The workflow's scripts call these and nothing else; tests call them directly. Th
 from __future__ import annotations
 
 import logging
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 from rodimpact.analysis.stability_study import StudyViolation, map_frame, stability_frame, violations
 from rodimpact.analysis.work_precision import ORDER_TOLERANCE, observed_orders, work_precision_frame
+from rodimpact.present.film_tables import (
+    film_band_frame,
+    film_indentation_frame,
+    film_table_frame,
+    readings_frame,
+    table2_panels,
+    write_provenance_with_files,
+)
+from rodimpact.present.sensor_tables import sensor_band_frame
+from rodimpact.present.table_views import (
+    comparison_views,
+    film_band_views,
+    film_indentation_views,
+    film_table_views,
+    orders_views,
+    reading_views,
+    reading_words,
+    stability_views,
+    sweep_views,
+    variants_views,
+)
+from rodimpact.present.tables import (
+    comparison_frame,
+    load_records,
+    sweep_results_frame,
+    table2_frame,
+    variants_summary,
+    write_table,
+)
 from rodimpact.storage.bands import read_band
 from rodimpact.storage.casefile import read_case_file
 from rodimpact.storage.curves import read_contact_curve
-from rodimpact.storage.sidecar import provenance_record, write_provenance
 from rodimpact.storage.runs import read_run
-from rodimpact.present.sensor_tables import sensor_band_frame
-from rodimpact.present.film_tables import (
-    film_band_frame, film_indentation_frame, film_table_frame, readings_frame, table2_panels,
-    write_provenance_with_files
-)
-from rodimpact.present.table_views import (
-    comparison_views, film_band_views, film_indentation_views, film_table_views, orders_views, reading_words,
-    stability_views, sweep_views, reading_views, variants_views
-)
-from rodimpact.present.tables import (
-    comparison_frame, load_records, sweep_results_frame, table2_frame, variants_summary, write_table
-)
+from rodimpact.storage.sidecar import provenance_record, write_provenance
 
 __all__ = ["make_comparison", "make_fig2", "make_fig4", "make_fig_film_force", "make_fig_readings",
            "make_film_band_table", "make_film_indentation_table", "make_stability", "make_stability_map",

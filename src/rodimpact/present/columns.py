@@ -17,8 +17,9 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import Any, Iterable
+from typing import Any
 
 import numpy as np
 
@@ -134,7 +135,7 @@ COLUMNS: dict[str, Column] = {
     "observed_order": Column("Observed order"), "theoretical_order": Column("Theoretical order", fmt=".0f"),
     "fitted_levels": Column("Fitted levels", fmt=_TEXT),
     "expected_order": Column("Expected order", fmt=".3g"), "order_stderr": Column("Standard error", fmt=".2f"),
-    "monotone": Column("Monotone", fmt=_TEXT), "sign_change": Column("Sign change", fmt=_TEXT),
+    "sign_change": Column("Sign change", fmt=_TEXT),
     "within_expected": Column("Within 0.3 of expected", fmt=_TEXT),
     "asymptotic": Column("Asymptotic", fmt=_TEXT),
     "arrival_offset": Column("Offset from a wave arrival (of 2L/c)", fmt=".3f"),

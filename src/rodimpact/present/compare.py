@@ -13,7 +13,8 @@ measured value: (computed - measured) / |measured|; a history's norms are errors
 from __future__ import annotations
 
 import math
-from typing import Any, Mapping, Sequence
+from collections.abc import Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -21,8 +22,8 @@ import pandas as pd
 from rodimpact.analysis.history_compare import HistoryComparison, compare_force_histories
 from rodimpact.analysis.measured import MeasuredHistory
 from rodimpact.contact.laws import law_of
-from rodimpact.storage.runs import RunRecord
 from rodimpact.solvers.registry import METHODS
+from rodimpact.storage.runs import RunRecord
 
 __all__ = ["COLUMNS", "HISTORY_QUANTITIES", "QUANTITIES", "X_AXES", "X_NAMES", "compare_frame", "compare_summary", "history_comparison",
            "model_label", "x_axis"]

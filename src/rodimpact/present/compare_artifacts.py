@@ -5,8 +5,9 @@ stored runs and measured files only."""
 from __future__ import annotations
 
 import logging
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 from rodimpact.analysis.history_compare import DEFAULT_THRESHOLD
 from rodimpact.analysis.measured import read_force_history

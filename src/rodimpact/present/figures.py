@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import json
 import logging
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import matplotlib
 
@@ -13,9 +14,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from rodimpact.solvers.registry import METHODS  # noqa: E402
 from rodimpact.storage.atomic import atomic_output  # noqa: E402
 from rodimpact.storage.runs import RunRecord  # noqa: E402
-from rodimpact.solvers.registry import METHODS  # noqa: E402
 
 __all__ = ["METHOD_LABELS", "METHOD_ORDER", "plot_contact_force", "plot_force_fits", "plot_station_displacement",
            "save_figure"]

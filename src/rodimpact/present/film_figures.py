@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import logging
-from typing import Sequence
+from collections.abc import Sequence
 
 import matplotlib
 
@@ -11,9 +11,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from rodimpact.storage.runs import RunRecord  # noqa: E402
 from rodimpact.present.figures import METHOD_LABELS, METHOD_ORDER  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
+from rodimpact.storage.runs import RunRecord  # noqa: E402
 
 __all__ = ["FILM_STYLES", "film_words", "plot_film_force"]
 

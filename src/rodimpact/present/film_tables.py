@@ -15,21 +15,22 @@ from __future__ import annotations
 import json
 import logging
 import math
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import pandas as pd
 
 from rodimpact.contact.laws import DEFAULT_LAW
 from rodimpact.contact.stack import Stack
+from rodimpact.present.tables import METHOD_ORDER, table2_frame
 from rodimpact.storage.atomic import atomic_output
 from rodimpact.storage.bands import CaseBand
 from rodimpact.storage.curves import ContactCurve
 from rodimpact.storage.provenance import file_sha256
-from rodimpact.storage.sidecar import provenance_record
 from rodimpact.storage.runs import RunRecord
-from rodimpact.present.tables import METHOD_ORDER, table2_frame
+from rodimpact.storage.sidecar import provenance_record
 
 __all__ = ["FILM_ROLES", "INDENTATION_COLUMNS", "film_band_frame", "film_indentation_frame", "film_table_frame",
            "reading_of", "readings_frame", "table2_panels", "write_provenance_with_files"]

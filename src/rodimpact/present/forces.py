@@ -19,16 +19,17 @@ A figure draws the closed form over the computed force for one case (``model``;
 from __future__ import annotations
 
 import json
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, Sequence
+from typing import Any
 
 import numpy as np
 
 from rodimpact.analysis.force_fit import DEFAULT_REL_TOL, ForceFit, fit_force
 from rodimpact.storage.atomic import atomic_directory, atomic_output
 from rodimpact.storage.provenance import code_version
-from rodimpact.storage.sidecar import write_provenance
 from rodimpact.storage.runs import RunRecord, read_run
+from rodimpact.storage.sidecar import write_provenance
 
 __all__ = ["export_forces", "export_forces_into", "force_fit_of", "read_force_json"]
 

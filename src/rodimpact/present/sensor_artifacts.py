@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import json
 import logging
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Mapping, Sequence
 
 from rodimpact.present.film_tables import write_provenance_with_files
 from rodimpact.present.sensor_tables import sensor_band_frame, sensor_fit_frame

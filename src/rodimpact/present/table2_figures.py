@@ -11,7 +11,8 @@ import logging
 import math
 import re
 import textwrap
-from typing import Any, Mapping, Sequence
+from collections.abc import Mapping, Sequence
+from typing import Any
 
 import matplotlib
 

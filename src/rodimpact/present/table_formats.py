@@ -16,8 +16,8 @@ come from :mod:`rodimpact.present.columns`.
 from __future__ import annotations
 
 import html
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import pandas as pd
 

@@ -9,15 +9,16 @@ as HTML, and a reading's table (Table 2's) is also written as LaTeX from them. T
 from __future__ import annotations
 
 import re
-from typing import Any, Mapping, Sequence
+from collections.abc import Mapping, Sequence
+from typing import Any
 
 import pandas as pd
 
 from rodimpact.contact.laws import UnknownLaw, law_of
-from rodimpact.storage.runs import RunRecord
 from rodimpact.present.columns import method_header
 from rodimpact.present.table_formats import Panel, latex_escape, panels
 from rodimpact.solvers.registry import METHODS
+from rodimpact.storage.runs import RunRecord
 
 __all__ = ["comparison_views", "film_band_views", "film_indentation_views", "film_table_views", "orders_views",
            "latex_title", "reading_views", "reading_words", "stability_views", "sweep_views", "variants_views"]

@@ -7,17 +7,18 @@ from __future__ import annotations
 
 import logging
 import math
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import pandas as pd
 
 from rodimpact.analysis.signals import first_contact_maxima
-from rodimpact.storage.atomic import atomic_output
-from rodimpact.storage.runs import RunRecord, read_summary
 from rodimpact.present.table_formats import Panel, html_tables, latex_tables, markdown_table
 from rodimpact.solvers.registry import METHODS
+from rodimpact.storage.atomic import atomic_output
+from rodimpact.storage.runs import RunRecord, read_summary
 
 __all__ = [
     "METHOD_ORDER",

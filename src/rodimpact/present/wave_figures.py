@@ -12,8 +12,8 @@ intervals and the wave speed in the summary).
 from __future__ import annotations
 
 import logging
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Sequence
 
 import matplotlib
 
@@ -25,9 +25,9 @@ import numpy as np  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
 from rodimpact.analysis.waves import characteristic  # noqa: E402
-from rodimpact.storage.sidecar import provenance_record, write_provenance  # noqa: E402
-from rodimpact.storage.runs import RunRecord, read_run  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
+from rodimpact.storage.runs import RunRecord, read_run  # noqa: E402
+from rodimpact.storage.sidecar import provenance_record, write_provenance  # noqa: E402
 
 __all__ = ["make_wave_map", "plot_wave_map"]
 

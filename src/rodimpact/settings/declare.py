@@ -62,7 +62,7 @@ class OptionError(ValueError):
     def __reduce__(self):
         return OptionError, (self.field, self.reason)
 
-    def inside(self, prefix: str) -> "OptionError":
+    def inside(self, prefix: str) -> OptionError:
         """The same error for the block at ``prefix`` (``prefix.field``)."""
         error = OptionError.__new__(type(self))
         OptionError.__init__(error, f"{prefix}.{self.field}", self.reason)

@@ -22,8 +22,9 @@ schema's ``field_grid`` is generated from them (:func:`rodimpact.config.load.reg
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import ClassVar, Sequence
+from typing import ClassVar
 
 import numpy as np
 from numpy.typing import NDArray

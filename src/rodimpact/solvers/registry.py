@@ -18,17 +18,18 @@ a new calibration of a cost model reruns none.
 from __future__ import annotations
 
 import importlib
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Any, Callable, Mapping
+from typing import Any
 
 import numpy as np
 
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.cost import Cost
-from rodimpact.solvers.field import FIELD_OUTPUT, FieldGrid
 from rodimpact.solvers.fem1d.options import FEM1DOptions
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact
+from rodimpact.solvers.field import FIELD_OUTPUT, FieldGrid
 from rodimpact.solvers.options import Options
 from rodimpact.solvers.result import ImpactResult
 from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions

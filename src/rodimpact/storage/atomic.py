@@ -10,8 +10,8 @@ import os
 import re
 import secrets
 import shutil
+from collections.abc import Iterator
 from pathlib import Path
-from typing import Iterator
 
 __all__ = ["atomic_directory", "atomic_output", "remove_stale_temporaries"]
 

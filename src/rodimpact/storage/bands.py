@@ -21,7 +21,7 @@ from __future__ import annotations
 import hashlib
 import json
 from dataclasses import dataclass, field
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
@@ -97,7 +97,7 @@ def write_band(path: str | Path, bands: list[CaseBand], *, variant: str, method:
                 "variant": variant, "method": method, "code_version": provenance.code_version(),
                 "library_versions": provenance.canonical_json(provenance.library_versions()),
                 "config_json": provenance.canonical_json(config),
-                "created_utc": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+                "created_utc": datetime.now(UTC).isoformat(timespec="seconds"),
                 "data_sha256": _sha256(bands),
             })
             for band in bands:

@@ -10,8 +10,9 @@ derived scales); see :mod:`rodimpact.jobs.cases`.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import yaml
 

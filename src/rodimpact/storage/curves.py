@@ -20,10 +20,11 @@ from __future__ import annotations
 import hashlib
 import json
 import logging
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import h5py
 import numpy as np
@@ -105,7 +106,7 @@ def write_contact_curve(path: str | Path, curve: ContactCurve) -> Path:
         "config_sha256": hashlib.sha256(config_json.encode()).hexdigest(),
         "code_version": provenance.code_version(),
         "library_versions": provenance.canonical_json(provenance.library_versions()),
-        "created_utc": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+        "created_utc": datetime.now(UTC).isoformat(timespec="seconds"),
         "summary_json": json.dumps(curve.summary, sort_keys=True),
         "data_sha256": _data_sha256(data),
     }

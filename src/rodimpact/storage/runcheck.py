@@ -6,8 +6,9 @@ Imports only :mod:`rodimpact.storage.provenance` (canonical JSON) and numpy.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from numbers import Integral, Real
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 

@@ -52,7 +52,7 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from dataclasses import field as dataclass_field
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from numbers import Real
 from pathlib import Path
 from typing import Any
@@ -63,7 +63,14 @@ import numpy as np
 from rodimpact.storage import provenance
 from rodimpact.storage.atomic import atomic_output
 from rodimpact.storage.faults import UnreadableInput
-from rodimpact.storage.runcheck import REQUIRED_SUMMARY, SUMMARY_GROUP, all_str, check_config, check_series, check_summary
+from rodimpact.storage.runcheck import (
+    REQUIRED_SUMMARY,
+    SUMMARY_GROUP,
+    all_str,
+    check_config,
+    check_series,
+    check_summary,
+)
 from rodimpact.storage.runfield import check_field, digest_entries, read_field, write_field
 
 logger = logging.getLogger(__name__)
@@ -196,7 +203,7 @@ def write_run(
         "code_version": code_version,
         "library_versions": provenance.canonical_json(provenance.library_versions()),
         "wall_time_s": np.float64(wall_time_s),
-        "created_utc": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+        "created_utc": datetime.now(UTC).isoformat(timespec="seconds"),
         "schema_version": np.int64(SCHEMA_VERSION),
         "data_sha256": provenance.data_sha256(
             config_json, method, {**{n: (a, u, d) for n, a, u, d in checked_series}, **digest_entries(checked_field)},

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import datetime as _dt
 import json
+from collections.abc import Iterable, Sequence
 from pathlib import Path
-from typing import Any, Iterable, Sequence
+from typing import Any
 
 from rodimpact.storage.atomic import atomic_output
 from rodimpact.storage.provenance import code_version, file_sha256
@@ -18,7 +19,7 @@ def provenance_record(records: Sequence[RunRecord], artifacts: Iterable[str | Pa
     """What an artifact was made from: every input run with its config hash and code."""
     return {
         "artifacts": [str(a) for a in artifacts],
-        "created_utc": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        "created_utc": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
         "code_version": code_version(),
         "inputs": [
             {"path": str(r.path), "case_id": r.case_id, "method": r.method,

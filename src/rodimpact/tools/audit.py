@@ -39,9 +39,7 @@ from rodimpact.storage.bands import read_band
 from rodimpact.storage.casefile import read_case_file
 from rodimpact.storage.curves import read_contact_curve
 from rodimpact.storage.faults import DIRECTORY_TIMESTAMP, REBUILD_HINT, StoredFileError
-from rodimpact.storage.provenance import (
-    commit_exists, file_sha256, find_repo_root, library_versions
-)
+from rodimpact.storage.provenance import commit_exists, file_sha256, find_repo_root, library_versions
 from rodimpact.storage.runs import CorruptRun, StoreError, read_run, read_summary
 
 logger = logging.getLogger(__name__)

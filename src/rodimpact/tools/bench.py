@@ -4,14 +4,15 @@ from __future__ import annotations
 
 import logging
 import time
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import pandas as pd
 
-from rodimpact.storage.atomic import atomic_output
-from rodimpact.storage.sidecar import write_provenance
+from rodimpact.jobs.machine import machine_info
+from rodimpact.jobs.resources import estimate_resources
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.fem1d.options import FEM1DOptions
 from rodimpact.solvers.fem1d.solver import solve_fem1d
@@ -21,12 +22,19 @@ from rodimpact.solvers.fem_axi.problem import AxiImpact
 from rodimpact.solvers.fem_axi.solver import solve_fem_axi
 from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
+from rodimpact.storage.atomic import atomic_output
+from rodimpact.storage.sidecar import write_provenance
 from rodimpact.tools.bench_plan import (
-    FAR_BAR_CHECK_CASES, FEM1D_REFERENCE_STEPS, FEM1D_REPEATS, FEM1D_SETTINGS, FEM_AXI_SEM_STEPS, SEM_IMPLICIT_STEPS,
-    SEM_PAPER_STEPS, SEM_REFERENCE_STEPS, SEM_REPEATS
+    FAR_BAR_CHECK_CASES,
+    FEM1D_REFERENCE_STEPS,
+    FEM1D_REPEATS,
+    FEM1D_SETTINGS,
+    FEM_AXI_SEM_STEPS,
+    SEM_IMPLICIT_STEPS,
+    SEM_PAPER_STEPS,
+    SEM_REFERENCE_STEPS,
+    SEM_REPEATS,
 )
-from rodimpact.jobs.machine import machine_info
-from rodimpact.jobs.resources import estimate_resources
 
 __all__ = ["STACK_RUN_TARGET_S", "benchmark_fem1d", "benchmark_fem_axi", "benchmark_sem", "resource_margins",
            "stack_runs", "write_benchmark"]

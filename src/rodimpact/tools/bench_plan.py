@@ -4,7 +4,8 @@ without loading a solver (:mod:`.bench` runs it)."""
 from __future__ import annotations
 
 import copy
-from typing import Any, Mapping, Sequence
+from collections.abc import Mapping, Sequence
+from typing import Any
 
 from rodimpact.model.problem import ImpactProblem
 

@@ -17,16 +17,17 @@ from __future__ import annotations
 import logging
 import math
 import time
-from typing import Any, Mapping, Sequence
+from collections.abc import Mapping, Sequence
+from typing import Any
 
 import numpy as np
 import pandas as pd
 
+from rodimpact.jobs.machine import machine_info
 from rodimpact.model.problem import ImpactProblem
-from rodimpact.tools.bench_plan import SCALING_MIN_REPEATS, SCALING_ROUND_TRIPS, shortened_rod
 from rodimpact.solvers.sem.options import SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
-from rodimpact.jobs.machine import machine_info
+from rodimpact.tools.bench_plan import SCALING_MIN_REPEATS, SCALING_ROUND_TRIPS, shortened_rod
 
 __all__ = ["benchmark_sem_scaling"]
 

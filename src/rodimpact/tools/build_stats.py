@@ -32,9 +32,9 @@ import json
 import logging
 import statistics
 import sys
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Iterable, Sequence
 
 from rodimpact.storage.atomic import atomic_output
 

@@ -19,14 +19,15 @@ from __future__ import annotations
 import argparse
 import logging
 import sys
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Sequence, TextIO
+from typing import TextIO
 
 import rodimpact
 from rodimpact.config.load import load_case_file, load_global_config
 from rodimpact.config.project import ConfigError
-from rodimpact.tools import audit
 from rodimpact.jobs.runner import SolverFailed, run_case
+from rodimpact.tools import audit
 
 __all__ = ["main"]
 

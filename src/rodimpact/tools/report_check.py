@@ -28,9 +28,10 @@ import tempfile
 import time
 import urllib.error
 import urllib.request
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Sequence
+from typing import Any
 
 __all__ = ["CHROMEDRIVER", "CHROMIUM", "ChromeError", "TitleBox", "check_report", "main", "title_box"]
 

@@ -17,8 +17,9 @@ from __future__ import annotations
 import logging
 import math
 import time as _time
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any, Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -30,9 +31,7 @@ from rodimpact.solvers.fem1d.bar import BarModel, banded_solver, bar_model, end_
 from rodimpact.solvers.fem1d.options import FEM1DOptions
 from rodimpact.solvers.field import FieldGrid, field_datasets
 from rodimpact.solvers.result import ImpactResult
-from rodimpact.solvers.stepping import (
-    SEPARATION_ROUND_TRIPS, Outcome, StepHistory, energy_error, limit_reached
-)
+from rodimpact.solvers.stepping import SEPARATION_ROUND_TRIPS, Outcome, StepHistory, energy_error, limit_reached
 
 __all__ = ["solve_fem1d"]
 

@@ -20,7 +20,8 @@ mass of a Pp basis needs ``Basis(mesh, elem, intorder=2 * p + 1)``.
 from __future__ import annotations
 
 import logging
-from typing import Any, Callable, Sequence
+from collections.abc import Callable, Sequence
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp

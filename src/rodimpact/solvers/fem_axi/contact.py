@@ -58,7 +58,7 @@ class ContactOperator:
 
     @classmethod
     def of(cls, rod: AxiBody, impactor: AxiBody, B_rod: sp.spmatrix, B_imp: sp.spmatrix,
-           gap0: NDArray[np.float64]) -> "ContactOperator":
+           gap0: NDArray[np.float64]) -> ContactOperator:
         """G and A for bodies factorised for their step (one solve with c right-hand sides each)."""
         B_rod, B_imp = sp.csr_matrix(B_rod), sp.csr_matrix(B_imp)
         GT_rod = np.ascontiguousarray(rod.solve(np.asfortranarray(B_rod.T.toarray())).T)

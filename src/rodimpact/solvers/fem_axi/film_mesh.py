@@ -28,18 +28,28 @@ from __future__ import annotations
 
 import logging
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import numpy as np
 from numpy.typing import NDArray
 from skfem import MeshTri
 
-from rodimpact.solvers.fem_axi.meshes import (
-    SIZE_GRADIENT, BodyMesh, _area2, _ceil, _distance_to_origin, _fine_sizes, _longest_edges, _oriented, _positive, _tagged,
-    graded_size, refine_until
-)
 from rodimpact.solvers.fem_axi.layers import FILM_ASPECT, layer_elements
+from rodimpact.solvers.fem_axi.meshes import (
+    SIZE_GRADIENT,
+    BodyMesh,
+    _area2,
+    _ceil,
+    _distance_to_origin,
+    _fine_sizes,
+    _longest_edges,
+    _oriented,
+    _positive,
+    _tagged,
+    graded_size,
+    refine_until,
+)
 from rodimpact.solvers.fem_axi.options import FILM_LAYERS
 
 __all__ = ["FILM_ASPECT", "FILM_LAYERS", "FilmRodMesh", "film_rod_mesh", "layer_elements", "layers_within"]

@@ -16,8 +16,8 @@ the rod's end face, as in :func:`~rodimpact.solvers.fem_axi.solver.solve_fem_axi
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Sequence
 
 import numpy as np
 from numpy.typing import NDArray

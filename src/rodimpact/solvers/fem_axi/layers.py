@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 import numbers
-from typing import Sequence
+from collections.abc import Sequence
 
 from rodimpact.solvers.fem_axi.options import FILM_LAYERS
 

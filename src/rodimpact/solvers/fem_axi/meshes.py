@@ -14,8 +14,8 @@ from __future__ import annotations
 import logging
 import math
 import numbers
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 from numpy.typing import NDArray
@@ -335,7 +335,7 @@ def _curved_body(radius: float, height: float, fine_size_m: float,
     mesh, on_sphere = _coarse_mesh(radius, height, coarse / 1.35)
     longest = _longest_edges(mesh)[_distance_to_origin(mesh) <= extent].max(initial=coarse)
     mesh, on_sphere = _coarse_mesh(radius, height, coarse / 1.35 * 0.99 * coarse / longest)
-    for levels in range(65):
+    for levels in range(65):  # noqa: B007 (the count is logged after the loop)
         beyond = np.maximum(_distance_to_origin(mesh) - extent, 0.0)
         target = np.where(beyond > 0.0, np.minimum(coarse, fine + SIZE_GRADIENT * beyond),
                           min(fine, coarse))

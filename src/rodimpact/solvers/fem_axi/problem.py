@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, Literal, Mapping
+from typing import Any, Literal
 
 from rodimpact.contact.law import ContactLaw, RigidImpact
 from rodimpact.contact.laws import build_law
@@ -72,7 +73,7 @@ class AxiImpact:
     stack: Stack | None = None
 
     @classmethod
-    def from_case(cls, case: Mapping[str, Any], *, estimate: bool = False) -> "AxiImpact":
+    def from_case(cls, case: Mapping[str, Any], *, estimate: bool = False) -> AxiImpact:
         """The impact of a resolved case; ``stack`` from the contact block's film or stack when
         it has one, whatever its law (:meth:`Stack.of`). ``estimate`` is passed to
         :func:`~rodimpact.contact.laws.build_law` (a law whose data do not exist yet is

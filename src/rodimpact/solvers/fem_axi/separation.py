@@ -92,7 +92,7 @@ class BodyBound:
     stiff_ones: NDArray[np.float64]
 
     @classmethod
-    def of(cls, body: AxiBody, rows: sp.spmatrix, GT: NDArray[np.float64]) -> "BodyBound":
+    def of(cls, body: AxiBody, rows: sp.spmatrix, GT: NDArray[np.float64]) -> BodyBound:
         """The constants of ``body`` (factorised for its step) for the gap rows ``rows``
         (shape (c, n)) and G^T = (K_eff^-1 rows^T)^T (shape (c, n)): one factorisation of K."""
         ones = body.uniform_axial(1.0)
@@ -156,12 +156,12 @@ class Flight:
     the bodies' translations X change along the flight.
     """
 
-    bound: "SeparationBound"
+    bound: SeparationBound
     reach: NDArray[np.float64]
     apart: bool
 
     @classmethod
-    def start(cls, bound: "SeparationBound", rod: AxiBody, impactor: AxiBody) -> "Flight":
+    def start(cls, bound: SeparationBound, rod: AxiBody, impactor: AxiBody) -> Flight:
         """The flight from the bodies' present state."""
         reach = np.zeros_like(bound.gap0)
         opening = np.zeros_like(bound.gap0)
@@ -195,7 +195,7 @@ class SeparationBound:
     impactor: BodyBound
 
     @classmethod
-    def of(cls, rod: AxiBody, impactor: AxiBody, contact: ContactOperator) -> "SeparationBound":
+    def of(cls, rod: AxiBody, impactor: AxiBody, contact: ContactOperator) -> SeparationBound:
         """The constants of both bodies for the contact's candidates (one factorisation of each stiffness)."""
         return cls(contact.gap0, BodyBound.of(rod, contact.B_rod, contact.GT_rod),
                    BodyBound.of(impactor, contact.B_imp, contact.GT_imp))

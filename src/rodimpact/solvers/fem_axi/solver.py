@@ -20,8 +20,9 @@ from __future__ import annotations
 import logging
 import math
 import time as _time
+from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any, Sequence
+from typing import Any
 
 import numpy as np
 import scipy.sparse as sp

@@ -5,7 +5,8 @@ history term per round trip since the impact on a fixed ``dt_s`` that is not."""
 from __future__ import annotations
 
 import math
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.cost import MIB, SOLVE_S, STATION_STEP_BYTES, Cost, contact_duration, horizon

@@ -65,7 +65,7 @@ class CommensurateGrid:
     lag: int
 
     @classmethod
-    def of(cls, step: float, period: float, sign: int, linear: bool) -> "CommensurateGrid | None":
+    def of(cls, step: float, period: float, sign: int, linear: bool) -> CommensurateGrid | None:
         """The grid of ``step`` for a round trip ``period`` (None when they are not commensurate).
 
         Parameters

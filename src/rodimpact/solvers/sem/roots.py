@@ -9,7 +9,7 @@ and importing :mod:`scipy.optimize` for them would cost a workflow job about hal
 from __future__ import annotations
 
 import math
-from typing import Callable
+from collections.abc import Callable
 
 __all__ = ["RootNotBracketedError", "RootNotConvergedError", "brent_root"]
 

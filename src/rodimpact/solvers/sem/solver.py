@@ -22,7 +22,7 @@ import dataclasses
 import logging
 import math
 import time as _time
-from typing import Sequence
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -30,9 +30,9 @@ from rodimpact.analysis.signals import first_contact_maxima
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.field import FieldGrid, field_datasets
 from rodimpact.solvers.result import ImpactResult
+from rodimpact.solvers.sem.grid import commensurate_step
 from rodimpact.solvers.sem.history import ForceHistory
 from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
-from rodimpact.solvers.sem.grid import commensurate_step
 from rodimpact.solvers.sem.stepper import SEMRun, run_fixed_step
 
 __all__ = ["solve_sem"]

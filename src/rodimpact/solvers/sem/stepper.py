@@ -80,7 +80,7 @@ class _Stepper(StepHistory):
     def _step_implicit(self) -> None:
         m, law = self.m, self.law
         h, t_new = self.hist.next_step(self.h)
-        p_n, alpha_n = self.hist.P[-1], self.alpha[-1]
+        alpha_n = self.alpha[-1]
         known, coef = self.hist.rod_step_terms(h)
         x_pred, _ = self._impactor(h, 0.0)
         a = x_pred - known
