@@ -1,7 +1,8 @@
 # rodimpact: two commands do all the set-up on a fresh machine with Python 3.11 and pip.
 #   make paper   build .venv from environment.lock if missing or stale, then snakemake -j2
-#   make test    same environment; snakemake --lint, a dry run, the small configuration in .test/
-#                built end to end (.test/results), pytest
+#   make test    same environment; ruff check, ruff format --check and snakefmt --check (the
+#                rules in pyproject.toml), snakemake --lint, a dry run, the small configuration in
+#                .test/ built end to end (.test/results), pytest
 #   make test-cluster  .test/ built through profiles/slurm on a one-node SLURM scheduler of this
 #                machine and checked against the local build (as root: installs Debian's
 #                slurm-wlm and munge when missing); after make test, its .test/ is reused
@@ -43,6 +44,9 @@ paper: $(STAMP)
 	$(BIN)/snakemake -j$(CORES)
 
 test: $(STAMP)
+	$(BIN)/ruff check .
+	$(BIN)/ruff format --check .
+	$(BIN)/snakefmt --check Snakefile workflow/rules
 	$(BIN)/snakemake --lint
 	$(BIN)/snakemake -n --quiet rules
 	$(BIN)/snakemake -j$(CORES) --directory .test

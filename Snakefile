@@ -33,9 +33,9 @@ include: "workflow/rules/compare.smk"
 
 
 rule all:
+    default_target: True
     input:
         default_targets(),
-    default_target: True
 
 
 # last: it checks the command line's targets against every rule above

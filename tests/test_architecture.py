@@ -18,9 +18,21 @@ from pathlib import Path
 SRC = Path(__file__).resolve().parents[1] / "src"
 PACKAGE = SRC / "rodimpact"
 #: The layers, lowest first; the packages of one set share a rank and import none of each other.
-LAYERS: tuple[frozenset[str], ...] = tuple(frozenset(rank) for rank in (
-    {"settings"}, {"contact"}, {"model"}, {"analysis"}, {"solvers"}, {"config", "storage"}, {"present"}, {"jobs"},
-    {"plumbing"}, {"tools"}))
+LAYERS: tuple[frozenset[str], ...] = tuple(
+    frozenset(rank)
+    for rank in (
+        {"settings"},
+        {"contact"},
+        {"model"},
+        {"analysis"},
+        {"solvers"},
+        {"config", "storage"},
+        {"present"},
+        {"jobs"},
+        {"plumbing"},
+        {"tools"},
+    )
+)
 #: Each top-level package's rank (its index in :data:`LAYERS`).
 RANK = {package: rank for rank, packages in enumerate(LAYERS) for package in packages}
 #: Lines a module may have before it must be split (the project's rule: small modules).
@@ -47,8 +59,9 @@ def _imports(path: Path) -> list[tuple[str, int]]:
             else:
                 base = node.module or ""
             found.append((base, node.lineno))
-            found += [(f"{base}.{alias.name}", node.lineno) for alias in node.names
-                      if _is_module(f"{base}.{alias.name}")]
+            found += [
+                (f"{base}.{alias.name}", node.lineno) for alias in node.names if _is_module(f"{base}.{alias.name}")
+            ]
     return [(name, line) for name, line in found if name == "rodimpact" or name.startswith("rodimpact.")]
 
 
@@ -70,9 +83,14 @@ def test_every_module_lives_in_a_package_of_a_concern():
     # _version.py: the version from the git tags, standard library only (below every layer)
     loose = [p.name for p in PACKAGE.glob("*.py") if p.name not in ("__init__.py", "_version.py")]
     assert loose == []
-    version_imports = {n.module for n in ast.walk(ast.parse((PACKAGE / "_version.py").read_text()))
-                       if isinstance(n, ast.ImportFrom)} | {a.name for n in ast.walk(ast.parse(
-                           (PACKAGE / "_version.py").read_text())) if isinstance(n, ast.Import) for a in n.names}
+    version_imports = {
+        n.module for n in ast.walk(ast.parse((PACKAGE / "_version.py").read_text())) if isinstance(n, ast.ImportFrom)
+    } | {
+        a.name
+        for n in ast.walk(ast.parse((PACKAGE / "_version.py").read_text()))
+        if isinstance(n, ast.Import)
+        for a in n.names
+    }
     assert not any(m.startswith("rodimpact") for m in version_imports if m), version_imports
     assert sorted(p.name for p in PACKAGE.iterdir() if p.is_dir() and p.name != "__pycache__") == sorted(RANK)
 
@@ -136,7 +154,7 @@ def test_there_are_no_import_cycles():
             if nxt.startswith(node + ".") or node.startswith(nxt + "."):
                 continue  # a package and its own modules
             if state.get(nxt) == 1:
-                cycles.append(" -> ".join(stack[stack.index(nxt):] + [nxt]) if nxt in stack else f"{node} -> {nxt}")
+                cycles.append(" -> ".join(stack[stack.index(nxt) :] + [nxt]) if nxt in stack else f"{node} -> {nxt}")
             elif nxt not in state:
                 visit(nxt, stack + [nxt])
         state[node] = 2
@@ -155,13 +173,17 @@ def test_modules_are_small():
 def test_the_configuration_check_loads_no_solver_no_mesh_and_no_plotting():
     """What snakemake imports to check the configuration before any job: the registry and the
     options, never a solver, scikit-fem or matplotlib."""
-    code = ("import sys, rodimpact.config.load, rodimpact.jobs.resources, rodimpact.tools.bench_plan; "
-            "print('\\n'.join(sorted(sys.modules)))")
-    loaded = set(subprocess.run([sys.executable, "-c", code], check=True, capture_output=True,
-                                text=True).stdout.split())
+    code = (
+        "import sys, rodimpact.config.load, rodimpact.jobs.resources, rodimpact.tools.bench_plan; "
+        "print('\\n'.join(sorted(sys.modules)))"
+    )
+    loaded = set(
+        subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True).stdout.split()
+    )
     assert not {m for m in loaded if m.split(".")[0] in ("skfem", "matplotlib")}
-    solvers = {m for m in loaded if m.endswith((".solver", ".stepper", ".history", ".bar", ".meshes", ".axisym",
-                                                 ".axibody"))}
+    solvers = {
+        m for m in loaded if m.endswith((".solver", ".stepper", ".history", ".bar", ".meshes", ".axisym", ".axibody"))
+    }
     assert solvers == set()
     assert "rodimpact.solvers.registry" in loaded
 
@@ -184,8 +206,12 @@ def test_no_module_writes_out_the_list_of_methods():
                 holders.append(f"{path.relative_to(SRC)}:{node.lineno}")
     for path in sorted((SRC.parent / "workflow").rglob("*.smk")) + sorted((SRC.parent / "workflow").rglob("*.yaml")):
         text = path.read_text(encoding="utf-8")
-        if all(f"{name}" in text for name in METHODS) and "fem_axi" in text and "sem_paper" in text \
-                and any(f"[{', '.join(METHODS)}]" in line or f"{', '.join(METHODS)}" in line for line in text.splitlines()):
+        if (
+            all(f"{name}" in text for name in METHODS)
+            and "fem_axi" in text
+            and "sem_paper" in text
+            and any(f"[{', '.join(METHODS)}]" in line or f"{', '.join(METHODS)}" in line for line in text.splitlines())
+        ):
             holders.append(str(path.relative_to(SRC.parent)))
     assert holders == []
 

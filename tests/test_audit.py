@@ -19,8 +19,9 @@ from rodimpact.tools.audit import audit, audit_run, audit_sidecar, code_problems
 
 from helpers.repo import ROOT
 
-HEAD = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
-                      check=True).stdout.strip()
+HEAD = subprocess.run(
+    ["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True, check=True
+).stdout.strip()
 VERSION = f"0.1.0+g{HEAD}"
 
 
@@ -28,13 +29,28 @@ def _run(path: Path, *, velocity: float = 1.0, version: str = VERSION) -> Path:
     """A small run file with every kind of summary value (bool, int, str, float, arrays)."""
     t = np.linspace(0.0, 1e-4, 50)
     return write_run(
-        path, config={"id": "c1", "impactor": {"velocity_m_s": velocity}, "run": {"method": "sem"}}, method="sem",
-        series={"time": (t, "s", "time"), "contact_force": (np.sin(t * 3e4), "N", "force"),
-                "stations": (np.outer(t, [1.0, 2.0]), "m", "two stations")},
-        summary={"contact_time_s": 1e-4, "peak_force_N": np.array([1.0, 0.5]), "peak_time_s": np.array([2e-5, 6e-5]),
-                 "rebound_velocity_m_s": -0.9, "energy_error": 1e-7, "success": True, "n_steps": 49,
-                 "status": "completed", "contact_end_s": np.empty(0)},
-        wall_time_s=0.1, code_version=version)
+        path,
+        config={"id": "c1", "impactor": {"velocity_m_s": velocity}, "run": {"method": "sem"}},
+        method="sem",
+        series={
+            "time": (t, "s", "time"),
+            "contact_force": (np.sin(t * 3e4), "N", "force"),
+            "stations": (np.outer(t, [1.0, 2.0]), "m", "two stations"),
+        },
+        summary={
+            "contact_time_s": 1e-4,
+            "peak_force_N": np.array([1.0, 0.5]),
+            "peak_time_s": np.array([2e-5, 6e-5]),
+            "rebound_velocity_m_s": -0.9,
+            "energy_error": 1e-7,
+            "success": True,
+            "n_steps": 49,
+            "status": "completed",
+            "contact_end_s": np.empty(0),
+        },
+        wall_time_s=0.1,
+        code_version=version,
+    )
 
 
 @pytest.fixture
@@ -48,19 +64,24 @@ def test_an_untouched_run_resolves(run: Path) -> None:
     assert finding.code_versions == (VERSION,) and len(finding.config_sha256[0]) == 64
 
 
-@pytest.mark.parametrize("edit", [
-    lambda h5: h5["contact_force"].__setitem__(3, 7.0),
-    lambda h5: h5["stations"].__setitem__((4, 1), 0.0),
-    lambda h5: h5["summary"].attrs.__setitem__("contact_time_s", 1.1e-4),
-    lambda h5: h5["summary"].attrs.__setitem__("success", False),
-    lambda h5: h5["contact_force"].attrs.__setitem__("units", "kN"),
-], ids=["dataset", "2-D dataset", "summary number", "summary flag", "units"])
+@pytest.mark.parametrize(
+    "edit",
+    [
+        lambda h5: h5["contact_force"].__setitem__(3, 7.0),
+        lambda h5: h5["stations"].__setitem__((4, 1), 0.0),
+        lambda h5: h5["summary"].attrs.__setitem__("contact_time_s", 1.1e-4),
+        lambda h5: h5["summary"].attrs.__setitem__("success", False),
+        lambda h5: h5["contact_force"].attrs.__setitem__("units", "kN"),
+    ],
+    ids=["dataset", "2-D dataset", "summary number", "summary flag", "units"],
+)
 def test_a_run_edited_after_writing_is_caught(run: Path, edit) -> None:
     with h5py.File(run, "r+") as h5:
         edit(h5)
     finding = audit_run(run, library_versions(), ROOT)
-    assert finding.problems == ("its content differs from its data_sha256 (changed after it was written) "
-                                f"({REBUILD_HINT})",)
+    assert finding.problems == (
+        f"its content differs from its data_sha256 (changed after it was written) ({REBUILD_HINT})",
+    )
     assert run.stat().st_mtime == 0.0  # marked: snakemake's modification-time check remakes it
 
 
@@ -70,9 +91,14 @@ def test_an_edited_config_is_caught(run: Path) -> None:
     assert audit_run(run, library_versions(), ROOT).problems[0].startswith("config_sha256 mismatch")
 
 
-@pytest.mark.parametrize("version, problem", [
-    ("0.1.0+unknown", "unknown"), (f"{VERSION}.dirty", "uncommitted"), ("0.1.0+gdeadbee", "not in this repository"),
-])
+@pytest.mark.parametrize(
+    "version, problem",
+    [
+        ("0.1.0+unknown", "unknown"),
+        (f"{VERSION}.dirty", "uncommitted"),
+        ("0.1.0+gdeadbee", "not in this repository"),
+    ],
+)
 def test_code_that_cannot_be_named_does_not_resolve(version: str, problem: str) -> None:
     (message,) = code_problems(version, ROOT)
     assert problem in message
@@ -89,8 +115,11 @@ def _table(tmp_path: Path, runs: list[Path]) -> tuple[Path, Path]:
     csv, sidecar = tmp_path / "results/tables/t.csv", tmp_path / "results/tables/t.provenance.json"
     csv.parent.mkdir(parents=True, exist_ok=True)
     csv.write_text("a,b\n1,2\n")
-    write_provenance(sidecar.relative_to(tmp_path), [read_summary(r.relative_to(tmp_path)) for r in runs],
-                     [csv.relative_to(tmp_path)])
+    write_provenance(
+        sidecar.relative_to(tmp_path),
+        [read_summary(r.relative_to(tmp_path)) for r in runs],
+        [csv.relative_to(tmp_path)],
+    )
     return csv, sidecar
 
 
@@ -114,7 +143,8 @@ def test_a_hand_edited_table_and_a_table_older_than_its_run(tmp_path: Path, run:
     csv.write_text("a,b\n1,3\n")
     found = _by_path(audit_sidecar("results/tables/t.provenance.json", {}, ROOT))
     assert found["results/tables/t.csv"].problems == (
-        "bytes differ from those recorded when it was written (edited by hand?)",)
+        "bytes differ from those recorded when it was written (edited by hand?)",
+    )
     _run(run, velocity=2.0)  # the run is remade with another config; the table is not
     found = _by_path(audit_sidecar("results/tables/t.provenance.json", {}, ROOT))
     assert "now has another config" in found["results/tables/t.provenance.json"].problems[0]
@@ -131,8 +161,13 @@ def test_audit_covers_every_file_and_flags_strays(tmp_path: Path, run: Path, mon
     (tmp_path / "results/runs/c1/sem.h5.tmp.123.ab").write_bytes(b"")
     result = audit(tmp_path, workflow=False)
     found = _by_path(result.findings)
-    assert sorted(found) == ["results/runs/c1/sem.h5", "results/runs/c1/sem.h5.tmp.123.ab",
-                             "results/tables/stray.csv", "results/tables/t.csv", "results/tables/t.provenance.json"]
+    assert sorted(found) == [
+        "results/runs/c1/sem.h5",
+        "results/runs/c1/sem.h5.tmp.123.ab",
+        "results/tables/stray.csv",
+        "results/tables/t.csv",
+        "results/tables/t.provenance.json",
+    ]
     assert found["results/tables/stray.csv"].problems == ("no provenance record lists it",)
     assert "temporary file" in found["results/runs/c1/sem.h5.tmp.123.ab"].problems[-1]
     assert not result.success and "3 resolve to their config and code, 2 do not" in result.message
@@ -157,7 +192,10 @@ def test_a_benchmark_table_resolves_without_input_runs(tmp_path: Path, monkeypat
 
     monkeypatch.chdir(tmp_path)
     monkeypatch.setattr("rodimpact.storage.sidecar.code_version", lambda: VERSION)
-    write_benchmark(pd.DataFrame({"steps": [1, 2], "wall_time_s": [0.1, 0.2]}),
-                    csv="results/benchmarks/b.csv", provenance="results/benchmarks/b.provenance.json")
+    write_benchmark(
+        pd.DataFrame({"steps": [1, 2], "wall_time_s": [0.1, 0.2]}),
+        csv="results/benchmarks/b.csv",
+        provenance="results/benchmarks/b.provenance.json",
+    )
     found = _by_path(audit_sidecar("results/benchmarks/b.provenance.json", {}, ROOT))
     assert found["results/benchmarks/b.csv"].ok and found["results/benchmarks/b.provenance.json"].ok

@@ -98,8 +98,9 @@ def test_uniform_radial_expansion_energy(element):
     c = 1.0e-4
     basis = cylinder(element)
     K = axisym_stiffness(basis, E, NU)
-    f = (axisym_load(basis, lambda r, z: (2 * c * (LAM + MU), 0.0), "right")
-         + axisym_load(basis, lambda r, z: (0.0, 2 * LAM * c), "top"))
+    f = axisym_load(basis, lambda r, z: (2 * c * (LAM + MU), 0.0), "right") + axisym_load(
+        basis, lambda r, z: (0.0, 2 * LAM * c), "top"
+    )
     D = np.union1d(axis_dofs(basis), component_dofs(basis, 1, "bottom"))
     u = solve_dirichlet(K, f, D)
     exact = nodal(basis, lambda r, z: c * r, lambda r, z: 0.0 * z)
@@ -168,8 +169,7 @@ def mms_stress(r, z):
     """(s_rr, s_zz, s_tt, s_rz), E = 1."""
     err, ezz, ett, grz = mms_strain(r, z)
     tr = err + ezz + ett
-    return (LAM1 * tr + 2 * MU1 * err, LAM1 * tr + 2 * MU1 * ezz, LAM1 * tr + 2 * MU1 * ett,
-            MU1 * grz)
+    return (LAM1 * tr + 2 * MU1 * err, LAM1 * tr + 2 * MU1 * ezz, LAM1 * tr + 2 * MU1 * ett, MU1 * grz)
 
 
 def mms_body_force(r, z):
@@ -233,10 +233,8 @@ def mms_errors(element: str, n: int) -> tuple[float, float]:
         return (f_r * v[0] + f_z * v[1]) * w.x[0]
 
     f = asm(body, basis)
-    D = np.unique(np.concatenate([axis_dofs(basis),
-                                  basis.get_dofs({"right", "bottom", "top"}).all()]))
-    u = solve_dirichlet(K, f, D, x=nodal(basis, lambda r, z: mms_u(r, z)[0],
-                                         lambda r, z: mms_u(r, z)[1]))
+    D = np.unique(np.concatenate([axis_dofs(basis), basis.get_dofs({"right", "bottom", "top"}).all()]))
+    u = solve_dirichlet(K, f, D, x=nodal(basis, lambda r, z: mms_u(r, z)[0], lambda r, z: mms_u(r, z)[1]))
     hi = Basis(mesh, basis.elem, intorder=2 * basis.elem.maxdeg + 4)
 
     @Functional
@@ -248,23 +246,27 @@ def mms_errors(element: str, n: int) -> tuple[float, float]:
     def energy(w):
         d = [a - b for a, b in zip(strain(w.uh, w.x[0]), mms_strain(w.x[0], w.x[1]))]
         tr = d[0] + d[1] + d[2]
-        return (LAM1 * tr**2 + 2 * MU1 * (d[0]**2 + d[1]**2 + d[2]**2) + MU1 * d[3]**2) * w.x[0]
+        return (LAM1 * tr**2 + 2 * MU1 * (d[0] ** 2 + d[1] ** 2 + d[2] ** 2) + MU1 * d[3] ** 2) * w.x[0]
 
     uh = hi.interpolate(u)
     return math.sqrt(l2.assemble(hi, uh=uh)), math.sqrt(energy.assemble(hi, uh=uh))
 
 
-@pytest.mark.parametrize("element, sizes, l2_order, energy_order", [
-    ("P1", (4, 8, 16, 32), (1.8, 2.3), (0.9, 1.2)),
-    ("P2", (2, 4, 8, 16), (2.7, 3.4), (1.8, 2.3)),
-])
+@pytest.mark.parametrize(
+    "element, sizes, l2_order, energy_order",
+    [
+        ("P1", (4, 8, 16, 32), (1.8, 2.3), (0.9, 1.2)),
+        ("P2", (2, 4, 8, 16), (2.7, 3.4), (1.8, 2.3)),
+    ],
+)
 def test_manufactured_solution_convergence(element, sizes, l2_order, energy_order):
     errors = np.array([mms_errors(element, n) for n in sizes])
     h = 1.0 / np.asarray(sizes, float)
     p_l2 = np.polyfit(np.log(h), np.log(errors[:, 0]), 1)[0]
     p_en = np.polyfit(np.log(h), np.log(errors[:, 1]), 1)[0]
-    log.info("%s: L2 errors %s, order %.3f; energy errors %s, order %.3f",
-             element, errors[:, 0], p_l2, errors[:, 1], p_en)
+    log.info(
+        "%s: L2 errors %s, order %.3f; energy errors %s, order %.3f", element, errors[:, 0], p_l2, errors[:, 1], p_en
+    )
     assert l2_order[0] <= p_l2 <= l2_order[1]
     assert energy_order[0] <= p_en <= energy_order[1]
     assert np.all(np.diff(errors, axis=0) < 0)

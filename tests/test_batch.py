@@ -23,9 +23,14 @@ def sweep(shipped_project) -> dict:
 def _runs(sweep: dict, count: int) -> dict[str, dict]:
     points = sweep_points(sweep["sweep"])[:count]
     names = ["_".join(f"{k}~{v}" for k, v in point.items()) for point in points]
-    return {f"p{i}": {"case": sweep_point_case(sweep, point, name), "method": "sem",
-                      "study": {"name": "sweep", "sweep": sweep["id"], "point": name}}
-            for i, (point, name) in enumerate(zip(points, names))}
+    return {
+        f"p{i}": {
+            "case": sweep_point_case(sweep, point, name),
+            "method": "sem",
+            "study": {"name": "sweep", "sweep": sweep["id"], "point": name},
+        }
+        for i, (point, name) in enumerate(zip(points, names))
+    }
 
 
 def test_each_run_is_its_own_file_as_a_single_run_writes_it(sweep: dict, tmp_path: Path) -> None:
@@ -33,11 +38,14 @@ def test_each_run_is_its_own_file_as_a_single_run_writes_it(sweep: dict, tmp_pat
     runs = _runs(sweep, 3)
     paths = {name: tmp_path / f"{name}.h5" for name in runs}
     assert run_batch(runs, paths, case_file=case_file) == list(paths.values())
-    single = run_to_file(runs["p1"]["case"], "sem", tmp_path / "single.h5", study=runs["p1"]["study"],
-                         case_file=case_file)
+    single = run_to_file(
+        runs["p1"]["case"], "sem", tmp_path / "single.h5", study=runs["p1"]["study"], case_file=case_file
+    )
     batch, alone = read_run(paths["p1"]), read_run(single)
     assert batch.config == alone.config and batch.config_sha256 == alone.config_sha256
-    assert batch.code_version == alone.code_version and batch.summary["contact_time_s"] == alone.summary["contact_time_s"]
+    assert (
+        batch.code_version == alone.code_version and batch.summary["contact_time_s"] == alone.summary["contact_time_s"]
+    )
     assert batch.config["run"]["case_file"]["path"] == str(case_file)
     assert {read_run(p).case_id for p in paths.values()} == {run["case"]["id"] for run in runs.values()}
 
@@ -68,7 +76,8 @@ def test_a_batch_directory_appears_whole_or_not_at_all(sweep: dict, tmp_path: Pa
 
 
 def test_a_calibrated_sweep_point_computes_its_own_curve_as_the_indentation_rule_does(
-        shipped_project, shipped_config: dict, tmp_path: Path) -> None:
+    shipped_project, shipped_config: dict, tmp_path: Path
+) -> None:
     """A point of a sweep with the law the continuum calibrates: its batch indents the point's
     own ball (the indentation rule's function, the rule's settings) and runs the SEM with that
     curve; the run stores the curve's summary, and equals the same point with its curve given."""
@@ -81,8 +90,9 @@ def test_a_calibrated_sweep_point_computes_its_own_curve_as_the_indentation_rule
     run_batch(runs, {"p0": tmp_path / "p0.h5"})
     stored = read_run(tmp_path / "p0.h5")
     curve = indentation_curve(runs["p0"]["case"], settings)
-    given = run_to_file(runs["p0"]["case"], "sem", tmp_path / "given.h5", study=runs["p0"]["study"],
-                        contact_curve=curve)
+    given = run_to_file(
+        runs["p0"]["case"], "sem", tmp_path / "given.h5", study=runs["p0"]["study"], contact_curve=curve
+    )
     assert stored.summary["contact_time_s"] == read_run(given).summary["contact_time_s"]
     assert stored.config["run"]["contact_curve"] == {"computed_in_job": True, "summary": curve.summary}
     with pytest.raises(ValueError, match="no curve rule 'elsewhere'"):

@@ -64,8 +64,11 @@ def project(tmp_path: Path) -> Path:
 def test_jobs_group_the_records_of_one_job(project: Path) -> None:
     jobs = read_jobs(project)
     assert [(job.rule, job.start, job.end, job.runs) for job in jobs] == [
-        ("solve_sweep", 100.0, 103.0, 2), ("solve", 101.0, 103.5, 1), ("solve_levels", 103.5, 105.5, 1),
-        ("table", 106.0, 107.0, 0)]
+        ("solve_sweep", 100.0, 103.0, 2),
+        ("solve", 101.0, 103.5, 1),
+        ("solve_levels", 103.5, 105.5, 1),
+        ("table", 106.0, 107.0, 0),
+    ]
     assert jobs[0].solver_s == pytest.approx(2.0) and jobs[2].solver_s == pytest.approx(1.0)
     assert jobs[3].outputs == ("results/tables/t.csv", "results/tables/t.md")
 

@@ -36,16 +36,21 @@ def cases(shipped_project):
 @pytest.fixture(scope="module")
 def curves(shipped_project, shipped_config):
     settings = shipped_config["numerics"]["fem_axi"]
-    return {case_id: indentation_curve(shipped_project.cases[case_id], settings)
-            for case_id in ("ball_3.16mm-r10_l30_cal", "ball_3.16mm-r10_l30_film_cal")}
+    return {
+        case_id: indentation_curve(shipped_project.cases[case_id], settings)
+        for case_id in ("ball_3.16mm-r10_l30_cal", "ball_3.16mm-r10_l30_film_cal")
+    }
 
 
 def test_calibrated_hertz_is_hertz_within_the_static_check(cases, curves):
     case = cases["ball_3.16mm-r10_l30_cal"]
     curve = curves[case["id"]].data
     imp = case["impactor"]
-    law = HertzLaw(hertz_constant(imp["radius_m"], Material.from_mapping(imp["material"]),
-                                  Material.from_mapping(case["rod"]["material"])))
+    law = HertzLaw(
+        hertz_constant(
+            imp["radius_m"], Material.from_mapping(imp["material"]), Material.from_mapping(case["rod"]["material"])
+        )
+    )
     hertz = np.array([law.approach(p) for p in curve["force_N"]])
     assert np.max(np.abs(curve["approach_m"] / hertz - 1.0)) < 0.02
     np.testing.assert_allclose(curve["law_approach_m"], hertz, rtol=1e-12)
@@ -80,8 +85,16 @@ def test_runner_gives_the_tabulated_law_its_curve(tmp_path, cases, curves):
     assert summary["contact_time_s"] == pytest.approx(direct.contact_time_s, rel=1e-12)
     assert summary["contact_law"] == "tabulated" and 0.0 < summary["table_reach"] <= 1.0
     # the film lengthens the contact against the calibrated bare rod (measured 17.7 -> 28 us)
-    bare = run_case({**cases["ball_3.16mm-r10_l30_cal"], "contact": {
-        **cases["ball_3.16mm-r10_l30_cal"]["contact"], "curve": curves["ball_3.16mm-r10_l30_cal"].law_curve()}}, "sem")
+    bare = run_case(
+        {
+            **cases["ball_3.16mm-r10_l30_cal"],
+            "contact": {
+                **cases["ball_3.16mm-r10_l30_cal"]["contact"],
+                "curve": curves["ball_3.16mm-r10_l30_cal"].law_curve(),
+            },
+        },
+        "sem",
+    )
     assert summary["contact_time_s"] > 1.3 * bare.contact_time_s
     with pytest.raises(ValueError, match="needs its curve file"):
         run_to_file(case, "sem", tmp_path / "none.h5")

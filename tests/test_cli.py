@@ -38,10 +38,13 @@ def test_run_prints_the_summary_of_each_run(case_file: Path, shipped_project) ->
     assert shown == pytest.approx(1e6 * expected.contact_time_s, rel=1e-3)  # printed to 4 digits
 
 
-@pytest.mark.parametrize("args, expected", [
-    (["--case", "nosuch"], "rodimpact: no case 'nosuch' in "),
-    (["--method", "fem_axi"], "rodimpact: case 'model' does not run 'fem_axi'; its methods: sem"),
-])
+@pytest.mark.parametrize(
+    "args, expected",
+    [
+        (["--case", "nosuch"], "rodimpact: no case 'nosuch' in "),
+        (["--method", "fem_axi"], "rodimpact: case 'model' does not run 'fem_axi'; its methods: sem"),
+    ],
+)
 def test_run_refuses_what_the_file_does_not_hold_in_one_line(case_file: Path, capsys, args, expected) -> None:
     assert main(["run", str(case_file), "--root", str(ROOT), *args]) == 1
     err = capsys.readouterr().err
@@ -49,8 +52,9 @@ def test_run_refuses_what_the_file_does_not_hold_in_one_line(case_file: Path, ca
 
 
 def test_run_checks_the_file_as_the_workflow_does(case_file: Path, capsys) -> None:
-    case_file.write_text(case_file.read_text(encoding="utf-8").replace("mass_kg: 0.5", "mass_kg: -0.5"),
-                         encoding="utf-8")
+    case_file.write_text(
+        case_file.read_text(encoding="utf-8").replace("mass_kg: 0.5", "mass_kg: -0.5"), encoding="utf-8"
+    )
     assert main(["run", str(case_file), "--root", str(ROOT)]) == 1
     err = capsys.readouterr().err
     assert err.startswith("rodimpact: invalid configuration: ") and "field 'impactor.mass_kg': must be > 0" in err
@@ -66,7 +70,9 @@ def test_version_is_the_packages(capsys) -> None:
 
 def test_pyproject_declares_the_direct_dependencies_and_the_command() -> None:
     project = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]
-    pinned = [line.split("#")[0].strip() for line in (ROOT / "requirements.in").read_text(encoding="utf-8").splitlines()]
+    pinned = [
+        line.split("#")[0].strip() for line in (ROOT / "requirements.in").read_text(encoding="utf-8").splitlines()
+    ]
     tools = {"pytest", "setuptools", "wheel", "setuptools-scm"}  # tests and the build backend, not runtime
     runtime = [p for p in pinned if p and re.split(r"[=<>]", p)[0] not in tools]
     assert project["dependencies"] == runtime

@@ -34,13 +34,27 @@ TIMEOUT_S = 300
 def test_every_job_is_submitted_with_its_estimated_resources(tmp_path: Path) -> None:
     project = copy_project(tmp_path / "project")
     record = tmp_path / "submissions.jsonl"
-    submit = (f"{sys.executable} {FAKE_SUBMIT} --record={record} --mem={{resources.mem_mb}} "
-              f"--time={{resources.runtime}} --cpus={{threads}} --name={{rule}}")
+    submit = (
+        f"{sys.executable} {FAKE_SUBMIT} --record={record} --mem={{resources.mem_mb}} "
+        f"--time={{resources.runtime}} --cpus={{threads}} --name={{rule}}"
+    )
     model = project_cases(project).cases["model"]
     runs = [f"results/runs/model/{method}" for method in model["methods"]]  # a batch each (one case)
 
-    run = snakemake(project, "--executor", "cluster-generic", "--cluster-generic-submit-cmd", submit,
-                    "--jobs", "2", "--latency-wait", "10", *runs, TABLE, timeout=TIMEOUT_S)
+    run = snakemake(
+        project,
+        "--executor",
+        "cluster-generic",
+        "--cluster-generic-submit-cmd",
+        submit,
+        "--jobs",
+        "2",
+        "--latency-wait",
+        "10",
+        *runs,
+        TABLE,
+        timeout=TIMEOUT_S,
+    )
 
     assert run.returncode == 0, run.describe()
     for path in (*runs, TABLE):
@@ -59,8 +73,12 @@ def test_every_job_is_submitted_with_its_estimated_resources(tmp_path: Path) -> 
         expected = expected_of[target]
         assert (entry["type"], entry["groupid"]) == ("group", group_of[target]), entry
         options = dict(arg.lstrip("-").split("=", 1) for arg in entry["argv"])
-        assert options == {"mem": str(expected.mem_mb), "time": str(expected.runtime_min),
-                           "cpus": str(expected.threads), "name": "GROUP"}, entry
+        assert options == {
+            "mem": str(expected.mem_mb),
+            "time": str(expected.runtime_min),
+            "cpus": str(expected.threads),
+            "name": "GROUP",
+        }, entry
         # what the command line carried is what snakemake holds for the job (its jobscript)
         assert entry["resources"]["mem_mb"] == expected.mem_mb, entry
         assert entry["resources"]["runtime"] == expected.runtime_min, entry

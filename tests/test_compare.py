@@ -25,10 +25,18 @@ def example(shipped_project, tmp_path_factory) -> dict:
     """The example's runs by both methods, stored and read back as the rule reads them."""
     out = tmp_path_factory.mktemp("example")
     cases = [shipped_project.cases[c] for c in shipped_project.sets["example"]]
-    records = [read_run(run_to_file(case, method, out / f"{case['id']}-{method}.h5"))
-               for case in cases for method in case["methods"]]
-    histories = {c["id"]: (read_force_history(ROOT / c["measured"]["force_history"]["path"],
-                                              c["measured"]["force_history"]), 0.05) for c in cases}
+    records = [
+        read_run(run_to_file(case, method, out / f"{case['id']}-{method}.h5"))
+        for case in cases
+        for method in case["methods"]
+    ]
+    histories = {
+        c["id"]: (
+            read_force_history(ROOT / c["measured"]["force_history"]["path"], c["measured"]["force_history"]),
+            0.05,
+        )
+        for c in cases
+    }
     return {"cases": cases, "records": records, "histories": histories}
 
 
@@ -50,12 +58,15 @@ def test_the_alignment_finds_the_trigger_and_the_norms_the_noise(example) -> Non
     for record in (r for r in example["records"] if r.method == "fem1d"):
         case = next(c for c in example["cases"] if c["id"] == record.case_id)
         history, threshold = example["histories"][record.case_id]
-        result = compare_force_histories(history.time_s, history.force_N, record.series["time"],
-                                         record.series["contact_force"], threshold)
+        result = compare_force_histories(
+            history.time_s, history.force_N, record.series["time"], record.series["contact_force"], threshold
+        )
         assert result.shift_s == pytest.approx(-100e-6, abs=1e-6)
         times, clean, _ = synthetic_history(case, SyntheticRecord(noise=0.0))
         quiet = compare_force_histories(1e-6 * times, clean, record.series["time"], record.series["contact_force"])
-        inside = (history.time_s + result.shift_s >= result.time_s[0]) & (history.time_s + result.shift_s <= result.time_s[-1])
+        inside = (history.time_s + result.shift_s >= result.time_s[0]) & (
+            history.time_s + result.shift_s <= result.time_s[-1]
+        )
         noisy = history.force_N
         # the realised noise, joined linearly between samples: 2/3 of its mean square on average
         expected = math.sqrt(2.0 / 3.0 * np.mean((noisy - clean)[inside] ** 2) / np.mean(noisy[inside] ** 2))
@@ -73,8 +84,14 @@ def test_the_alignment_finds_the_trigger_and_the_norms_the_noise(example) -> Non
 def test_the_table_sets_each_measured_value_against_each_method(example) -> None:
     frame = compare_frame(example["records"], example["histories"])
     assert tuple(frame.columns) == COLUMNS and frame[["case_id", "method", "quantity", "unit"]].notna().all().all()
-    per_case = {"contact_time_us", "peak_force_n", "rebound_velocity_m_s", "signal_contact_time_us",
-                "history_l2_pct", "history_max_pct"}
+    per_case = {
+        "contact_time_us",
+        "peak_force_n",
+        "rebound_velocity_m_s",
+        "signal_contact_time_us",
+        "history_l2_pct",
+        "history_max_pct",
+    }
     for (case_id, method), rows in frame.groupby(["case_id", "method"]):
         assert set(rows["quantity"]) == per_case, (case_id, method)
     # the measured scalars are fem1d's, rounded as written: its errors are the rounding's

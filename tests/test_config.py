@@ -79,16 +79,29 @@ def shipped(shipped_project: Project) -> Project:
 # --------------------------------------------------------------------------- shipped config
 
 
-STRESS = ["microgram_fast", "heavy_slow", "thin_wire", "long_rod_heavy", "short_rod", "rubber_on_steel",
-          "steel_on_rubber", "seconds_contact"]
+STRESS = [
+    "microgram_fast",
+    "heavy_slow",
+    "thin_wire",
+    "long_rod_heavy",
+    "short_rod",
+    "rubber_on_steel",
+    "steel_on_rubber",
+    "seconds_contact",
+]
 
 
 def test_shipped_config_loads_all_cases(shipped: Project) -> None:
     expected = ["model"] + [f"{row}-{variant}" for row in ROWS for variant in VARIANTS]
     # 1 + 6 rows x 14 variants, in file order (files sorted by name: model, smooth, stress, table2, worked_example)
     assert [c for c in shipped.cases if shipped.cases[c]["set"] not in ("smooth", "stress", "example")] == expected
-    assert shipped.sets == {"example": ["ball_10mm", "ball_20mm"], "model": ["model"], "table2": expected[1:],
-                            "stress": STRESS, "smooth": ["linear_spring"]}
+    assert shipped.sets == {
+        "example": ["ball_10mm", "ball_20mm"],
+        "model": ["model"],
+        "table2": expected[1:],
+        "stress": STRESS,
+        "smooth": ["linear_spring"],
+    }
     assert list(shipped.variants["table2"]) == list(VARIANTS)
     assert shipped.variants["model"] == {}
 
@@ -141,13 +154,36 @@ def test_defaults_are_filled(shipped: Project) -> None:
     assert waves["field_grid"] == {"sections": 41, "samples_per_transit": 40, "round_trips_after": 1.0}
     assert case["stations"] == []
     assert case["numerics"] == {
-        "sem": {"dt_s": None, "steps_per_contact": None, "max_time_factor": 100.0, "max_contacts": 50,
-                "tolerance": 1e-6, "energy_tolerance": 0.01, "max_steps": 5_000_000},
-        "fem1d": {"dt_s": None, "steps_per_contact": 2000, "max_time_factor": 100.0, "max_contacts": 50,
-                  "element": "P2", "elements": None, "points_per_wavelength": 200.0},
-        "fem_axi": {"dt_s": None, "steps_per_contact": 300, "max_time_factor": 100.0, "max_contacts": 50,
-                    "element": "P2", "elements_across": 10, "contact_extent": 1.5,
-                    "continuum_diameters": 5.0, "film_layers": 4, "cap_height": 1.0},
+        "sem": {
+            "dt_s": None,
+            "steps_per_contact": None,
+            "max_time_factor": 100.0,
+            "max_contacts": 50,
+            "tolerance": 1e-6,
+            "energy_tolerance": 0.01,
+            "max_steps": 5_000_000,
+        },
+        "fem1d": {
+            "dt_s": None,
+            "steps_per_contact": 2000,
+            "max_time_factor": 100.0,
+            "max_contacts": 50,
+            "element": "P2",
+            "elements": None,
+            "points_per_wavelength": 200.0,
+        },
+        "fem_axi": {
+            "dt_s": None,
+            "steps_per_contact": 300,
+            "max_time_factor": 100.0,
+            "max_contacts": 50,
+            "element": "P2",
+            "elements_across": 10,
+            "contact_extent": 1.5,
+            "continuum_diameters": 5.0,
+            "film_layers": 4,
+            "cap_height": 1.0,
+        },
     }
     assert shipped.cases["model"]["numerics"]["sem_paper"]["steps_per_contact"] == 20000
     assert case["measured"]["source"].startswith("Table 2")
@@ -174,43 +210,60 @@ def test_global_config_defaults_are_filled(tmp_path: Path) -> None:
     assert config["cases_dir"] == "config/cases"
     assert config["materials"] == "config/materials.yaml"
     assert config["numerics"]["sem"] == {
-        "steps_per_contact": None, "tolerance": 1e-6, "dt_s": None, "max_time_factor": 100.0,
-        "max_contacts": 50, "energy_tolerance": 0.01, "max_steps": 5_000_000,
+        "steps_per_contact": None,
+        "tolerance": 1e-6,
+        "dt_s": None,
+        "max_time_factor": 100.0,
+        "max_contacts": 50,
+        "energy_tolerance": 0.01,
+        "max_steps": 5_000_000,
     }
     assert config["numerics"]["fem_axi"]["elements_across"] == 10
     assert config["numerics"]["sem_paper"]["steps_per_contact"] == 20000
 
 
-_EXTRA = ("cases:\n"
-          "  - id: steel_ball\n"
-          "    impactor: {mass_kg: 0.01, radius_m: 0.005, velocity_m_s: 2.0, material: steel}\n"
-          "    rod: {length_m: 1.0, radius_m: 0.002, material: steel}\n")
+_EXTRA = (
+    "cases:\n"
+    "  - id: steel_ball\n"
+    "    impactor: {mass_kg: 0.01, radius_m: 0.005, velocity_m_s: 2.0, material: steel}\n"
+    "    rod: {length_m: 1.0, radius_m: 0.002, material: steel}\n"
+)
 
 
 def test_a_sets_compare_options_are_read_and_checked(project_dir: Path, shipped: Project) -> None:
-    assert shipped.compare["table2"] == {"x": "mass", "title": "Table 2", "reference": "Belyaev, Shurpatov and Ma (2018)"}
+    assert shipped.compare["table2"] == {
+        "x": "mass",
+        "title": "Table 2",
+        "reference": "Belyaev, Shurpatov and Ma (2018)",
+    }
     assert "model" not in shipped.compare  # a set with no compare block: the defaults
     extra = project_dir / "config" / "cases" / "extra.yaml"
     extra.write_text("set: table2\ncompare: {x: velocity}\n" + _EXTRA)
-    assert error_of(project_dir) == ("config/cases/table2.yaml: field 'compare': set 'table2' is compared differently "
-                                     "in another file")
+    assert error_of(project_dir) == (
+        "config/cases/table2.yaml: field 'compare': set 'table2' is compared differently in another file"
+    )
     extra.write_text("compare: {x: speed}\n" + _EXTRA)
     assert "extra.yaml: field 'compare.x'" in error_of(project_dir)
 
 
 def test_a_variant_name_is_unique_over_all_sets(project_dir: Path) -> None:
     (project_dir / "config" / "cases" / "extra.yaml").write_text(
-        "variants: {r10_l30: {description: a long rod, source: none, rod: {length_m: 2.0}}}\n" + _EXTRA)
-    assert error_of(project_dir) == ("config/cases/table2.yaml: field 'variants.r10_l30': variant name already used by "
-                                     "case set 'extra'; a variant's name is unique over all sets")
+        "variants: {r10_l30: {description: a long rod, source: none, rod: {length_m: 2.0}}}\n" + _EXTRA
+    )
+    assert error_of(project_dir) == (
+        "config/cases/table2.yaml: field 'variants.r10_l30': variant name already used by "
+        "case set 'extra'; a variant's name is unique over all sets"
+    )
 
 
 def test_the_film_table_is_one_sets(project_dir: Path) -> None:
     (project_dir / "config" / "cases" / "extra.yaml").write_text(
-        "variants: {long: {description: a long rod, source: none, rod: {length_m: 2.0}}}\n" + _EXTRA)
+        "variants: {long: {description: a long rod, source: none, rod: {length_m: 2.0}}}\n" + _EXTRA
+    )
     edit(project_dir / "config/config.yaml", lambda d: d["sensor"]["film_table"].update(no_film="long"))
-    assert error_of(project_dir).startswith("config/config.yaml: field 'sensor.film_table': the readings are of several "
-                                            "case sets (extra, table2)")
+    assert error_of(project_dir).startswith(
+        "config/config.yaml: field 'sensor.film_table': the readings are of several case sets (extra, table2)"
+    )
     edit(project_dir / "config/config.yaml", lambda d: d["sensor"]["film_table"].update(no_film="short"))
     assert "field 'sensor.film_table.no_film': unknown reading 'short'" in error_of(project_dir)
 
@@ -229,26 +282,46 @@ def test_new_case_file_is_picked_up(project_dir: Path) -> None:
     assert list(project.cases)[:2] == ["soft_ball", "model"]  # files in name order
     assert case["rod"]["far_end"] == "free"
     assert case["rod"]["material"] == {
-        "name": "rubber", "youngs_modulus_pa": 1.0e7, "poisson_ratio": 0.49, "density_kg_m3": 1100.0
+        "name": "rubber",
+        "youngs_modulus_pa": 1.0e7,
+        "poisson_ratio": 0.49,
+        "density_kg_m3": 1100.0,
     }
     assert case["source_file"] == "config/cases/extra.yaml"
 
 
 def test_case_numerics_override_global(project_dir: Path) -> None:
-    edit(project_dir / "config/cases/model.yaml",
-         lambda d: d["cases"][0].update(numerics={"sem_paper": {"dt_s": 1e-8}, "sem": {"max_contacts": 3}}))
+    edit(
+        project_dir / "config/cases/model.yaml",
+        lambda d: d["cases"][0].update(numerics={"sem_paper": {"dt_s": 1e-8}, "sem": {"max_contacts": 3}}),
+    )
     numerics = load(project_dir).cases["model"]["numerics"]
-    assert numerics["sem"] == {"dt_s": None, "steps_per_contact": None, "max_time_factor": 100.0, "max_contacts": 3,
-                               "tolerance": 1e-6, "energy_tolerance": 0.01, "max_steps": 5_000_000}
-    assert numerics["sem_paper"] == {"dt_s": 1e-8, "steps_per_contact": 20000, "max_time_factor": 100.0,
-                                     "max_contacts": 50, "energy_tolerance": 0.01, "max_steps": 5_000_000,
-                                     "allow_unstable": False}
+    assert numerics["sem"] == {
+        "dt_s": None,
+        "steps_per_contact": None,
+        "max_time_factor": 100.0,
+        "max_contacts": 3,
+        "tolerance": 1e-6,
+        "energy_tolerance": 0.01,
+        "max_steps": 5_000_000,
+    }
+    assert numerics["sem_paper"] == {
+        "dt_s": 1e-8,
+        "steps_per_contact": 20000,
+        "max_time_factor": 100.0,
+        "max_contacts": 50,
+        "energy_tolerance": 0.01,
+        "max_steps": 5_000_000,
+        "allow_unstable": False,
+    }
 
 
 def test_case_variants_list_selects_variants(project_dir: Path) -> None:
     # (without the row's strain field on r10_l30, a variant it is no longer expanded over)
-    edit(project_dir / "config/cases/table2.yaml",
-         lambda d: d["cases"][0].update(variants=["r1_l301"]) or d["cases"][0].pop("variant_outputs"))
+    edit(
+        project_dir / "config/cases/table2.yaml",
+        lambda d: d["cases"][0].update(variants=["r1_l301"]) or d["cases"][0].pop("variant_outputs"),
+    )
     # the work-precision sweep names ball_3.16mm-r1_l30, which this edit removes
     assert "unknown case 'ball_3.16mm-r1_l30'" in error_of(project_dir)
     edit(project_dir / "config/config.yaml", lambda d: d.pop("work_precision"))
@@ -414,7 +487,8 @@ MALFORMED = {
     ),
     "unknown material name": (
         _set(MODEL, "cases", 0, "rod", "material", "steal"),
-        f"{MODEL}: case 'model': field 'rod.material': unknown material 'steal'; known: steel, aluminium_table1, rubber, pvdf, silver_ink, cyanoacrylate",
+        f"{MODEL}: case 'model': field 'rod.material': unknown material 'steal'; known: steel, "
+        "aluminium_table1, rubber, pvdf, silver_ink, cyanoacrylate",
     ),
     "unknown contact law": (
         _set(TABLE2, "variants", "r10_l30_film", "contact", "law", "hertz_flim"),
@@ -493,7 +567,8 @@ MALFORMED = {
     ),
     "unknown target set": (
         _set("config/config.yaml", "targets", "sets", ["model", "tabel2"]),
-        "config/config.yaml: field 'targets.sets[1]': unknown case set 'tabel2'; known: model, smooth, stress, table2, example",
+        "config/config.yaml: field 'targets.sets[1]': unknown case set 'tabel2'; known: model, smooth, stress, "
+        "table2, example",
     ),
     "sensor band of a reading without a calibrated stack": (
         _set("config/config.yaml", "sensor", "band", ["r10_l30_sensor_cal", "r10_l30_film_cal"]),
@@ -575,14 +650,22 @@ MALFORMED = {
         "against 'sem', which is not swept on it (swept: fem1d)",
     ),
     "work precision per case with orders of a method not swept on it": (
-        _set("config/config.yaml", "work_precision", "per_case", "linear_spring", "expected_orders", "sem_paper",
-             {"max": 1}),
+        _set(
+            "config/config.yaml",
+            "work_precision",
+            "per_case",
+            "linear_spring",
+            "expected_orders",
+            "sem_paper",
+            {"max": 1},
+        ),
         "config/config.yaml: field 'work_precision.per_case.linear_spring.expected_orders.sem_paper': method "
         "'sem_paper' is not swept on the case; swept: sem, fem1d",
     ),
     "stability on an unknown set": (
         _set("config/config.yaml", "stability", "sets", ["stres"]),
-        "config/config.yaml: field 'stability.sets[0]': unknown case set 'stres'; known: model, smooth, stress, table2, example",
+        "config/config.yaml: field 'stability.sets[0]': unknown case set 'stres'; known: model, smooth, stress, "
+        "table2, example",
     ),
     "stability without a method's tolerances": (
         _set("config/config.yaml", "stability", "tolerances", "fem1d", None),
@@ -619,8 +702,9 @@ def test_unstable_sweep_point_is_refused_naming_the_point(project_dir: Path) -> 
 
     edit(project_dir / TABLE2, change)
     message = error_of(project_dir)
-    assert message.startswith(f"{TABLE2}: case 'ball_sweep-r1_l301': field 'numerics.sem_paper.steps_per_contact': "
-                              "at ball_diameter_m = "), message
+    assert message.startswith(
+        f"{TABLE2}: case 'ball_sweep-r1_l301': field 'numerics.sem_paper.steps_per_contact': at ball_diameter_m = "
+    ), message
     assert "stability limit" in message
 
 
@@ -685,7 +769,8 @@ def test_global_config_typo(project_dir: Path) -> None:
         load_global_config(path)
     assert str(info.value) == (
         "config/config.yaml: field 'numerics.sem.step_per_contact': unknown field "
-        "(did you mean 'steps_per_contact'?); allowed: dt_s, steps_per_contact, max_time_factor, max_contacts, energy_tolerance, max_steps, tolerance"
+        "(did you mean 'steps_per_contact'?); allowed: dt_s, steps_per_contact, max_time_factor, max_contacts, "
+        "energy_tolerance, max_steps, tolerance"
     )
 
 
@@ -696,11 +781,15 @@ def test_exponent_without_sign_is_a_number(project_dir: Path) -> None:
 
 
 def test_config_error_parts_and_pickling() -> None:
-    err = ConfigError("must be > 0, got -0.13", file="config/cases/table2.yaml", case="ball_3.16mm",
-                      field="impactor.mass_kg")
+    err = ConfigError(
+        "must be > 0, got -0.13", file="config/cases/table2.yaml", case="ball_3.16mm", field="impactor.mass_kg"
+    )
     assert str(err) == "config/cases/table2.yaml: case 'ball_3.16mm': field 'impactor.mass_kg': must be > 0, got -0.13"
     assert (err.file, err.case, err.field, err.reason) == (
-        "config/cases/table2.yaml", "ball_3.16mm", "impactor.mass_kg", "must be > 0, got -0.13"
+        "config/cases/table2.yaml",
+        "ball_3.16mm",
+        "impactor.mass_kg",
+        "must be > 0, got -0.13",
     )
     assert isinstance(err, ValueError)
     assert str(pickle.loads(pickle.dumps(err))) == str(err)
@@ -711,7 +800,9 @@ def test_setting_of_another_method_is_refused(project_dir: Path) -> None:
     edit(project_dir / MODEL, lambda d: d["cases"][0].update(numerics={"sem": {"elements": 10}}))
     assert error_of(project_dir) == (
         f"{MODEL}: case 'model': field 'numerics.sem.elements': not a setting of "
-        "method 'sem'; its settings: dt_s, steps_per_contact, max_time_factor, max_contacts, energy_tolerance, max_steps, tolerance")
+        "method 'sem'; its settings: dt_s, steps_per_contact, max_time_factor, max_contacts, energy_tolerance, "
+        "max_steps, tolerance"
+    )
 
 
 def test_station_output_needs_stations(project_dir: Path) -> None:
@@ -731,40 +822,62 @@ def test_station_outside_the_rod_is_refused(project_dir: Path) -> None:
 _CASE0 = ("cases", 0)
 IMPLAUSIBLE = {
     # (file, edit), expected start of the message
-    "rod length 1e-300": (_set(MODEL, *_CASE0, "rod", "length_m", 1e-300),
-                          f"{MODEL}: case 'model': field 'rod.length_m': 1e-300 m: its wave round trip 2T = "),
-    "nose radius 1e-300": (_set(MODEL, *_CASE0, "impactor", "radius_m", 1e-300),
-                           f"{MODEL}: case 'model': field 'impactor.radius_m': 1e-300 m: its nose radius R = 1e-300 m "
-                           "lies outside [1e-150, 1e+150] m"),
-    "mass 1e30": (_set(MODEL, *_CASE0, "impactor", "mass_kg", 1e30),
-                  f"{MODEL}: case 'model': field 'impactor.mass_kg': 1e+30 kg: its largest approach on a rigid rod, "
-                  "alpha_H = 9.2e+07 m, reaches the nose radius R = 0.01 m"),
-    "mass 1e-300": (_set(MODEL, *_CASE0, "impactor", "mass_kg", 1e-300),
-                    f"{MODEL}: case 'model': field 'impactor.mass_kg': 1e-300 kg: its impactor mass m = 1e-300 kg"),
-    "velocity 1e30": (_set(MODEL, *_CASE0, "impactor", "velocity_m_s", 1e30),
-                      f"{MODEL}: case 'model': field 'impactor.velocity_m_s': 1e+30 m/s: its largest approach"),
-    "velocity 1e-300": (_set(MODEL, *_CASE0, "impactor", "velocity_m_s", 1e-300),
-                        f"{MODEL}: case 'model': field 'impactor.velocity_m_s': 1e-300 m/s: its rigid-rod contact "
-                        "time t_H"),
-    "inline modulus 1e-300": (_set(MODEL, *_CASE0, "rod", "material", {**INLINE_STEEL, "youngs_modulus_pa": 1e-300}),
-                              f"{MODEL}: case 'model': field 'rod.material.youngs_modulus_pa': youngs_modulus_pa = "
-                              "1e-300 Pa: its rod's Young's modulus = 1e-300 Pa lies outside"),
-    "named material's modulus 1e-300": (_set("config/materials.yaml", "materials", "steel", "youngs_modulus_pa",
-                                             1e-300),
-                                        f"{MODEL}: case 'model': field 'impactor.material': material 'steel': "
-                                        "youngs_modulus_pa = 1e-300 Pa: its impactor's Young's modulus = 1e-300 Pa"),
-    "paper scheme's steps 1e12": (_set(MODEL, *_CASE0, "numerics", {"sem_paper": {"steps_per_contact": 10**12}}),
-                                  f"{MODEL}: case 'model': field 'numerics.sem_paper.steps_per_contact': 1e+12: "
-                                  "sem_paper would need about 4.3e+12 steps of 2.05e-16 s for the estimated contact, "
-                                  "beyond its step budget max_steps = 5000000"),
-    "tolerance 1e-300 in config.yaml": (_set("config/config.yaml", "numerics", "sem", "tolerance", 1e-300),
-                                        "config/config.yaml: case 'model': field 'numerics.sem.tolerance': 1e-300: "
-                                        "sem would need about 2.32e+151 steps"),
-    "fem1d elements 1e9": (_set(MODEL, *_CASE0, "numerics", {"fem1d": {"elements": 10**9}}),
-                           f"{MODEL}: case 'model': field 'numerics.fem1d.elements': 1e+09: fem1d would take about "
-                           "1.24e+07 s (1.24e+04 steps of 1.03e-07 s), beyond the budget limits.run_time_s = 3600 s"),
-    "a budget no case meets": (_set("config/config.yaml", "limits", {"run_time_s": 1e-3}),
-                               "config/config.yaml: case 'model': field 'limits.run_time_s': sem would take about "),
+    "rod length 1e-300": (
+        _set(MODEL, *_CASE0, "rod", "length_m", 1e-300),
+        f"{MODEL}: case 'model': field 'rod.length_m': 1e-300 m: its wave round trip 2T = ",
+    ),
+    "nose radius 1e-300": (
+        _set(MODEL, *_CASE0, "impactor", "radius_m", 1e-300),
+        f"{MODEL}: case 'model': field 'impactor.radius_m': 1e-300 m: its nose radius R = 1e-300 m "
+        "lies outside [1e-150, 1e+150] m",
+    ),
+    "mass 1e30": (
+        _set(MODEL, *_CASE0, "impactor", "mass_kg", 1e30),
+        f"{MODEL}: case 'model': field 'impactor.mass_kg': 1e+30 kg: its largest approach on a rigid rod, "
+        "alpha_H = 9.2e+07 m, reaches the nose radius R = 0.01 m",
+    ),
+    "mass 1e-300": (
+        _set(MODEL, *_CASE0, "impactor", "mass_kg", 1e-300),
+        f"{MODEL}: case 'model': field 'impactor.mass_kg': 1e-300 kg: its impactor mass m = 1e-300 kg",
+    ),
+    "velocity 1e30": (
+        _set(MODEL, *_CASE0, "impactor", "velocity_m_s", 1e30),
+        f"{MODEL}: case 'model': field 'impactor.velocity_m_s': 1e+30 m/s: its largest approach",
+    ),
+    "velocity 1e-300": (
+        _set(MODEL, *_CASE0, "impactor", "velocity_m_s", 1e-300),
+        f"{MODEL}: case 'model': field 'impactor.velocity_m_s': 1e-300 m/s: its rigid-rod contact time t_H",
+    ),
+    "inline modulus 1e-300": (
+        _set(MODEL, *_CASE0, "rod", "material", {**INLINE_STEEL, "youngs_modulus_pa": 1e-300}),
+        f"{MODEL}: case 'model': field 'rod.material.youngs_modulus_pa': youngs_modulus_pa = "
+        "1e-300 Pa: its rod's Young's modulus = 1e-300 Pa lies outside",
+    ),
+    "named material's modulus 1e-300": (
+        _set("config/materials.yaml", "materials", "steel", "youngs_modulus_pa", 1e-300),
+        f"{MODEL}: case 'model': field 'impactor.material': material 'steel': "
+        "youngs_modulus_pa = 1e-300 Pa: its impactor's Young's modulus = 1e-300 Pa",
+    ),
+    "paper scheme's steps 1e12": (
+        _set(MODEL, *_CASE0, "numerics", {"sem_paper": {"steps_per_contact": 10**12}}),
+        f"{MODEL}: case 'model': field 'numerics.sem_paper.steps_per_contact': 1e+12: "
+        "sem_paper would need about 4.3e+12 steps of 2.05e-16 s for the estimated contact, "
+        "beyond its step budget max_steps = 5000000",
+    ),
+    "tolerance 1e-300 in config.yaml": (
+        _set("config/config.yaml", "numerics", "sem", "tolerance", 1e-300),
+        "config/config.yaml: case 'model': field 'numerics.sem.tolerance': 1e-300: "
+        "sem would need about 2.32e+151 steps",
+    ),
+    "fem1d elements 1e9": (
+        _set(MODEL, *_CASE0, "numerics", {"fem1d": {"elements": 10**9}}),
+        f"{MODEL}: case 'model': field 'numerics.fem1d.elements': 1e+09: fem1d would take about "
+        "1.24e+07 s (1.24e+04 steps of 1.03e-07 s), beyond the budget limits.run_time_s = 3600 s",
+    ),
+    "a budget no case meets": (
+        _set("config/config.yaml", "limits", {"run_time_s": 1e-3}),
+        "config/config.yaml: case 'model': field 'limits.run_time_s': sem would take about ",
+    ),
 }
 
 
@@ -791,11 +904,14 @@ def test_plausibility_fallbacks_and_budget_of_machine() -> None:
 _NAME_RULE = "must be a name of letters, digits, '_' and '.' that starts with a letter or digit"
 
 
-@pytest.mark.parametrize("bad_id, expected", [
-    ("model\n", f"{MODEL}: field 'cases[0].id': {_NAME_RULE}, got 'model\\n'"),
-    ("m" * 65, f"{MODEL}: field 'cases[0].id': must be at most 64 characters long, got 65"),
-    ("a/b", f"{MODEL}: field 'cases[0].id': {_NAME_RULE}, got 'a/b'"),
-])
+@pytest.mark.parametrize(
+    "bad_id, expected",
+    [
+        ("model\n", f"{MODEL}: field 'cases[0].id': {_NAME_RULE}, got 'model\\n'"),
+        ("m" * 65, f"{MODEL}: field 'cases[0].id': must be at most 64 characters long, got 65"),
+        ("a/b", f"{MODEL}: field 'cases[0].id': {_NAME_RULE}, got 'a/b'"),
+    ],
+)
 def test_case_id_is_a_whole_safe_name(project_dir: Path, bad_id: str, expected: str) -> None:
     edit(project_dir / MODEL, lambda document: document["cases"][0].__setitem__("id", bad_id))
     assert error_of(project_dir) == expected
@@ -803,24 +919,33 @@ def test_case_id_is_a_whole_safe_name(project_dir: Path, bad_id: str, expected: 
 
 def test_yml_case_file_is_refused_by_name(project_dir: Path) -> None:
     shutil.copy(project_dir / MODEL, project_dir / "config/cases/extra.yml")
-    assert error_of(project_dir) == ("config/cases/extra.yml: a case file ends in .yaml; rename it extra.yaml "
-                                     "(only *.yaml files are read)")
+    assert error_of(project_dir) == (
+        "config/cases/extra.yml: a case file ends in .yaml; rename it extra.yaml (only *.yaml files are read)"
+    )
 
 
 def test_sweep_that_runs_backwards_is_refused(project_dir: Path) -> None:
-    path, change = _set(TABLE2, "cases", 6, "sweep", "parameters", "ball_diameter_m",
-                        {"start": 2e-2, "stop": 1e-3, "num": 5})
+    path, change = _set(
+        TABLE2, "cases", 6, "sweep", "parameters", "ball_diameter_m", {"start": 2e-2, "stop": 1e-3, "num": 5}
+    )
     edit(project_dir / path, change)
-    assert error_of(project_dir) == (f"{TABLE2}: case 'ball_sweep-r10_l30': field "
-                                     "'sweep.parameters.ball_diameter_m.stop': must be > start (0.02), got 0.001")
+    assert error_of(project_dir) == (
+        f"{TABLE2}: case 'ball_sweep-r10_l30': field "
+        "'sweep.parameters.ball_diameter_m.stop': must be > start (0.02), got 0.001"
+    )
 
 
 def test_merge_key_is_read(project_dir: Path) -> None:
     text = (project_dir / MODEL).read_text()
-    text = text.replace("cases:\n  - id: model\n", "bodies: &steel_rod\n  length_m: 0.5\n  area_m2: 5.0e-5\n"
-                        "  material: steel\n  far_end: fixed\ncases:\n  - id: model\n")
-    text = text.replace("    rod:\n      length_m: 0.5\n      area_m2: 5.0e-5\n      material: steel\n"
-                        "      far_end: fixed\n", "    rod:\n      <<: *steel_rod\n      length_m: 0.25\n")
+    text = text.replace(
+        "cases:\n  - id: model\n",
+        "bodies: &steel_rod\n  length_m: 0.5\n  area_m2: 5.0e-5\n"
+        "  material: steel\n  far_end: fixed\ncases:\n  - id: model\n",
+    )
+    text = text.replace(
+        "    rod:\n      length_m: 0.5\n      area_m2: 5.0e-5\n      material: steel\n      far_end: fixed\n",
+        "    rod:\n      <<: *steel_rod\n      length_m: 0.25\n",
+    )
     assert "<<: *steel_rod" in text
     (project_dir / MODEL).write_text(text)
     # the top-level anchor holder is not a case-file field: the schema names it, after the merge worked
@@ -829,20 +954,31 @@ def test_merge_key_is_read(project_dir: Path) -> None:
 
 def test_alias_bomb_is_refused_before_it_is_built(project_dir: Path) -> None:
     lines = ['a: &a ["x", "x", "x", "x", "x", "x", "x", "x", "x"]']
-    lines += [f'{b}: &{b} [{", ".join([f"*{a}"] * 9)}]' for a, b in zip("abcdefgh", "bcdefghi")]
+    lines += [f"{b}: &{b} [{', '.join([f'*{a}'] * 9)}]" for a, b in zip("abcdefgh", "bcdefghi")]
     (project_dir / "config/cases/bomb.yaml").write_text("\n".join(lines) + "\n")
-    assert error_of(project_dir) == ("config/cases/bomb.yaml: invalid YAML: its aliases expand it to 4.9e+08 "
-                                     "nodes, more than the 200000 allowed (an alias bomb?)")
+    assert error_of(project_dir) == (
+        "config/cases/bomb.yaml: invalid YAML: its aliases expand it to 4.9e+08 "
+        "nodes, more than the 200000 allowed (an alias bomb?)"
+    )
 
 
-@pytest.mark.parametrize("change, field, words", [
-    (lambda h, f: f.write_text("time,force_N\n" + "".join(f"{k},1\n" for k in range(10))), "time_unit",
-     "names no unit of time"),
-    (lambda h, f: f.write_text("time_us,force_N\n" + "".join(f"{k % 5},1\n" for k in range(10))), "file",
-     "line 7: the time must increase"),
-    (lambda h, f: h.update(file="../../outside.csv"), "file", "outside the directory of its case file"),
-    (lambda h, f: f.unlink(), "file", "no such file"),
-])
+@pytest.mark.parametrize(
+    "change, field, words",
+    [
+        (
+            lambda h, f: f.write_text("time,force_N\n" + "".join(f"{k},1\n" for k in range(10))),
+            "time_unit",
+            "names no unit of time",
+        ),
+        (
+            lambda h, f: f.write_text("time_us,force_N\n" + "".join(f"{k % 5},1\n" for k in range(10))),
+            "file",
+            "line 7: the time must increase",
+        ),
+        (lambda h, f: h.update(file="../../outside.csv"), "file", "outside the directory of its case file"),
+        (lambda h, f: f.unlink(), "file", "no such file"),
+    ],
+)
 def test_a_bad_force_history_is_one_line_before_any_job(project_dir: Path, change, field, words) -> None:
     """Each fault of a measured force history stops the load with one line naming the case
     file, the case and the field of the history block."""
@@ -854,6 +990,7 @@ def test_a_bad_force_history_is_one_line_before_any_job(project_dir: Path, chang
     with pytest.raises(ConfigError) as caught:
         load(project_dir)
     message = str(caught.value)
-    assert message.startswith("config/cases/worked_example.yaml: case 'ball_10mm': "
-                              f"field 'measured.force_history.{field}': "), message
+    assert message.startswith(
+        f"config/cases/worked_example.yaml: case 'ball_10mm': field 'measured.force_history.{field}': "
+    ), message
     assert words in message and "\n" not in message, message

@@ -53,8 +53,7 @@ class LinearSpringLaw(LinearSpring):
     settings = SpringSettings
 
     @classmethod
-    def from_bodies(cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: Any,
-                    rod: Any) -> LinearSpringLaw:
+    def from_bodies(cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: Any, rod: Any) -> LinearSpringLaw:
         return cls(float(spec["stiffness_n_per_m"]))
 
 
@@ -62,14 +61,16 @@ MASS, VELOCITY, SPRING = 0.01, 1.0, 1.0e7  # kg, m/s, N/m
 ROD_RADIUS, ROD_LENGTH = 0.005, 1.0  # m
 CASE = {
     "set": "spring",
-    "cases": [{
-        "id": "spring",
-        "description": "A 10 g steel mass on a linear spring striking a long steel rod",
-        "impactor": {"mass_kg": MASS, "radius_m": 0.005, "velocity_m_s": VELOCITY, "material": "steel"},
-        "rod": {"radius_m": ROD_RADIUS, "length_m": ROD_LENGTH, "material": "steel", "far_end": "fixed"},
-        "contact": {"law": "linear_spring", "stiffness_n_per_m": SPRING},
-        "methods": ["sem", "fem1d"],
-    }],
+    "cases": [
+        {
+            "id": "spring",
+            "description": "A 10 g steel mass on a linear spring striking a long steel rod",
+            "impactor": {"mass_kg": MASS, "radius_m": 0.005, "velocity_m_s": VELOCITY, "material": "steel"},
+            "rod": {"radius_m": ROD_RADIUS, "length_m": ROD_LENGTH, "material": "steel", "far_end": "fixed"},
+            "contact": {"law": "linear_spring", "stiffness_n_per_m": SPRING},
+            "methods": ["sem", "fem1d"],
+        }
+    ],
 }
 
 

@@ -52,7 +52,8 @@ def test_hertz_law_is_consistent_with_itself():
         h = 1e-6 * alpha
         assert (law.force(alpha + h) - law.force(alpha - h)) / (2 * h) == pytest.approx(law.stiffness(alpha), rel=1e-8)
         assert (float(law.energy(alpha + h)) - float(law.energy(alpha - h))) / (2 * h) == pytest.approx(
-            law.force(alpha), rel=1e-8)
+            law.force(alpha), rel=1e-8
+        )
         assert law.approach(law.force(alpha)) == pytest.approx(alpha, rel=1e-13)
         assert law.contact_radius(alpha) == pytest.approx(math.sqrt(0.01 * alpha), rel=1e-14)
     assert law.force(-1e-6) == 0.0 and float(law.energy(-1e-6)) == 0.0

@@ -64,7 +64,11 @@ def test_every_stated_order_is_observed_within_its_tolerance(model_orders, metho
     for quantity, row in stated.iterrows():
         assert row["fitted_levels"], (method, quantity)  # at least three levels above the reference's floor
         assert abs(row["observed_order"] - row["expected_order"]) <= ORDER_TOLERANCE, (
-            method, quantity, row["observed_order"], row["expected_order"])
+            method,
+            quantity,
+            row["observed_order"],
+            row["expected_order"],
+        )
         assert row["monotone"], (method, quantity)
 
 
@@ -84,12 +88,14 @@ def smooth_orders(shipped_project, shipped_config, tmp_path_factory):
     """sem at every shipped level and fem1d at five on the smooth case (config/cases/smooth.yaml),
     fitted as the table fits them, with the case's own expected orders."""
     study = shipped_config["work_precision"]
-    records = _level_runs(shipped_project, shipped_config, "linear_spring", SMOOTH_FEM1D_LEVELS,
-                          tmp_path_factory.mktemp("smooth"))
+    records = _level_runs(
+        shipped_project, shipped_config, "linear_spring", SMOOTH_FEM1D_LEVELS, tmp_path_factory.mktemp("smooth")
+    )
     # every swept method's settings, as the workflow passes them: the case runs two of them
     frame = work_precision_frame(records, study["methods"])
-    orders = observed_orders(frame, study["methods"], study["fit_levels"], arrival_window=study["arrival_window"],
-                             per_case=study["per_case"])
+    orders = observed_orders(
+        frame, study["methods"], study["fit_levels"], arrival_window=study["arrival_window"], per_case=study["per_case"]
+    )
     return SimpleNamespace(records=records, frame=frame, orders=orders)
 
 
@@ -99,16 +105,20 @@ def test_the_smooth_cases_reference_is_its_closed_form(smooth_orders, shipped_pr
     far inside the reference's own estimate (the finest level's error, 1.6e-9)."""
     case = shipped_project.cases["linear_spring"]
     rod = Material.from_mapping(case["rod"]["material"])
-    exact = semi_infinite_rod_contact(case["contact"]["stiffness_n_per_m"], case["impactor"]["mass_kg"],
-                                      case["impactor"]["velocity_m_s"],
-                                      rod.density_kg_m3 * wave_speed(rod) * case["rod"]["area_m2"])
+    exact = semi_infinite_rod_contact(
+        case["contact"]["stiffness_n_per_m"],
+        case["impactor"]["mass_kg"],
+        case["impactor"]["velocity_m_s"],
+        rod.density_kg_m3 * wave_speed(rod) * case["rod"]["area_m2"],
+    )
     sem = [r for r in smooth_orders.records if r.method == "sem"]
     coarse, fine = (r.summary for r in sem[-2:])
     for key, value in (("contact_time_s", exact.contact_time_s), ("peak_force_N", exact.peak_force_N)):
         q2, q1 = float(np.max(coarse[key])), float(np.max(fine[key]))
         assert q1 + (q1 - q2) / 3.0 == pytest.approx(value, rel=1e-11), key
-    assert smooth_orders.frame.query("method == 'sem'")["ref_err_contact_time"].iloc[0] == pytest.approx(1.6e-9,
-                                                                                                       rel=0.05)
+    assert smooth_orders.frame.query("method == 'sem'")["ref_err_contact_time"].iloc[0] == pytest.approx(
+        1.6e-9, rel=0.05
+    )
 
 
 @pytest.mark.parametrize("method", ["sem", "fem1d"])
@@ -128,17 +138,26 @@ def test_a_history_is_linear_between_its_nodes_and_its_located_contact_end() -> 
     """A run whose step holds the contact's end (fem1d) has P = 0 at the end it located, not a
     ramp down to its next node: the history's kink is where the run put it."""
     end = 1.05
-    run = SimpleNamespace(series={"time": np.array([0.0, 0.5, 1.0, 1.5, 2.0]),
-                                  "contact_force": np.array([0.0, 1.0, 0.1, 0.0, 0.0])},
-                          summary={"contact_start_s": np.array([0.0]), "contact_end_s": np.array([end])})
+    run = SimpleNamespace(
+        series={"time": np.array([0.0, 0.5, 1.0, 1.5, 2.0]), "contact_force": np.array([0.0, 1.0, 0.1, 0.0, 0.0])},
+        summary={"contact_start_s": np.array([0.0]), "contact_end_s": np.array([end])},
+    )
     grid = np.array([0.25, 1.0, 1.025, end, 1.25])
     assert np.allclose(_history(run, grid), [0.5, 0.1, 0.05, 0.0, 0.0], rtol=1e-14, atol=0)
 
 
 # ------------------------------------------------------------------ the table's columns, synthetic
 
-def _frame(method: str, resolutions, errors: dict[str, list[float]], *, floor: float = 1e-12,
-           offsets: dict[str, float] | None = None, case_id: str = "c") -> pd.DataFrame:
+
+def _frame(
+    method: str,
+    resolutions,
+    errors: dict[str, list[float]],
+    *,
+    floor: float = 1e-12,
+    offsets: dict[str, float] | None = None,
+    case_id: str = "c",
+) -> pd.DataFrame:
     """Rows of one method: signed errors per scalar quantity (their magnitudes are the errors)."""
     rows = []
     for level, n in enumerate(resolutions):
@@ -153,8 +172,10 @@ def _frame(method: str, resolutions, errors: dict[str, list[float]], *, floor: f
     return pd.DataFrame(rows)
 
 
-SPEC = {"reference": "sem", "expected_orders": {"contact_time": 2, "max": 2, "max_at_arrival": 5 / 3,
-                                                "history_l2": 2, "history_max": 1.5}}
+SPEC = {
+    "reference": "sem",
+    "expected_orders": {"contact_time": 2, "max": 2, "max_at_arrival": 5 / 3, "history_l2": 2, "history_max": 1.5},
+}
 
 
 def _orders(frame: pd.DataFrame, methods: dict, fit_levels: int = 4) -> pd.DataFrame:
@@ -187,8 +208,9 @@ def test_sign_changes_non_monotone_errors_and_a_level_below_the_floor_are_report
     assert orders.loc[("m", "max_2"), "fitted_levels"] == "0-1, 3-4"
     assert levels_in("0-1, 3-4") == {0, 1, 3, 4} and levels_in("") == set()
     # fewer than three levels above ten times the floor: no order, no verdict
-    few = _orders(_frame("m", n, {"contact_time": list(3.0 / n**2)}, floor=3.0 / 400**2 / 10 * 1.01),
-                  {"m": SPEC}).loc[("m", "contact_time")]
+    few = _orders(_frame("m", n, {"contact_time": list(3.0 / n**2)}, floor=3.0 / 400**2 / 10 * 1.01), {"m": SPEC}).loc[
+        ("m", "contact_time")
+    ]
     assert math.isnan(few["observed_order"]) and few["fitted_levels"] == "" and few["within_expected"] is None
 
 
@@ -244,8 +266,15 @@ def test_a_method_measured_against_its_finest_level_gets_its_grid_convergence_in
     n = np.array([5.0, 10.0, 20.0])
     f = 1.0 + 0.02 * (1.0 / n) ** 1.5
     oscillating = np.array([1.004, 0.999, 1.001])
-    frame = _frame("axi", n, {"contact_time": list(f / f[-1] - 1.0), "max_1": list(oscillating / oscillating[-1] - 1.0),
-                              "history_l2": [1e-2, 3e-3, 0.0]})
+    frame = _frame(
+        "axi",
+        n,
+        {
+            "contact_time": list(f / f[-1] - 1.0),
+            "max_1": list(oscillating / oscillating[-1] - 1.0),
+            "history_l2": [1e-2, 3e-3, 0.0],
+        },
+    )
     orders = _orders(frame, {"axi": AXI})
     monotone = orders.loc[("axi", "contact_time")]
     f0 = 1.0  # the exact value the extrapolation recovers
@@ -271,12 +300,23 @@ def _run(n: int, contact_time: float, maxima: list[float], peak_times: list[floa
     """A stored run as the analyses read it, with a triangle of force over the contact."""
     t = np.linspace(0.0, contact_time, 201)
     return SimpleNamespace(
-        case_id="c", method="axi", wall_time_s=0.1 * n,
-        config={"run": {"level": {5: 0, 10: 1, 20: 2}[n], "numerics": {"elements_across": n}},
-                "rod": {"length_m": 0.03, "material": STEEL}},
-        summary={"contact_time_s": contact_time, "peak_time_s": np.array(peak_times), "peak_force_N": np.array(maxima),
-                 "contact_start_s": np.array([0.0]), "contact_end_s": np.array([contact_time]), "energy_error": 0.0},
-        series={"time": t, "contact_force": maxima[0] * (1.0 - np.abs(2 * t / contact_time - 1.0))})
+        case_id="c",
+        method="axi",
+        wall_time_s=0.1 * n,
+        config={
+            "run": {"level": {5: 0, 10: 1, 20: 2}[n], "numerics": {"elements_across": n}},
+            "rod": {"length_m": 0.03, "material": STEEL},
+        },
+        summary={
+            "contact_time_s": contact_time,
+            "peak_time_s": np.array(peak_times),
+            "peak_force_N": np.array(maxima),
+            "contact_start_s": np.array([0.0]),
+            "contact_end_s": np.array([contact_time]),
+            "energy_error": 0.0,
+        },
+        series={"time": t, "contact_force": maxima[0] * (1.0 - np.abs(2 * t / contact_time - 1.0))},
+    )
 
 
 def test_the_finest_level_is_the_reference_with_its_uncertainty() -> None:

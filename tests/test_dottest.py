@@ -19,8 +19,9 @@ def _config(directory: Path) -> dict:
 
 def test_the_small_configuration_is_valid_and_exercises_every_stage() -> None:
     config = _config(TEST)
-    project = load_project(config, root=TEST, schema_dir=ROOT / "workflow" / "schemas",
-                           config_file=TEST / "config" / "config.yaml")
+    project = load_project(
+        config, root=TEST, schema_dir=ROOT / "workflow" / "schemas", config_file=TEST / "config" / "config.yaml"
+    )
     assert set(project.sets) >= {"model", "table2", "stress"}
     assert project.sweeps_in("table2")
     methods = {m for case in project.cases.values() for m in case["methods"]}
@@ -30,8 +31,9 @@ def test_the_small_configuration_is_valid_and_exercises_every_stage() -> None:
 
 def test_its_cases_are_the_shipped_cases() -> None:
     shipped = load_project(_config(ROOT), root=ROOT)
-    small = load_project(_config(TEST), root=TEST, schema_dir=ROOT / "workflow" / "schemas",
-                         config_file=TEST / "config" / "config.yaml")
+    small = load_project(
+        _config(TEST), root=TEST, schema_dir=ROOT / "workflow" / "schemas", config_file=TEST / "config" / "config.yaml"
+    )
     for case_id, case in small.cases.items():
         assert case_id in shipped.cases, case_id
         for key in ("impactor", "rod", "contact", "measured", "published", "outputs", "stations"):
@@ -40,14 +42,23 @@ def test_its_cases_are_the_shipped_cases() -> None:
 
 
 #: Where .test/config/config.yaml may differ from config/config.yaml (its header says why).
-SMALLER = {("materials",), ("work_precision", "cases"), ("work_precision", "timing"), ("work_precision", "methods"),
-           ("stability", "map", "mass_kg"), ("stability", "map", "impedance_kg_s"),
-           ("numerics", "fem_axi", "steps_per_contact"), ("numerics", "fem_axi", "elements_across"),
-           ("sensor", "fit", "apply_to"), ("sensor", "fit", "thickness_grid_m"),
-           # .test has no reading calibrated without the sensor (r10_l30_film_cal, r10_l30_cal)
-           ("sensor", "film_table", "film_calibrated"), ("sensor", "film_table", "no_film_calibrated"),
-           # the study's separate cases take minutes (fem_axi on the slowest Table 2 row): none in .test
-           ("work_precision", "separate")}
+SMALLER = {
+    ("materials",),
+    ("work_precision", "cases"),
+    ("work_precision", "timing"),
+    ("work_precision", "methods"),
+    ("stability", "map", "mass_kg"),
+    ("stability", "map", "impedance_kg_s"),
+    ("numerics", "fem_axi", "steps_per_contact"),
+    ("numerics", "fem_axi", "elements_across"),
+    ("sensor", "fit", "apply_to"),
+    ("sensor", "fit", "thickness_grid_m"),
+    # .test has no reading calibrated without the sensor (r10_l30_film_cal, r10_l30_cal)
+    ("sensor", "film_table", "film_calibrated"),
+    ("sensor", "film_table", "no_film_calibrated"),
+    # the study's separate cases take minutes (fem_axi on the slowest Table 2 row): none in .test
+    ("work_precision", "separate"),
+}
 
 
 def _leaves(document: object, path: tuple = ()) -> dict:
@@ -59,6 +70,8 @@ def _leaves(document: object, path: tuple = ()) -> dict:
 def test_its_settings_are_the_shipped_settings_but_smaller() -> None:
     shipped, small = _leaves(_config(ROOT)), _leaves(_config(TEST))
     differ = {p for p in shipped.keys() | small.keys() if shipped.get(p) != small.get(p)}
-    assert {p for p in differ if not any(p[:len(s)] == s for s in SMALLER)} == set()
+    assert {p for p in differ if not any(p[: len(s)] == s for s in SMALLER)} == set()
     levels = _config(TEST)["work_precision"]["methods"]
-    assert all(spec["levels"] == _config(ROOT)["work_precision"]["methods"][m]["levels"][:3] for m, spec in levels.items())
+    assert all(
+        spec["levels"] == _config(ROOT)["work_precision"]["methods"][m]["levels"][:3] for m, spec in levels.items()
+    )

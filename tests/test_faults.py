@@ -78,31 +78,57 @@ def built(tmp_path_factory: pytest.TempPathFactory) -> Path:
 # ------------------------------------------------------------------ targets and config.yaml
 
 
-@pytest.mark.parametrize("target, expected", [
-    ("results/runs/nosuch/sem", "rodimpact: unknown group of runs 'nosuch'; known: "),
-    ("results/runs/smooth/fem_axi", "rodimpact: no case of group 'smooth' runs 'fem_axi'; its cases' methods: "
-                                    "fem1d, sem, sem_paper"),
-    ("results/convergence/model/sem/level99.h5", "rodimpact: no rule makes 'results/convergence/model/sem/"
-                                                 "level99.h5' alone: it would be a file of results/convergence/"
-                                                 "model/sem, which rule solve_levels writes as a whole"),
-    ("results/convergence/model/nosuch/level0.h5", "rodimpact: no rule makes 'results/convergence/model/nosuch/"
-                                                   "level0.h5'; results/convergence/ holds: "
-                                                   "results/convergence/{case}/{method}"),
-    ("results/sweeps/ball_sweep-r1_l301/sem/ball_diameter_m~0.5.h5",
-     "rodimpact: no rule makes 'results/sweeps/ball_sweep-r1_l301/sem/ball_diameter_m~0.5.h5' alone: it would be "
-     "a file of results/sweeps/ball_sweep-r1_l301/sem, which rule solve_sweep writes as a whole"),
-    ("tables", "rodimpact: no rule makes 'tables' and no rule has that name; rules: all, "),
-], ids=["unknown group", "method no case of the group runs", "a level of a batch", "an unknown method's level",
-        "a sweep point of a batch", "unknown rule"])
+@pytest.mark.parametrize(
+    "target, expected",
+    [
+        ("results/runs/nosuch/sem", "rodimpact: unknown group of runs 'nosuch'; known: "),
+        (
+            "results/runs/smooth/fem_axi",
+            "rodimpact: no case of group 'smooth' runs 'fem_axi'; its cases' methods: fem1d, sem, sem_paper",
+        ),
+        (
+            "results/convergence/model/sem/level99.h5",
+            "rodimpact: no rule makes 'results/convergence/model/sem/"
+            "level99.h5' alone: it would be a file of results/convergence/"
+            "model/sem, which rule solve_levels writes as a whole",
+        ),
+        (
+            "results/convergence/model/nosuch/level0.h5",
+            "rodimpact: no rule makes 'results/convergence/model/nosuch/"
+            "level0.h5'; results/convergence/ holds: "
+            "results/convergence/{case}/{method}",
+        ),
+        (
+            "results/sweeps/ball_sweep-r1_l301/sem/ball_diameter_m~0.5.h5",
+            "rodimpact: no rule makes 'results/sweeps/ball_sweep-r1_l301/sem/ball_diameter_m~0.5.h5' alone: "
+            "it would be a file of results/sweeps/ball_sweep-r1_l301/sem, which rule solve_sweep writes as a whole",
+        ),
+        ("tables", "rodimpact: no rule makes 'tables' and no rule has that name; rules: all, "),
+    ],
+    ids=[
+        "unknown group",
+        "method no case of the group runs",
+        "a level of a batch",
+        "an unknown method's level",
+        "a sweep point of a batch",
+        "unknown rule",
+    ],
+)
 def test_a_target_the_configuration_does_not_define_is_one_line(project: Path, target: str, expected: str) -> None:
     assert_one_line_refusal(snakemake(project, "-n", target), expected)
 
 
-@pytest.mark.parametrize("text, expected", [
-    ("targets:\n  sets: [model\n", "rodimpact: invalid configuration: config/config.yaml: invalid YAML at line "),
-    ("- just\n- a list\n", "rodimpact: invalid configuration: config/config.yaml: must be a mapping of settings, "
-                           "got list"),
-], ids=["syntax error", "not a mapping"])
+@pytest.mark.parametrize(
+    "text, expected",
+    [
+        ("targets:\n  sets: [model\n", "rodimpact: invalid configuration: config/config.yaml: invalid YAML at line "),
+        (
+            "- just\n- a list\n",
+            "rodimpact: invalid configuration: config/config.yaml: must be a mapping of settings, got list",
+        ),
+    ],
+    ids=["syntax error", "not a mapping"],
+)
 def test_a_broken_config_yaml_is_one_line(project: Path, text: str, expected: str) -> None:
     config = project / "config" / "config.yaml"
     original = config.read_text(encoding="utf-8")
@@ -182,8 +208,9 @@ def _on_another_host(project: Path, *args: str) -> list[str]:
     and process namespace (``unshare``, as root), so that it sees none of this machine's runs."""
     if os.geteuid() != 0 or shutil.which("unshare") is None:
         pytest.skip("needs root and unshare to give snakemake a host of its own")
-    probe = subprocess.run(["unshare", "--uts", "--pid", "--fork", "--mount-proc", "true"], capture_output=True,
-                           check=False)
+    probe = subprocess.run(
+        ["unshare", "--uts", "--pid", "--fork", "--mount-proc", "true"], capture_output=True, check=False
+    )
     if probe.returncode != 0:
         pytest.skip(f"unshare refused here: {probe.stderr.decode(errors='replace').strip()}")
     inner = " ".join(shlex.quote(part) for part in snakemake_command(args, None))
@@ -196,12 +223,22 @@ def test_a_job_parsing_the_workflow_on_another_host_keeps_a_live_builds_lock(tmp
     path = copy_project(tmp_path / "project")
     build = start(path, "-j1", LONG)
     try:
-        wait_for(lambda: (locks(path) and registered(path)) or build.poll() is not None, 120,
-                 "the build to lock the directory and register itself")
+        wait_for(
+            lambda: (locks(path) and registered(path)) or build.poll() is not None,
+            120,
+            "the build to lock the directory and register itself",
+        )
         held = locks(path)
         assert held and build.poll() is None, "the build ended before the node's parse: nothing was tested"
-        node = subprocess.run(_on_another_host(path, "-n", SOLVE_BATCH), cwd=path, env=snakemake_environment(), capture_output=True,
-                              text=True, timeout=BUILD_TIMEOUT_S, check=False)
+        node = subprocess.run(
+            _on_another_host(path, "-n", SOLVE_BATCH),
+            cwd=path,
+            env=snakemake_environment(),
+            capture_output=True,
+            text=True,
+            timeout=BUILD_TIMEOUT_S,
+            check=False,
+        )
         still_live = build.poll() is None
         kept = all(lock.exists() for lock in held)
     finally:
@@ -230,11 +267,16 @@ def _damage(run_file: Path, how: str) -> None:
             h5["contact_force"][3] = 7.0
 
 
-@pytest.mark.parametrize("how, reason", [
-    ("truncated", "results/runs/model/sem/model.h5: "),
-    ("edited", "results/runs/model/sem/model.h5: its content differs from its data_sha256 (changed after it was "
-               "written)"),
-])
+@pytest.mark.parametrize(
+    "how, reason",
+    [
+        ("truncated", "results/runs/model/sem/model.h5: "),
+        (
+            "edited",
+            "results/runs/model/sem/model.h5: its content differs from its data_sha256 (changed after it was written)",
+        ),
+    ],
+)
 def test_a_damaged_run_is_named_marked_and_remade(built: Path, tmp_path: Path, how: str, reason: str) -> None:
     path = clone_built(built, tmp_path / "project")
     run_file = path / SOLVE
@@ -285,8 +327,9 @@ def test_a_full_disk_is_one_line_and_leaves_no_temporary(tmp_path: Path) -> None
     path = copy_project(tmp_path / "project")
     mount = path / "results" / "runs"  # the run's folder is made inside it (snakemake removes it on failure)
     mount.mkdir(parents=True)
-    mounted = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=4m", "tmpfs", str(mount)],
-                             capture_output=True, text=True, check=False)
+    mounted = subprocess.run(
+        ["mount", "-t", "tmpfs", "-o", "size=4m", "tmpfs", str(mount)], capture_output=True, text=True, check=False
+    )
     if mounted.returncode != 0:
         pytest.skip(f"cannot mount a small file system here ({mounted.stderr.strip() or 'mount failed'})")
     try:
@@ -300,8 +343,9 @@ def test_a_full_disk_is_one_line_and_leaves_no_temporary(tmp_path: Path) -> None
         failed = snakemake(path, "-j1", SOLVE_BATCH, timeout=BUILD_TIMEOUT_S)
         assert failed.returncode != 0, failed.describe()
         assert "Traceback" not in failed.output, failed.describe()
-        assert any("failed: " in line and "No space left on device" in line for line in failed.output.splitlines()), \
+        assert any("failed: " in line and "No space left on device" in line for line in failed.output.splitlines()), (
             failed.describe()
+        )
         left = sorted(p.name for p in (mount / "model").iterdir()) if (mount / "model").is_dir() else []
         assert left == []  # no temporary, no half-written run
         filler.unlink()

@@ -27,8 +27,10 @@ def order(steps, errors):
 
 def errors(result, ref):
     """Relative errors of the largest force maximum and of the rebound velocity."""
-    return (abs(result.peak_force_N.max() / ref.peak_force_N.max() - 1),
-            abs(result.rebound_velocity_m_s / ref.rebound_velocity_m_s - 1))
+    return (
+        abs(result.peak_force_N.max() / ref.peak_force_N.max() - 1),
+        abs(result.rebound_velocity_m_s / ref.rebound_velocity_m_s - 1),
+    )
 
 
 @pytest.fixture(scope="module")

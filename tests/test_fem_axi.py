@@ -57,8 +57,12 @@ def test_pulse_travels_at_the_bar_speed_and_reflects_from_the_fixed_end():
     basis = Basis(body_mesh.mesh, ElementVector(ElementTriP2()))
     far = body_mesh.boundaries["far"]
     removed = np.union1d(axis_dofs(basis), np.union1d(dofs_of(basis, far, 0), dofs_of(basis, far, 1)))
-    body = AxiBody(basis, axisym_stiffness(basis, STEEL.youngs_modulus_pa, STEEL.poisson_ratio),
-                   axisym_mass(basis, STEEL.density_kg_m3), removed)
+    body = AxiBody(
+        basis,
+        axisym_stiffness(basis, STEEL.youngs_modulus_pa, STEEL.poisson_ratio),
+        axisym_mass(basis, STEEL.density_kg_m3),
+        removed,
+    )
     load = body.T.T @ axisym_load(basis, lambda r, z: (0.0, 1.0), "end")  # 1 Pa towards +z
     h = 0.2e-6
     body.factorise(h)

@@ -22,8 +22,11 @@ def _asm_stiffness(basis: Basis) -> sp.csr_matrix:
         r = w.x[0]
         urr, uzz, utt, urz = strain(u, r)
         vrr, vzz, vtt, vrz = strain(v, r)
-        return (lam * (urr + uzz + utt) * (vrr + vzz + vtt)
-                + 2.0 * mu * (urr * vrr + uzz * vzz + utt * vtt) + mu * urz * vrz) * r
+        return (
+            lam * (urr + uzz + utt) * (vrr + vzz + vtt)
+            + 2.0 * mu * (urr * vrr + uzz * vzz + utt * vtt)
+            + mu * urz * vrz
+        ) * r
 
     return asm(form, basis).tocsr()
 

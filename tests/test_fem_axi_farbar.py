@@ -26,11 +26,22 @@ RADIUS = 1e-3
 def _rod_with_bar(length: float, z_c: float, fixed: bool = True) -> AxiBody:
     mesh = rod_mesh(RADIUS, z_c, 0.5e-3, 1e-3, coarse_size_m=1e-3)
     basis = Basis(mesh.mesh, ElementVector(ElementTriP2()))
-    bar = FarBar(start_m=z_c, length_m=length, radius_m=RADIUS, youngs_modulus_pa=STEEL.youngs_modulus_pa,
-                 density_kg_m3=STEEL.density_kg_m3, fixed=fixed)
-    return AxiBody(basis, axisym_stiffness(basis, STEEL.youngs_modulus_pa, STEEL.poisson_ratio),
-                   axisym_mass(basis, STEEL.density_kg_m3), axis_dofs(basis), bar=bar,
-                   joint=dofs_of(basis, mesh.boundaries["far"], 1))
+    bar = FarBar(
+        start_m=z_c,
+        length_m=length,
+        radius_m=RADIUS,
+        youngs_modulus_pa=STEEL.youngs_modulus_pa,
+        density_kg_m3=STEEL.density_kg_m3,
+        fixed=fixed,
+    )
+    return AxiBody(
+        basis,
+        axisym_stiffness(basis, STEEL.youngs_modulus_pa, STEEL.poisson_ratio),
+        axisym_mass(basis, STEEL.density_kg_m3),
+        axis_dofs(basis),
+        bar=bar,
+        joint=dofs_of(basis, mesh.boundaries["far"], 1),
+    )
 
 
 def test_the_continuum_ends_after_its_diameters_on_a_rod_ten_continua_long():
@@ -68,7 +79,8 @@ def test_uniform_stress_crosses_the_joint_exactly():
     u = spsolve(body.K.tocsc(), load)
     for z in (0.0, 0.005, z_c, 0.02, 0.049):
         assert float((body.section_mean_uz_row(z, RADIUS) @ u)[0]) == pytest.approx(
-            p * (length - z) / STEEL.youngs_modulus_pa, rel=1e-9)
+            p * (length - z) / STEEL.youngs_modulus_pa, rel=1e-9
+        )
 
 
 def test_a_pulse_crosses_the_joint_and_reflects_as_dalembert_says():

@@ -34,11 +34,23 @@ def one_layer(film):
 
 def table2_row1(film, rod_radius=0.01, rod_length=0.0301, contact=None):
     """Table 2, row 1: the 3.16 mm steel ball at 0.3225 m/s on the 30.1 mm aluminium rod."""
-    return AxiImpact(1.30e-4, 0.3225, 1.58e-3, STEEL, "sphere", rod_radius, rod_length, ALUMINIUM, "fixed",
-                     contact=contact, stack=one_layer(film))
+    return AxiImpact(
+        1.30e-4,
+        0.3225,
+        1.58e-3,
+        STEEL,
+        "sphere",
+        rod_radius,
+        rod_length,
+        ALUMINIUM,
+        "fixed",
+        contact=contact,
+        stack=one_layer(film),
+    )
 
 
 # ----------------------------------------------------------------------------- the mesh
+
 
 def test_film_mesh_regions_layers_and_materials():
     """The film is its own region: a disc of radius sqrt(A / pi) and thickness h on z < 0 (its
@@ -88,8 +100,14 @@ def test_film_mesh_regions_layers_and_materials():
     u = np.zeros(basis.N)
     u[basis.split_indices()[1]] = strain * basis.doflocs[1, basis.split_indices()[1]]
     energy = math.pi * u @ (rod.stiffness @ u)
-    expected = 0.5 * strain**2 * (constrained_modulus(ALUMINIUM.youngs_modulus_pa, ALUMINIUM.poisson_ratio) * rod_volume
-                                  + PVDF.constrained_modulus_pa * film_volume)
+    expected = (
+        0.5
+        * strain**2
+        * (
+            constrained_modulus(ALUMINIUM.youngs_modulus_pa, ALUMINIUM.poisson_ratio) * rod_volume
+            + PVDF.constrained_modulus_pa * film_volume
+        )
+    )
     assert energy == pytest.approx(expected, rel=1e-10)
 
 
@@ -101,6 +119,7 @@ def test_film_mesh_rejects_bad_geometry():
 
 
 # ----------------------------------------------------------------------- the two limits
+
 
 def test_film_of_the_rod_material_changes_nothing_dynamic():
     """A film of the rod's own material over the whole end face of a short rod (radius 1 mm,
@@ -124,7 +143,9 @@ def test_film_of_the_rod_material_indents_as_hertz():
     covered with a film of aluminium follows d = (P/k)^(2/3) + C P with k within 1 % of
     Hertz's (measured 0.23 %; 0.04 % at elements_across=20)."""
     law = build_law(None, 1.58e-3, STEEL, ALUMINIUM)
-    problem = AxiImpact(1.0, 0.3225, 1.58e-3, STEEL, "cap", 2e-3, 4e-3, ALUMINIUM, "fixed", contact=law, stack=one_layer(SAME))
+    problem = AxiImpact(
+        1.0, 0.3225, 1.58e-3, STEEL, "cap", 2e-3, 4e-3, ALUMINIUM, "fixed", contact=law, stack=one_layer(SAME)
+    )
     d = np.linspace(0.25, 1.0, 4) * law.rigid_impact(1.30e-4, 0.3225).max_approach_m
     result = static_indentation(problem, d, FEMAxiOptions(elements_across=10))
     design = np.column_stack([result.force_N ** (2 / 3), result.force_N])
@@ -165,6 +186,7 @@ def test_soft_thin_film_on_a_stiff_substrate_follows_the_thin_layer_law():
 
 
 # ------------------------------------------------------------------------- the impact
+
 
 @pytest.fixture(scope="module")
 def film_impact():

@@ -33,8 +33,12 @@ def small_rod() -> tuple[AxiBody, sp.csr_matrix]:
     basis = Basis(mesh.mesh, ElementVector(ElementTriP2()))
     far = mesh.boundaries["far"]
     removed = np.union1d(axis_dofs(basis), np.union1d(dofs_of(basis, far, 0), dofs_of(basis, far, 1)))
-    body = AxiBody(basis, axisym_stiffness(basis, STEEL.youngs_modulus_pa, STEEL.poisson_ratio),
-                   axisym_mass(basis, STEEL.density_kg_m3), removed)
+    body = AxiBody(
+        basis,
+        axisym_stiffness(basis, STEEL.youngs_modulus_pa, STEEL.poisson_ratio),
+        axisym_mass(basis, STEEL.density_kg_m3),
+        removed,
+    )
     return body, body.uz_probe_rows(np.array([[0.0, 0.2e-3, 0.5e-3, 0.9e-3], [0.0] * 4]))
 
 
@@ -42,8 +46,12 @@ def small_ball() -> tuple[AxiBody, sp.csr_matrix]:
     """A free steel ball (R = 1 mm, P2) and minus the u_z of three surface nodes near its pole."""
     mesh = ball_mesh(1e-3, 0.4e-3, 0.4e-3)
     basis = Basis(mesh.mesh, ElementVector(ElementTriP2()))
-    body = AxiBody(basis, axisym_stiffness(basis, STEEL.youngs_modulus_pa, STEEL.poisson_ratio),
-                   axisym_mass(basis, STEEL.density_kg_m3), axis_dofs(basis))
+    body = AxiBody(
+        basis,
+        axisym_stiffness(basis, STEEL.youngs_modulus_pa, STEEL.poisson_ratio),
+        axisym_mass(basis, STEEL.density_kg_m3),
+        axis_dofs(basis),
+    )
     surface = dofs_of(basis, mesh.boundaries["surface"], 1)
     near = surface[np.argsort(np.hypot(*basis.doflocs[:, surface]))[:3]]
     pick = sp.csr_matrix((-np.ones(3), (np.arange(3), near)), shape=(3, basis.N))
@@ -85,8 +93,12 @@ def test_compliances_and_fast_energy_are_the_modal_sums(make):
     mu = 4.0 / STEP**2
     static = (beta**2 / w2[elastic]).sum(axis=1)
     np.testing.assert_allclose(bound.static, static, rtol=2e-6)
-    np.testing.assert_allclose(bound.dynamic, (beta**2 * mu / (w2[elastic] * (w2[elastic] + mu))).sum(axis=1),
-                               rtol=1e-6, atol=2e-6 * static.max())
+    np.testing.assert_allclose(
+        bound.dynamic,
+        (beta**2 * mu / (w2[elastic] * (w2[elastic] + mu))).sum(axis=1),
+        rtol=1e-6,
+        atol=2e-6 * static.max(),
+    )
     alpha, rate = phi.T @ body.Mq, phi.T @ body.Mv  # modal displacements and velocities
     modal_energy = 0.5 * (rate**2 + w2 * alpha**2)
     assert bound.fast_energy(body) == pytest.approx(float((w2 / mu * modal_energy).sum()), rel=1e-7)
@@ -170,7 +182,7 @@ def test_nothing_happens_after_the_bound_stops_a_run(recontact):
     assert continued.n_contacts == stopped.n_contacts
     np.testing.assert_allclose(continued.contact_end_s, stopped.contact_end_s, rtol=1e-12)
     np.testing.assert_allclose(continued.peak_force_N, stopped.peak_force_N, rtol=1e-12)
-    assert np.all(continued.contact_force[stopped.n_steps + 1:] == 0.0)
+    assert np.all(continued.contact_force[stopped.n_steps + 1 :] == 0.0)
     # the ball's translation in q meets the rounding of K 1 = 0: its velocity drifts by ~1e-8
     assert continued.rebound_velocity_m_s == pytest.approx(stopped.rebound_velocity_m_s, rel=1e-7)
 
@@ -196,8 +208,9 @@ def test_lcp_solution_is_complementary():
     c = 30
     root = rng.normal(size=(c, c))
     delassus = root @ root.T / c + np.eye(c)
-    operator = ContactOperator(sp.csr_matrix((c, 5)), sp.csr_matrix((c, 5)), np.zeros(c),
-                               np.zeros((c, 5)), np.zeros((c, 5)), delassus)
+    operator = ContactOperator(
+        sp.csr_matrix((c, 5)), sp.csr_matrix((c, 5)), np.zeros(c), np.zeros((c, 5)), np.zeros((c, 5)), delassus
+    )
     for _ in range(20):
         gap = rng.normal(size=c)
         lam = operator.multipliers(gap)

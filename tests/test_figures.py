@@ -65,19 +65,24 @@ def rendered(monkeypatch: pytest.MonkeyPatch) -> list:
 
 
 def outputs(folder: Path, name: str) -> dict:
-    return {"pdf": folder / f"{name}.pdf", "png": folder / f"{name}.png",
-            "provenance": folder / f"{name}.provenance.json"}
+    return {
+        "pdf": folder / f"{name}.pdf",
+        "png": folder / f"{name}.png",
+        "provenance": folder / f"{name}.provenance.json",
+    }
 
 
 # ---------------------------------------------------------------- the model case: Fig. 2, Fig. 4
+
 
 @pytest.fixture(scope="module")
 def model_runs(shipped_project, tmp_path_factory: pytest.TempPathFactory) -> list[Path]:
     """The model impact by both SEM schemes (their curves lie on each other), stored as the
     workflow stores them."""
     folder = tmp_path_factory.mktemp("model")
-    return [run_to_file(shipped_project.cases["model"], method, folder / f"{method}.h5")
-            for method in ("sem", "sem_paper")]
+    return [
+        run_to_file(shipped_project.cases["model"], method, folder / f"{method}.h5") for method in ("sem", "sem_paper")
+    ]
 
 
 def test_fig2_tells_overlapping_curves_apart_and_names_its_markers(model_runs, rendered, tmp_path) -> None:
@@ -107,8 +112,12 @@ def test_fig4_names_its_station_and_the_end_of_contact_once(model_runs, rendered
 
 def test_the_force_fit_figure_is_journal_ready(model_runs, rendered, tmp_path) -> None:
     jsons = [tmp_path / f"{p.stem}.json" for p in model_runs]
-    export_forces(model_runs, [tmp_path / f"{p.stem}.csv" for p in model_runs], jsons,
-                  provenance=tmp_path / "forces.provenance.json")
+    export_forces(
+        model_runs,
+        [tmp_path / f"{p.stem}.csv" for p in model_runs],
+        jsons,
+        provenance=tmp_path / "forces.provenance.json",
+    )
     make_fig_force_fit(model_runs, jsons, **outputs(tmp_path, "force_fit"))
     (fig,) = rendered
     assert_journal_ready(fig)
@@ -134,16 +143,27 @@ def table2(shipped_project, tmp_path_factory: pytest.TempPathFactory) -> dict:
     own["measured"] = {**own["measured"], "source": OWN[1], "contact_time_us": 50.0}
     runs = [run_to_file(case, "sem", folder / case["id"] / "sem.h5") for case in [*cases, own]]
     sweep_runs = []
-    for sweep_id, pick in (("ball_sweep-r1_l301", slice(None, None, 3)), ("ball_sweep_film-r10_l30_film", slice(15, 21))):
+    for sweep_id, pick in (
+        ("ball_sweep-r1_l301", slice(None, None, 3)),
+        ("ball_sweep_film-r10_l30_film", slice(15, 21)),
+    ):
         sweep = shipped_project.sweeps[sweep_id]
         for index, point in list(enumerate(sweep_points(sweep["sweep"])))[pick]:
             case = sweep_point_case(sweep, point, f"p{index}")
             sweep_runs.append(run_to_file(case, "sem", folder / sweep_id / f"p{index}.h5"))
     film = [read_summary(p) for p in runs if read_summary(p).config["variant"] == "r10_l30_film"]
-    bands = [CaseBand(r.case_id, float(r.config["measured"]["contact_time_us"]), 1e6 * r.summary["contact_time_s"],
-                      np.ones((2, 3)), 1e6 * r.summary["contact_time_s"] * np.array([0.92, 1.08]),
-                      {n: np.array([1.0, 2.0]) for n in BAND_PARAMETERS},
-                      {n: np.array([1.0, 2.0]) for n in BAND_PARAMETERS}) for r in film]
+    bands = [
+        CaseBand(
+            r.case_id,
+            float(r.config["measured"]["contact_time_us"]),
+            1e6 * r.summary["contact_time_s"],
+            np.ones((2, 3)),
+            1e6 * r.summary["contact_time_s"] * np.array([0.92, 1.08]),
+            {n: np.array([1.0, 2.0]) for n in BAND_PARAMETERS},
+            {n: np.array([1.0, 2.0]) for n in BAND_PARAMETERS},
+        )
+        for r in film
+    ]
     band = write_band(folder / "film_band_r10_l30_film.h5", bands, variant="r10_l30_film", method="sem", config={})
     # the sensor as built: the continuum on one row, the calibrated SEM on every row, with a band each
     sensor = shipped_project.cases["ball_3.16mm-r10_l30_sensor"]
@@ -155,13 +175,34 @@ def table2(shipped_project, tmp_path_factory: pytest.TempPathFactory) -> dict:
         indentation_to_file(case, str(curve))
         runs.append(run_to_file(case, "sem", folder / case["id"] / "sem.h5", contact_curve=curve))
         t = 1e6 * read_summary(runs[-1]).summary["contact_time_s"]
-        sensor_bands.append(write_band(folder / f"sensor_band_{case['id']}.h5", [CaseBand(
-            case["id"], float(case["measured"]["contact_time_us"]), t, np.ones((2, 1)), t * np.array([0.8, 1.3]),
-            {"a: thickness_m": np.array([1.0, 2.0])}, {"a: thickness_m": np.array([t, 1.1 * t])}, ("a: thickness_m",))],
-            variant="r10_l30_sensor_cal", method="sem", config={}))
+        sensor_bands.append(
+            write_band(
+                folder / f"sensor_band_{case['id']}.h5",
+                [
+                    CaseBand(
+                        case["id"],
+                        float(case["measured"]["contact_time_us"]),
+                        t,
+                        np.ones((2, 1)),
+                        t * np.array([0.8, 1.3]),
+                        {"a: thickness_m": np.array([1.0, 2.0])},
+                        {"a: thickness_m": np.array([t, 1.1 * t])},
+                        ("a: thickness_m",),
+                    )
+                ],
+                variant="r10_l30_sensor_cal",
+                method="sem",
+                config={},
+            )
+        )
     descriptions = {v: spec["description"] for v, spec in shipped_project.variants["table2"].items()}
-    return {"runs": runs, "sweeps": sweep_runs, "band": band, "descriptions": descriptions,
-            "sensor_bands": sensor_bands}
+    return {
+        "runs": runs,
+        "sweeps": sweep_runs,
+        "band": band,
+        "descriptions": descriptions,
+        "sensor_bands": sensor_bands,
+    }
 
 
 @pytest.fixture(scope="module")
@@ -170,10 +211,18 @@ def table2_figure(table2, tmp_path_factory: pytest.TempPathFactory):
     real = figures.save_figure
     figures.save_figure = lambda fig, **kwargs: (kept.append(fig), real(fig, **kwargs))
     try:
-        make_fig_readings(table2["runs"], [*READINGS, *SENSORS], sweep_runs=table2["sweeps"],
-                        film_variants=["r10_l30_film"], band_files=[table2["band"]], descriptions=table2["descriptions"],
-                        sensors=SENSORS, sensor_band_files=table2["sensor_bands"], title="Table 2",
-                        **(out := outputs(tmp_path_factory.mktemp("fig"), "table2_contact_time")))
+        make_fig_readings(
+            table2["runs"],
+            [*READINGS, *SENSORS],
+            sweep_runs=table2["sweeps"],
+            film_variants=["r10_l30_film"],
+            band_files=[table2["band"]],
+            descriptions=table2["descriptions"],
+            sensors=SENSORS,
+            sensor_band_files=table2["sensor_bands"],
+            title="Table 2",
+            **(out := outputs(tmp_path_factory.mktemp("fig"), "table2_contact_time")),
+        )
     finally:
         figures.save_figure = real
     (fig,) = kept
@@ -194,7 +243,9 @@ def test_table2_figure_is_journal_ready_and_titled_in_words(table2_figure, table
     (text,) = [ax.get_title() for ax in table2_figure.axes if ax.get_title().startswith(words["r10_l30"])]
     # the film and the sensor readings drawn on the panel they extend, each said once
     # (wrapped to the panel's width: compared word by word)
-    assert " ".join(text.split()).endswith("without the sensor, and with the sensor as built (cyan) and the film alone (red)"), text
+    assert " ".join(text.split()).endswith(
+        "without the sensor, and with the sensor as built (cyan) and the film alone (red)"
+    ), text
 
 
 def test_table2_panels_form_a_grid_by_radius_and_length(table2_figure, table2) -> None:
@@ -211,9 +262,15 @@ def test_table2_axes_are_one_scale_fitted_to_the_data(table2_figure, table2) -> 
     masses = [1000 * read_summary(p).config["impactor"]["mass_kg"] for p in table2["runs"]]
     (x0, x1), (y0, y1) = axes[0].get_xlim(), axes[0].get_ylim()
     assert x0 < min(masses) and x1 > max(masses) and x1 / x0 < 2.0 * max(masses) / min(masses)
-    shown = np.concatenate([np.asarray(line.get_ydata(), float)[(np.asarray(line.get_xdata(), float) >= x0)
-                                                                & (np.asarray(line.get_xdata(), float) <= x1)]
-                            for ax in axes for line in ax.lines])
+    shown = np.concatenate(
+        [
+            np.asarray(line.get_ydata(), float)[
+                (np.asarray(line.get_xdata(), float) >= x0) & (np.asarray(line.get_xdata(), float) <= x1)
+            ]
+            for ax in axes
+            for line in ax.lines
+        ]
+    )
     shown = shown[np.isfinite(shown)]
     assert y0 < shown.min() and y1 > shown.max()  # nothing drawn at the table's masses is cut off
     assert y1 < 1.5 * shown.max() and y0 > shown.min() / 1.5  # and the data fill the axes
@@ -284,11 +341,25 @@ def test_the_sensor_fit_figure_is_journal_ready_and_says_it_is_a_fit() -> None:
     for reading, scale, group in (("a", 1.0, fitted), ("b", 1.3, applied)):
         for i, (mass, measured) in enumerate(((1e-4, 36.0), (1e-3, 60.0), (8e-3, 111.0))):
             case_id = f"ball{i}-{reading}"
-            cases[case_id] = {"id": case_id, "row": f"ball{i}", "impactor": {"mass_kg": mass},
-                              "contact": {"stack": stack}}
+            cases[case_id] = {
+                "id": case_id,
+                "row": f"ball{i}",
+                "impactor": {"mass_kg": mass},
+                "contact": {"stack": stack},
+            }
             times = scale * measured * np.array([0.85, 0.95, 1.2])
-            group.append(CaseBand(case_id, measured, float(times[1]), np.empty((0, 1)), np.empty(0),
-                                  {"glue: thickness_m": grid}, {"glue: thickness_m": times}, ("glue: thickness_m",)))
+            group.append(
+                CaseBand(
+                    case_id,
+                    measured,
+                    float(times[1]),
+                    np.empty((0, 1)),
+                    np.empty(0),
+                    {"glue: thickness_m": grid},
+                    {"glue: thickness_m": times},
+                    ("glue: thickness_m",),
+                )
+            )
     frame, summary = sensor_fit_frame(fitted, applied, cases, "glue", {c: c[-1] for c in cases})
     fig = plot_sensor_fit(frame, summary, {"a": "The reading fitted", "b": "Another reading"})
     assert_journal_ready(fig)
@@ -303,15 +374,21 @@ def test_the_sensor_fit_figure_is_journal_ready_and_says_it_is_a_fit() -> None:
 
 
 def test_short_source_cuts_long_sources_at_a_word() -> None:
-    assert short_source('Table 2, column "Natural experiment" (time of the contact interaction, us)') == \
-        'Table 2, column "Natural experiment"'
+    assert (
+        short_source('Table 2, column "Natural experiment" (time of the contact interaction, us)')
+        == 'Table 2, column "Natural experiment"'
+    )
     long = "Drop tests of steel balls on an aluminium rod at the laboratory of a university, 2024"
     assert len(short_source(long)) <= 48 and short_source(long).endswith("…") and " " in short_source(long)
 
 
 def test_the_film_force_figure_is_journal_ready(table2, rendered, tmp_path) -> None:
-    runs = [p for p in table2["runs"] if p.parent.name.split("-")[0] in ("ball_3.16mm", "ball_12.73mm")
-            and p.parent.name.split("-")[1] in ("r10_l30", "r10_l30_film")]
+    runs = [
+        p
+        for p in table2["runs"]
+        if p.parent.name.split("-")[0] in ("ball_3.16mm", "ball_12.73mm")
+        and p.parent.name.split("-")[1] in ("r10_l30", "r10_l30_film")
+    ]
     assert len(runs) == 4
     make_fig_film_force(runs, ["ball_3.16mm", "ball_12.73mm"], **outputs(tmp_path, "film_force"))
     (fig,) = rendered
@@ -320,31 +397,54 @@ def test_the_film_force_figure_is_journal_ready(table2, rendered, tmp_path) -> N
 
 # ----------------------------------------------------------------------- the numerical studies
 
-def test_work_precision_has_a_panel_per_quantity_and_one_legend_of_methods(shipped_project, shipped_config,
-                                                                           rendered, tmp_path) -> None:
+
+def test_work_precision_has_a_panel_per_quantity_and_one_legend_of_methods(
+    shipped_project, shipped_config, rendered, tmp_path
+) -> None:
     methods = {name: dict(shipped_config["work_precision"]["methods"][name]) for name in ("sem", "sem_paper")}
     methods["sem"]["levels"] = [{"steps_per_contact": n} for n in (25, 50, 100, 200, 400)]
     methods["sem_paper"]["levels"] = [{"steps_per_contact": n} for n in (250, 500, 1000, 2000)]
     runs = []
     for method, spec in methods.items():
         for level, overrides in enumerate(spec["levels"]):
-            case = level_case(shipped_project.cases["ball_3.16mm-r1_l30"], method, shipped_config["numerics"], overrides)
-            runs.append(run_to_file(case, method, tmp_path / f"{method}_level{level}.h5", level=level,
-                                    code_version="1.2.3+gdeadbeef"))
-    make_work_precision_figure(runs, methods, 3, arrival_window=shipped_config["work_precision"]["arrival_window"],
-                               **outputs(tmp_path, "work_precision"))
+            case = level_case(
+                shipped_project.cases["ball_3.16mm-r1_l30"], method, shipped_config["numerics"], overrides
+            )
+            runs.append(
+                run_to_file(
+                    case, method, tmp_path / f"{method}_level{level}.h5", level=level, code_version="1.2.3+gdeadbeef"
+                )
+            )
+    make_work_precision_figure(
+        runs,
+        methods,
+        3,
+        arrival_window=shipped_config["work_precision"]["arrival_window"],
+        **outputs(tmp_path, "work_precision"),
+    )
     (fig,) = rendered
     assert_journal_ready(fig)
     panels = [ax for ax in fig.axes if ax.get_visible()]
     titles = [ax.get_title() for ax in panels]
     assert titles[0] == "contact time" and titles[1] == quantity_words("max_1") == "first force maximum"
-    assert set(titles) >= {"contact time", "first force maximum", "force history, $L_2$ norm",
-                           "force history, max norm"} and len(titles) == len(set(titles))
+    assert set(titles) >= {
+        "contact time",
+        "first force maximum",
+        "force history, $L_2$ norm",
+        "force history, max norm",
+    } and len(titles) == len(set(titles))
     (legend,) = fig.legends
     assert [t.get_text() for t in legend.get_texts()] == [
-        *(METHODS[m].label for m in methods), "level in the fit", "level not in the fit", "expected order (slope guide)"]
-    words = {"contact time": "contact_time", "force history, $L_2$ norm": "history_l2",
-             "force history, max norm": "history_max"}
+        *(METHODS[m].label for m in methods),
+        "level in the fit",
+        "level not in the fit",
+        "expected order (slope guide)",
+    ]
+    words = {
+        "contact time": "contact_time",
+        "force history, $L_2$ norm": "history_l2",
+        "force history, max norm": "history_max",
+    }
     for ax in panels:  # each panel's box: the observed order ± its standard error, the expected in parentheses
         orders = [t.get_text() for t in ax.get_legend().get_texts()]
         expected = [methods[m]["expected_orders"][words.get(ax.get_title(), "max")] for m in methods]
@@ -360,8 +460,14 @@ def test_work_precision_has_a_panel_per_quantity_and_one_legend_of_methods(shipp
 
 
 def test_the_stability_map_is_journal_ready(shipped_project, shipped_config, rendered, tmp_path) -> None:
-    spec = {"base_case": "model", "mass_kg": [1e-4, 1e-2], "impedance_kg_s": [10.0, 1000.0], "steps_per_contact": 100,
-            "accuracy": 1e-2, "methods": ["sem", "sem_paper"]}
+    spec = {
+        "base_case": "model",
+        "mass_kg": [1e-4, 1e-2],
+        "impedance_kg_s": [10.0, 1000.0],
+        "steps_per_contact": 100,
+        "accuracy": 1e-2,
+        "methods": ["sem", "sem_paper"],
+    }
     runs, references = [], []
     for name in map_point_names(spec):
         for method in ("reference", *spec["methods"]):
@@ -375,6 +481,7 @@ def test_the_stability_map_is_journal_ready(shipped_project, shipped_config, ren
 
 
 # --------------------------------------------------------------------------------- the checker
+
 
 def test_the_checker_catches_a_legend_off_the_canvas_a_label_without_unit_and_ids() -> None:
     import matplotlib.pyplot as plt

@@ -59,7 +59,8 @@ def test_film_law_is_consistent_with_itself():
         h = 1e-6 * alpha
         assert (law.force(alpha + h) - law.force(alpha - h)) / (2 * h) == pytest.approx(law.stiffness(alpha), rel=1e-7)
         assert (float(law.energy(alpha + h)) - float(law.energy(alpha - h))) / (2 * h) == pytest.approx(
-            law.force(alpha), rel=1e-7)
+            law.force(alpha), rel=1e-7
+        )
         force = law.force(alpha)
         assert (force / law.k) ** (2 / 3) + math.sqrt(force / law.c) == pytest.approx(alpha, rel=1e-14)
         assert law.approach(force) == pytest.approx(alpha, rel=1e-14)
@@ -79,8 +80,9 @@ def test_energy_between_is_the_quadrature_without_cancellation():
 
     law = film_law()
     for lower, upper in ((0.0, 1e-6), (-1e-7, 2e-6), (1e-7, 2e-5), (2e-6, 3e-6)):
-        assert law.energy_between(lower, upper) == pytest.approx(ContactLaw.energy_between(law, lower, upper),
-                                                                 rel=1e-12)
+        assert law.energy_between(lower, upper) == pytest.approx(
+            ContactLaw.energy_between(law, lower, upper), rel=1e-12
+        )
     assert law.energy_between(3e-6, 2e-6) == pytest.approx(-law.energy_between(2e-6, 3e-6), rel=1e-15)
     assert law.energy_between(1e-6, 1e-6) == 0.0
     alpha = 2e-6

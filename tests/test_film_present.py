@@ -27,16 +27,26 @@ from rodimpact.storage.bands import BAND_PARAMETERS, CaseBand, read_band, write_
 from rodimpact.storage.curves import ContactCurve, read_contact_curve, write_contact_curve
 from rodimpact.storage.runs import read_run, read_summary, write_run
 
-FILM = {"thickness_m": 2.8e-5, "area_m2": 2.1e-5,
-        "material": {"name": "pvdf", "youngs_modulus_pa": 3.0e9, "poisson_ratio": 0.35, "density_kg_m3": 1780.0}}
+FILM = {
+    "thickness_m": 2.8e-5,
+    "area_m2": 2.1e-5,
+    "material": {"name": "pvdf", "youngs_modulus_pa": 3.0e9, "poisson_ratio": 0.35, "density_kg_m3": 1780.0},
+}
 #: row -> (mass g, diameter mm, measured us, published fem us, published sem us)
 ROWS = {"ball_a": (8.46, 12.73, 111.10, 121.71, 64.82), "ball_b": (0.13, 3.16, 36.42, 31.20, 15.32)}
 ROLES = {"no_film": "rod", "film": "rod_film", "film_calibrated": "rod_film_cal", "no_film_calibrated": "rod_cal"}
-CONTACT = {"rod": None, "rod_film": {"law": "hertz_film", "film": FILM},
-           "rod_film_cal": {"law": "tabulated", "from": "fem_axi_indentation", "film": FILM},
-           "rod_cal": {"law": "tabulated", "from": "fem_axi_indentation"}}
-METHODS_OF = {"rod": ("sem", "fem1d", "fem_axi"), "rod_film": ("sem", "fem1d", "fem_axi"),
-              "rod_film_cal": ("sem",), "rod_cal": ("sem",)}
+CONTACT = {
+    "rod": None,
+    "rod_film": {"law": "hertz_film", "film": FILM},
+    "rod_film_cal": {"law": "tabulated", "from": "fem_axi_indentation", "film": FILM},
+    "rod_cal": {"law": "tabulated", "from": "fem_axi_indentation"},
+}
+METHODS_OF = {
+    "rod": ("sem", "fem1d", "fem_axi"),
+    "rod_film": ("sem", "fem1d", "fem_axi"),
+    "rod_film_cal": ("sem",),
+    "rod_cal": ("sem",),
+}
 
 
 def contact_time_us(row: str, variant: str, method: str) -> float:
@@ -48,12 +58,19 @@ def contact_time_us(row: str, variant: str, method: str) -> float:
 
 def case_config(row: str, variant: str) -> dict:
     mass, diameter, measured, fem, sem = ROWS[row]
-    config = {"id": f"{row}-{variant}", "row": row, "variant": variant, "set": "table2",
-              "impactor": {"mass_kg": mass / 1000, "radius_m": diameter / 2000, "velocity_m_s": 0.3225},
-              "rod": {"radius_m": 0.01, "length_m": 0.0301},
-              "measured": {"contact_time_us": measured},
-              "published": {"fem": {"contact_time_us": fem, "error_pct": abs(fem - measured) / measured * 100},
-                            "sem": {"contact_time_us": sem, "error_pct": abs(sem - measured) / measured * 100}}}
+    config = {
+        "id": f"{row}-{variant}",
+        "row": row,
+        "variant": variant,
+        "set": "table2",
+        "impactor": {"mass_kg": mass / 1000, "radius_m": diameter / 2000, "velocity_m_s": 0.3225},
+        "rod": {"radius_m": 0.01, "length_m": 0.0301},
+        "measured": {"contact_time_us": measured},
+        "published": {
+            "fem": {"contact_time_us": fem, "error_pct": abs(fem - measured) / measured * 100},
+            "sem": {"contact_time_us": sem, "error_pct": abs(sem - measured) / measured * 100},
+        },
+    }
     if CONTACT[variant] is not None:
         config["contact"] = CONTACT[variant]
     return config
@@ -63,35 +80,59 @@ def write_synthetic_run(root: Path, row: str, variant: str, method: str, radius_
     tc = 1e-6 * contact_time_us(row, variant, method)
     time = np.linspace(0.0, 1.2 * tc, 61)
     force = np.where(time <= tc, 100.0 * ROWS[row][0] * np.sin(np.pi * np.minimum(time / tc, 1.0)), 0.0)
-    summary = {"contact_time_s": tc, "peak_force_N": np.array([force.max()]), "peak_time_s": np.array([tc / 2]),
-               "rebound_velocity_m_s": -0.3, "energy_error": 0.0, "contact_start_s": np.array([0.0]),
-               "contact_end_s": np.array([tc]), "n_contacts": 1}
+    summary = {
+        "contact_time_s": tc,
+        "peak_force_N": np.array([force.max()]),
+        "peak_time_s": np.array([tc / 2]),
+        "rebound_velocity_m_s": -0.3,
+        "energy_error": 0.0,
+        "contact_start_s": np.array([0.0]),
+        "contact_end_s": np.array([tc]),
+        "n_contacts": 1,
+    }
     if variant == "rod_film" and method != "fem_axi":
         summary.update(contact_law="hertz_film", film_radius_to_thickness=radius_ratio)
     path = root / "runs" / f"{row}-{variant}" / f"{method}.h5"
-    return write_run(path, config=case_config(row, variant), method=method, wall_time_s=0.1, code_version="test",
-                     series={"time": (time, "s", "time"), "contact_force": (force, "N", "contact force")},
-                     summary=summary)
+    return write_run(
+        path,
+        config=case_config(row, variant),
+        method=method,
+        wall_time_s=0.1,
+        code_version="test",
+        series={"time": (time, "s", "time"), "contact_force": (force, "N", "contact force")},
+        summary=summary,
+    )
 
 
-def synthetic_band(case_id: str, corner_us: list[float], measured: float, nominal: float,
-                   monotone: bool = True) -> CaseBand:
+def synthetic_band(
+    case_id: str, corner_us: list[float], measured: float, nominal: float, monotone: bool = True
+) -> CaseBand:
     axis = np.array([nominal - 1, nominal, nominal + 1]) if monotone else np.array([nominal, nominal + 1, nominal])
-    return CaseBand(case_id=case_id, measured_us=measured, nominal_us=nominal,
-                    corner_parameters=np.ones((len(corner_us), len(BAND_PARAMETERS))),
-                    corner_us=np.asarray(corner_us, float),
-                    axis_values={n: np.array([1.0, 2.0, 3.0]) for n in BAND_PARAMETERS},
-                    axis_us={n: axis.astype(float) for n in BAND_PARAMETERS})
+    return CaseBand(
+        case_id=case_id,
+        measured_us=measured,
+        nominal_us=nominal,
+        corner_parameters=np.ones((len(corner_us), len(BAND_PARAMETERS))),
+        corner_us=np.asarray(corner_us, float),
+        axis_values={n: np.array([1.0, 2.0, 3.0]) for n in BAND_PARAMETERS},
+        axis_us={n: axis.astype(float) for n in BAND_PARAMETERS},
+    )
 
 
 @pytest.fixture(scope="module")
 def store(tmp_path_factory) -> dict:
     """Runs of both rows on the four readings, and the band file of the film reading."""
     root = tmp_path_factory.mktemp("film_present")
-    runs = [write_synthetic_run(root, row, variant, method, radius_ratio=4.0 if row == "ball_b" else 9.0)
-            for row in ROWS for variant, methods in METHODS_OF.items() for method in methods]
-    bands = [synthetic_band("ball_a-rod_film", [95.0, 105.0, 100.0], measured=111.10, nominal=100.0),
-             synthetic_band("ball_b-rod_film", [30.0, 38.0, 33.0], measured=36.42, nominal=33.0, monotone=False)]
+    runs = [
+        write_synthetic_run(root, row, variant, method, radius_ratio=4.0 if row == "ball_b" else 9.0)
+        for row in ROWS
+        for variant, methods in METHODS_OF.items()
+        for method in methods
+    ]
+    bands = [
+        synthetic_band("ball_a-rod_film", [95.0, 105.0, 100.0], measured=111.10, nominal=100.0),
+        synthetic_band("ball_b-rod_film", [30.0, 38.0, 33.0], measured=36.42, nominal=33.0, monotone=False),
+    ]
     band = write_band(root / "film_band_rod_film.h5", bands, variant="rod_film", method="sem", config=[])
     return {"root": root, "runs": runs, "band": band}
 
@@ -101,10 +142,23 @@ def test_film_table_numbers(store: dict) -> None:
     _, bands = read_band(store["band"])
     frame = film_table_frame(records, ROLES, bands)
     assert list(frame["row"]) == ["ball_b", "ball_a"]  # by mass
-    for column in ("sem_no_film_us", "fem1d_no_film_us", "fem_axi_no_film_us", "sem_film_us", "fem1d_film_us",
-                   "fem_axi_film_us", "sem_film_calibrated_us", "sem_no_film_calibrated_us", "thin_layer_band_min_us",
-                   "thin_layer_band_max_us", "sensor_band_min_us", "sensor_band_max_us", "radius_to_thickness",
-                   "model_form_pct", "sensor_model_form_pct"):
+    for column in (
+        "sem_no_film_us",
+        "fem1d_no_film_us",
+        "fem_axi_no_film_us",
+        "sem_film_us",
+        "fem1d_film_us",
+        "fem_axi_film_us",
+        "sem_film_calibrated_us",
+        "sem_no_film_calibrated_us",
+        "thin_layer_band_min_us",
+        "thin_layer_band_max_us",
+        "sensor_band_min_us",
+        "sensor_band_max_us",
+        "radius_to_thickness",
+        "model_form_pct",
+        "sensor_model_form_pct",
+    ):
         assert column in frame, column
     for record in frame.itertuples():
         measured = ROWS[record.row][2]
@@ -152,13 +206,25 @@ def test_film_indentation_frame(tmp_path: Path) -> None:
     approach = 1e-7 * force ** (2 / 3)
     law = approach * np.array([1.10, 1.05, 0.98])
     radius = np.array([20e-6, 50e-6, 120e-6])
-    data = {"approach_m": approach, "force_N": force, "contact_radius_m": radius, "displacement_m": 2 * approach,
-            "law_approach_m": law}
-    with_film = ContactCurve("ball_b-rod_film_cal", data, {"analytic_law": "hertz_film",
-                                                           "interpolation_error_half": 2e-3},
-                             case_config("ball_b", "rod_film_cal"))
-    bare = ContactCurve("ball_b-rod_cal", data, {"analytic_law": "hertz", "interpolation_error_half": 1e-3},
-                        case_config("ball_b", "rod_cal"))
+    data = {
+        "approach_m": approach,
+        "force_N": force,
+        "contact_radius_m": radius,
+        "displacement_m": 2 * approach,
+        "law_approach_m": law,
+    }
+    with_film = ContactCurve(
+        "ball_b-rod_film_cal",
+        data,
+        {"analytic_law": "hertz_film", "interpolation_error_half": 2e-3},
+        case_config("ball_b", "rod_film_cal"),
+    )
+    bare = ContactCurve(
+        "ball_b-rod_cal",
+        data,
+        {"analytic_law": "hertz", "interpolation_error_half": 1e-3},
+        case_config("ball_b", "rod_cal"),
+    )
     curves = [read_contact_curve(write_contact_curve(tmp_path / f"{c.case_id}.h5", c)) for c in (with_film, bare)]
     frame = film_indentation_frame(curves)
     assert len(frame) == 6
@@ -200,8 +266,13 @@ def test_readings_variants_summary_and_panels(store: dict) -> None:
 
 def test_headers_carry_units() -> None:
     headers = headers_with_units(["measured_us", "mass_g", "sem_film_error_pct", "row", "force_N"])
-    assert headers == {"measured_us": "Measured (µs)", "mass_g": "Mass (g)", "sem_film_error_pct": "SEM, film error (%)",
-                       "row": "Ball", "force_N": "Force (N)"}
+    assert headers == {
+        "measured_us": "Measured (µs)",
+        "mass_g": "Mass (g)",
+        "sem_film_error_pct": "SEM, film error (%)",
+        "row": "Ball",
+        "force_N": "Force (N)",
+    }
 
 
 def test_film_force_figure_renders(store: dict, tmp_path: Path) -> None:
@@ -217,8 +288,9 @@ def test_film_force_figure_renders(store: dict, tmp_path: Path) -> None:
         assert sum("with film" in label for label in labels) == 2 and sum("no film" in label for label in labels) == 2
         assert all("_" not in label for label in labels), labels  # words, not ids
     out = {k: tmp_path / f"film_force.{k}" for k in ("pdf", "png")}
-    make_fig_film_force(runs, ["ball_b", "ball_a"], pdf=out["pdf"], png=out["png"],
-                        provenance=tmp_path / "film_force.provenance.json")
+    make_fig_film_force(
+        runs, ["ball_b", "ball_a"], pdf=out["pdf"], png=out["png"], provenance=tmp_path / "film_force.provenance.json"
+    )
     assert out["png"].stat().st_size > 1000 and out["pdf"].stat().st_size > 1000
     record = json.loads((tmp_path / "film_force.provenance.json").read_text())
     assert len(record["inputs"]) == 8
@@ -226,8 +298,15 @@ def test_film_force_figure_renders(store: dict, tmp_path: Path) -> None:
 
 def test_table2_film_artifact_and_sidecar(store: dict, tmp_path: Path) -> None:
     out = {k: tmp_path / f"table2_film.{k}" for k in ("csv", "md", "html", "provenance.json")}
-    make_film_table(store["runs"], ROLES, store["band"], csv=out["csv"], md=out["md"], html=out["html"],
-                     provenance=out["provenance.json"])
+    make_film_table(
+        store["runs"],
+        ROLES,
+        store["band"],
+        csv=out["csv"],
+        md=out["md"],
+        html=out["html"],
+        provenance=out["provenance.json"],
+    )
     table = pd.read_csv(out["csv"])
     assert len(table) == 2 and "model_form_pct" in table
     markdown = out["md"].read_text(encoding="utf-8")
@@ -238,8 +317,14 @@ def test_table2_film_artifact_and_sidecar(store: dict, tmp_path: Path) -> None:
     assert [f["kind"] for f in record["input_files"]] == ["band"]
     assert set(record["sha256"]) == {str(out["csv"]), str(out["md"]), str(out["html"])}
     with pytest.raises(ValueError, match="not of the film reading"):
-        make_film_table(store["runs"], {**ROLES, "film": "rod"}, store["band"], csv=out["csv"], md=out["md"],
-                         provenance=out["provenance.json"])
+        make_film_table(
+            store["runs"],
+            {**ROLES, "film": "rod"},
+            store["band"],
+            csv=out["csv"],
+            md=out["md"],
+            provenance=out["provenance.json"],
+        )
 
 
 def test_table2_figure_draws_the_film_on_its_rod(store: dict) -> None:
@@ -248,12 +333,25 @@ def test_table2_figure_draws_the_film_on_its_rod(store: dict) -> None:
     frames = {v: table2_frame([r for r in records if r.config["variant"] == v]) for v in METHODS_OF}
     variant, bands = read_band(store["band"])
     band_frame = film_band_frame({variant: bands}, {r.case_id: r.config for r in records})
-    sweeps = pd.DataFrame({
-        "variant": ["rod_film"] * 6, "row": ["sweep"] * 6, "method": ["sem"] * 6,
-        "film_modulus_pa": [2e9, 2e9, 3e9, 3e9, 4e9, 4e9], "diameter_mm": [3.0, 12.0] * 3,
-        "mass_g": [0.11, 7.1] * 3, "contact_time_us": [40.0, 120.0, 36.0, 110.0, 34.0, 104.0]})
-    fig = plot_table2_contact_time(frames, sweeps, panels=table2_panels(readings, ["rod_film"]), readings=readings,
-                                   bands=band_frame, set_title="Table 2")
+    sweeps = pd.DataFrame(
+        {
+            "variant": ["rod_film"] * 6,
+            "row": ["sweep"] * 6,
+            "method": ["sem"] * 6,
+            "film_modulus_pa": [2e9, 2e9, 3e9, 3e9, 4e9, 4e9],
+            "diameter_mm": [3.0, 12.0] * 3,
+            "mass_g": [0.11, 7.1] * 3,
+            "contact_time_us": [40.0, 120.0, 36.0, 110.0, 34.0, 104.0],
+        }
+    )
+    fig = plot_table2_contact_time(
+        frames,
+        sweeps,
+        panels=table2_panels(readings, ["rod_film"]),
+        readings=readings,
+        bands=band_frame,
+        set_title="Table 2",
+    )
     visible = [ax for ax in fig.axes if ax.get_visible()]
     assert len(visible) == 1 and "µs" in visible[0].get_ylabel() and "g" in visible[0].get_xlabel()
     labels = [" ".join(t.get_text().split()) for t in fig.legends[0].get_texts()]  # unwrapped

@@ -40,6 +40,7 @@ def test_a_hertz_pulse_meets_the_target_and_the_error_is_the_measured_one() -> N
 
 def test_two_contacts_are_two_pieces_with_no_force_between() -> None:
     t = np.linspace(0.0, 1e-3, 5001)
+
     def bump(a: float, b: float) -> np.ndarray:
         phase = np.clip((t - a) / (b - a), 0.0, 1.0)
         return np.where((t >= a) & (t <= b), np.sin(np.pi * phase) ** 1.5, 0.0)
@@ -67,10 +68,19 @@ def model_run(tmp_path: Path) -> Path:
     from rodimpact.solvers.sem.solver import solve_sem
 
     result = solve_sem(model_problem())
-    series = {"time": (result.time, "s", "time since first contact"),
-              "contact_force": (result.contact_force, "N", "contact force")}
-    return write_run(tmp_path / "runs" / "model" / "sem.h5", method="sem", config={"id": "model"},
-                     series=series, summary=result.summary(), wall_time_s=0.1, code_version="0.1.0+gdeadbeef")
+    series = {
+        "time": (result.time, "s", "time since first contact"),
+        "contact_force": (result.contact_force, "N", "contact force"),
+    }
+    return write_run(
+        tmp_path / "runs" / "model" / "sem.h5",
+        method="sem",
+        config={"id": "model"},
+        series=series,
+        summary=result.summary(),
+        wall_time_s=0.1,
+        code_version="0.1.0+gdeadbeef",
+    )
 
 
 def test_the_export_carries_the_force_its_closed_form_and_its_provenance(model_run: Path, tmp_path: Path) -> None:

@@ -59,8 +59,7 @@ def test_rigid_hertz_impact_against_ode():
         return y[1]
 
     separation.terminal, separation.direction = True, -1
-    sol = solve_ivp(rhs, (0, 1.0), [0.0, v0], events=(separation, turning), rtol=1e-12, atol=1e-20,
-                    method="DOP853")
+    sol = solve_ivp(rhs, (0, 1.0), [0.0, v0], events=(separation, turning), rtol=1e-12, atol=1e-20, method="DOP853")
     assert sol.t_events[0][0] == pytest.approx(closed.contact_time_s, rel=1e-8)
     alpha_max = sol.y_events[1][0][0]
     assert alpha_max == pytest.approx(closed.max_approach_m, rel=1e-8)

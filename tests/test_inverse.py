@@ -32,8 +32,12 @@ def contact_times_us(theta_m: float) -> np.ndarray:
     h = BASE_THICKNESS_M + theta_m
     times = []
     for radius, mass in zip(RADII_M, MASSES_KG):
-        law = HertzFilmLaw(k=hertz_constant(radius, STEEL, ALUMINIUM), c=film_constant(radius, h, FILM_MODULUS_PA),
-                           sphere_radius_m=radius, thickness_m=h)
+        law = HertzFilmLaw(
+            k=hertz_constant(radius, STEEL, ALUMINIUM),
+            c=film_constant(radius, h, FILM_MODULUS_PA),
+            sphere_radius_m=radius,
+            thickness_m=h,
+        )
         times.append(1e6 * law.rigid_impact(mass, VELOCITY_M_S).contact_time_s)
     return np.array(times)
 
@@ -44,8 +48,11 @@ def film_model() -> dict[str, np.ndarray]:
     step = 1e-8
     exact = contact_times_us(THETA_TRUE_M)
     slope = (contact_times_us(THETA_TRUE_M + step) - contact_times_us(THETA_TRUE_M - step)) / (2 * step)
-    return {"predicted": np.column_stack([contact_times_us(x) for x in THETA_GRID_M]), "exact": exact,
-            "sensitivity": slope / exact}  # (1/t) dt/dtheta, 1/m
+    return {
+        "predicted": np.column_stack([contact_times_us(x) for x in THETA_GRID_M]),
+        "exact": exact,
+        "sensitivity": slope / exact,
+    }  # (1/t) dt/dtheta, 1/m
 
 
 def test_the_model_grid_interpolates_to_the_exact_times_well_enough(film_model) -> None:
@@ -107,8 +114,10 @@ def test_leave_one_out_without_noise_predicts_every_held_out_ball(film_model) ->
     np.testing.assert_allclose(loo.theta, THETA_TRUE_M, rtol=1e-3)
     np.testing.assert_allclose(loo.abs_error_pct, np.abs(loo.signed_error_pct))
     assert loo.mean_abs_error_pct == pytest.approx(np.mean(loo.abs_error_pct))
-    np.testing.assert_allclose(loo.held_out_predicted,
-                               [predict_at(THETA_GRID_M, film_model["predicted"], t)[i] for i, t in enumerate(loo.theta)])
+    np.testing.assert_allclose(
+        loo.held_out_predicted,
+        [predict_at(THETA_GRID_M, film_model["predicted"], t)[i] for i, t in enumerate(loo.theta)],
+    )
 
 
 def test_the_held_out_row_does_not_influence_its_own_fold(film_model) -> None:
@@ -137,11 +146,21 @@ def test_a_minimum_beyond_the_grid_is_reported_at_its_edge_never_extrapolated(fi
     assert error.value.field == "theta"
 
 
-@pytest.mark.parametrize("change, field", [
-    ("non_monotone", "predicted"), ("short_row", "predicted"), ("nan_measured", "measured"),
-    ("short_measured", "measured"), ("negative_measured", "measured"), ("decreasing_grid", "theta_grid"),
-    ("two_point_grid", "theta_grid"), ("bad_rows", "rows"), ("bad_weights", "weights"),
-    ("bad_range", "source_range")])
+@pytest.mark.parametrize(
+    "change, field",
+    [
+        ("non_monotone", "predicted"),
+        ("short_row", "predicted"),
+        ("nan_measured", "measured"),
+        ("short_measured", "measured"),
+        ("negative_measured", "measured"),
+        ("decreasing_grid", "theta_grid"),
+        ("two_point_grid", "theta_grid"),
+        ("bad_rows", "rows"),
+        ("bad_weights", "weights"),
+        ("bad_range", "source_range"),
+    ],
+)
 def test_bad_input_raises_naming_the_argument(film_model, change, field) -> None:
     predicted, exact = film_model["predicted"], film_model["exact"]
     wiggle = predicted.copy()

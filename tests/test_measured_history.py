@@ -26,8 +26,10 @@ def _write(path: Path, text: str) -> Path:
 def test_units_from_the_header_or_declared_and_the_offset(tmp_path: Path) -> None:
     rows = "\n".join(f"{k},{0.1 * k}" for k in range(30))
     header = read_force_history(_write(tmp_path / "a.csv", "time_us,force_kN\n" + rows), {})
-    declared = read_force_history(_write(tmp_path / "b.csv", "time,force\n" + rows),
-                                  {"time_unit": "us", "force_unit": "kN", "time_offset_s": -2e-6, "note": "piezo"})
+    declared = read_force_history(
+        _write(tmp_path / "b.csv", "time,force\n" + rows),
+        {"time_unit": "us", "force_unit": "kN", "time_offset_s": -2e-6, "note": "piezo"},
+    )
     np.testing.assert_allclose(header.time_s, 1e-6 * np.arange(30), rtol=1e-12)
     np.testing.assert_allclose(header.force_N, 100.0 * np.arange(30), rtol=1e-12)
     np.testing.assert_allclose(declared.time_s, header.time_s - 2e-6, rtol=0, atol=1e-18)
@@ -36,19 +38,32 @@ def test_units_from_the_header_or_declared_and_the_offset(tmp_path: Path) -> Non
     np.testing.assert_allclose(thinned.time_s, 1e-6 * np.arange(0, 30, 3), rtol=1e-12)
 
 
-@pytest.mark.parametrize("name, text, spec, field, words", [
-    ("missing.csv", None, {}, "file", "no such file"),
-    ("noheader.csv", "0,1\n1,2\n", {}, "file", "header"),
-    ("unit.csv", "time_fortnight,force_N\n", {}, "time_unit", "unknown unit 'fortnight'"),
-    ("nounit.csv", "time,force_N\n", {}, "time_unit", "names no unit"),
-    ("clash.csv", "time_s,force_N\n", {"force_unit": "kN"}, "force_unit", "contradicts"),
-    ("back.csv", "time_s,force_N\n" + "".join(f"{t},1\n" for t in [0, 1, 2, 3, 2.5, 5, 6, 7, 8]), {}, "file",
-     "line 6: the time must increase"),
-    ("nan.csv", "time_s,force_N\n" + "".join(f"{t},1\n" for t in range(8)) + "9,nan\n", {}, "file",
-     "line 10: not a finite number"),
-    ("text.csv", "time_s,force_N\n0,abc\n", {}, "file", "line 2: not a number"),
-    ("short.csv", "time_s,force_N\n0,1\n1,2\n", {}, "file", "fewer than 8"),
-])
+@pytest.mark.parametrize(
+    "name, text, spec, field, words",
+    [
+        ("missing.csv", None, {}, "file", "no such file"),
+        ("noheader.csv", "0,1\n1,2\n", {}, "file", "header"),
+        ("unit.csv", "time_fortnight,force_N\n", {}, "time_unit", "unknown unit 'fortnight'"),
+        ("nounit.csv", "time,force_N\n", {}, "time_unit", "names no unit"),
+        ("clash.csv", "time_s,force_N\n", {"force_unit": "kN"}, "force_unit", "contradicts"),
+        (
+            "back.csv",
+            "time_s,force_N\n" + "".join(f"{t},1\n" for t in [0, 1, 2, 3, 2.5, 5, 6, 7, 8]),
+            {},
+            "file",
+            "line 6: the time must increase",
+        ),
+        (
+            "nan.csv",
+            "time_s,force_N\n" + "".join(f"{t},1\n" for t in range(8)) + "9,nan\n",
+            {},
+            "file",
+            "line 10: not a finite number",
+        ),
+        ("text.csv", "time_s,force_N\n0,abc\n", {}, "file", "line 2: not a number"),
+        ("short.csv", "time_s,force_N\n0,1\n1,2\n", {}, "file", "fewer than 8"),
+    ],
+)
 def test_each_bad_file_is_one_error_naming_its_key(tmp_path: Path, name, text, spec, field, words) -> None:
     path = tmp_path / name if text is None else _write(tmp_path / name, text)
     with pytest.raises(HistoryError) as caught:

@@ -12,7 +12,7 @@ from rodimpact.solvers.fem_axi.meshes import ball_mesh, cap_mesh, hertz_mesh_siz
 
 MIN_ANGLE_DEG = 20.0  # measured: 26.7 (hemisphere) to 28.7 degrees
 SPHERE_RTOL = 1e-12
-CHORD_VOLUME_RTOL = (meshes.SURFACE_CHORD ** 2) / 4 * 1.5  # chords of at most R/32
+CHORD_VOLUME_RTOL = (meshes.SURFACE_CHORD**2) / 4 * 1.5  # chords of at most R/32
 
 # (name, builder, R, height); the cases of the report: (b) cap, (c), (d) balls
 CURVED = {
@@ -20,8 +20,7 @@ CURVED = {
     "cap_R10_h3": (lambda: cap_mesh(10e-3, 3e-3, 60e-6, 1.0e-3), 10e-3, 3e-3, 60e-6, 1.0e-3),
     "cap_R10_h15": (lambda: cap_mesh(10e-3, 15e-3, 0.2e-3, 1e-3), 10e-3, 15e-3, 0.2e-3, 1e-3),
     "ball_R1.58": (lambda: ball_mesh(1.58e-3, 5e-6, 0.2e-3), 1.58e-3, 3.16e-3, 5e-6, 0.2e-3),
-    "ball_R6.365": (lambda: ball_mesh(6.365e-3, 20e-6, 0.6e-3), 6.365e-3, 12.73e-3, 20e-6,
-                    0.6e-3),
+    "ball_R6.365": (lambda: ball_mesh(6.365e-3, 20e-6, 0.6e-3), 6.365e-3, 12.73e-3, 20e-6, 0.6e-3),
 }
 
 
@@ -61,7 +60,7 @@ def edge_lengths(mesh, facets):
 
 
 def cap_volume(radius, height):
-    return math.pi * height ** 2 * (3 * radius - height) / 3
+    return math.pi * height**2 * (3 * radius - height) / 3
 
 
 def assert_boundaries_partition(body):
@@ -77,8 +76,7 @@ def assert_boundaries_partition(body):
 
 def test_rod_coordinates_graded_and_exact(rod):
     a, length, fine, extent = 3.99e-3, 0.5, 60e-6, 2e-3
-    for x, end, coarse in ((np.unique(rod.mesh.p[0]), a, a / 4),
-                           (np.unique(rod.mesh.p[1]), length, a / 2)):
+    for x, end, coarse in ((np.unique(rod.mesh.p[0]), a, a / 4), (np.unique(rod.mesh.p[1]), length, a / 2)):
         assert x[0] == 0.0 and x[-1] == end
         h = np.diff(x)
         in_fine = x[1:] <= extent * (1 + 1e-12)
@@ -97,19 +95,18 @@ def test_rod_mesh_geometry_and_boundaries(rod):
     assert np.all(areas(mesh) > 0)
     assert volume(mesh) == pytest.approx(math.pi * a * a * length, rel=1e-12)
     assert_boundaries_partition(rod)
-    for name, index, value in (("axis", 0, 0.0), ("lateral", 0, a), ("end", 1, 0.0),
-                               ("far", 1, length)):
+    for name, index, value in (("axis", 0, 0.0), ("lateral", 0, a), ("end", 1, 0.0), ("far", 1, length)):
         assert np.all(p[index, mesh.facets[:, rod.boundaries[name]]] == value), name
     n_r, n_z = np.unique(p[0]).size, np.unique(p[1]).size
-    assert [rod.boundaries[k].size for k in ("axis", "lateral", "end", "far")] == [
-        n_z - 1, n_z - 1, n_r - 1, n_r - 1]
+    assert [rod.boundaries[k].size for k in ("axis", "lateral", "end", "far")] == [n_z - 1, n_z - 1, n_r - 1, n_r - 1]
     # square cells near the struck end; elongated ones (fine r, coarse z) far from it
     near = p[:, mesh.t].max(axis=(0, 1)) <= 2e-3
     sub = type(mesh)(p, np.ascontiguousarray(mesh.t[:, near]), sort_t=False)
     assert min_angle_deg(sub) == pytest.approx(45.0, abs=1e-9)
     h_r, h_z = np.diff(np.unique(p[0])), np.diff(np.unique(p[1]))
     assert min_angle_deg(mesh) == pytest.approx(
-        math.degrees(math.atan(h_r.min() / h_z.max())), abs=1e-9)  # 1.7 degrees here
+        math.degrees(math.atan(h_r.min() / h_z.max())), abs=1e-9
+    )  # 1.7 degrees here
 
 
 def test_rod_grading_corner_cases():
@@ -184,13 +181,13 @@ def test_ball_volume_converges_at_second_order(monkeypatch):
     halving; 4.5e-4 relative at R/16."""
     monkeypatch.setattr(meshes, "SURFACE_CHORD", 1.0)
     radius = 1.0
-    errors = [1 - volume(ball_mesh(radius, radius / k, 3 * radius).mesh)
-              / cap_volume(radius, 2 * radius) for k in (8, 16, 32)]
+    errors = [
+        1 - volume(ball_mesh(radius, radius / k, 3 * radius).mesh) / cap_volume(radius, 2 * radius) for k in (8, 16, 32)
+    ]
     assert errors[1] < 1e-3
     orders = np.log2(np.array(errors[:-1]) / errors[1:])
     assert np.all((orders > 1.8) & (orders < 2.2)), orders
-    hemisphere = 1 - volume(cap_mesh(radius, radius, radius / 16, 3 * radius).mesh) / (
-        2 * math.pi / 3)
+    hemisphere = 1 - volume(cap_mesh(radius, radius, radius / 16, 3 * radius).mesh) / (2 * math.pi / 3)
     assert 0 < hemisphere < 1e-3
 
 
@@ -232,25 +229,28 @@ def test_hertz_mesh_sizes():
             hertz_mesh_sizes(1e-4, bad)
 
 
-@pytest.mark.parametrize("call, argument", [
-    (lambda: rod_mesh(0.0, 0.5, 1e-4, 1e-3), "radius_m"),
-    (lambda: rod_mesh(1e-3, -0.5, 1e-4, 1e-3), "length_m"),
-    (lambda: rod_mesh(1e-3, 0.5, 0.0, 1e-3), "fine_size_m"),
-    (lambda: rod_mesh(1e-3, 0.5, float("nan"), 1e-3), "fine_size_m"),
-    (lambda: rod_mesh(1e-3, 0.5, 1e-4, 0.0), "fine_extent_m"),
-    (lambda: rod_mesh(1e-3, 0.5, 2e-3, 1e-3), "fine_size_m"),
-    (lambda: rod_mesh(1e-3, 0.5, 1e-4, 1e-3, coarse_size_m=5e-5), "coarse_size_m"),
-    (lambda: rod_mesh(1e-3, 0.5, 1e-4, 1e-3, coarse_size_m=-1.0), "coarse_size_m"),
-    (lambda: cap_mesh(-1e-3, 1e-3, 1e-5, 1e-4), "sphere_radius_m"),
-    (lambda: cap_mesh(1e-3, 0.0, 1e-5, 1e-4), "height_m"),
-    (lambda: cap_mesh(1e-3, 2e-3, 1e-5, 1e-4), "height_m"),
-    (lambda: cap_mesh(1e-3, 0.5e-3, 0.6e-3, 1e-4), "fine_size_m"),
-    (lambda: cap_mesh(1e-3, 1e-3, 1e-5, float("inf")), "fine_extent_m"),
-    (lambda: ball_mesh(0.0, 1e-5, 1e-4), "sphere_radius_m"),
-    (lambda: ball_mesh(1e-3, -1e-5, 1e-4), "fine_size_m"),
-    (lambda: ball_mesh(1e-3, 1.5e-3, 1e-4), "fine_size_m"),
-    (lambda: ball_mesh(1e-3, 1e-5, -1e-4), "fine_extent_m"),
-])
+@pytest.mark.parametrize(
+    "call, argument",
+    [
+        (lambda: rod_mesh(0.0, 0.5, 1e-4, 1e-3), "radius_m"),
+        (lambda: rod_mesh(1e-3, -0.5, 1e-4, 1e-3), "length_m"),
+        (lambda: rod_mesh(1e-3, 0.5, 0.0, 1e-3), "fine_size_m"),
+        (lambda: rod_mesh(1e-3, 0.5, float("nan"), 1e-3), "fine_size_m"),
+        (lambda: rod_mesh(1e-3, 0.5, 1e-4, 0.0), "fine_extent_m"),
+        (lambda: rod_mesh(1e-3, 0.5, 2e-3, 1e-3), "fine_size_m"),
+        (lambda: rod_mesh(1e-3, 0.5, 1e-4, 1e-3, coarse_size_m=5e-5), "coarse_size_m"),
+        (lambda: rod_mesh(1e-3, 0.5, 1e-4, 1e-3, coarse_size_m=-1.0), "coarse_size_m"),
+        (lambda: cap_mesh(-1e-3, 1e-3, 1e-5, 1e-4), "sphere_radius_m"),
+        (lambda: cap_mesh(1e-3, 0.0, 1e-5, 1e-4), "height_m"),
+        (lambda: cap_mesh(1e-3, 2e-3, 1e-5, 1e-4), "height_m"),
+        (lambda: cap_mesh(1e-3, 0.5e-3, 0.6e-3, 1e-4), "fine_size_m"),
+        (lambda: cap_mesh(1e-3, 1e-3, 1e-5, float("inf")), "fine_extent_m"),
+        (lambda: ball_mesh(0.0, 1e-5, 1e-4), "sphere_radius_m"),
+        (lambda: ball_mesh(1e-3, -1e-5, 1e-4), "fine_size_m"),
+        (lambda: ball_mesh(1e-3, 1.5e-3, 1e-4), "fine_size_m"),
+        (lambda: ball_mesh(1e-3, 1e-5, -1e-4), "fine_extent_m"),
+    ],
+)
 def test_bad_input_names_the_argument(call, argument):
     with pytest.raises(ValueError, match=argument):
         call()

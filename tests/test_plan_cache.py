@@ -42,11 +42,15 @@ def test_the_project_key_follows_every_input(root: Path) -> None:
     assert project_key(CONFIG, root) != key  # a schema
 
 
-@pytest.mark.parametrize("make", [
-    lambda cases: (cases / "dir.yaml").mkdir(),
-    lambda cases: (cases / "empty").mkdir(),
-    lambda cases: (cases / "gone.yaml").symlink_to(cases / "nowhere.yaml"),
-], ids=["directory named like a case file", "empty directory", "dangling link"])
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda cases: (cases / "dir.yaml").mkdir(),
+        lambda cases: (cases / "empty").mkdir(),
+        lambda cases: (cases / "gone.yaml").symlink_to(cases / "nowhere.yaml"),
+    ],
+    ids=["directory named like a case file", "empty directory", "dangling link"],
+)
 def test_the_project_key_follows_entries_that_are_no_readable_file(root: Path, make) -> None:
     """The loader reads (or refuses) whatever the cases directory holds, so the key covers every
     entry: with the cache in place, ``config/cases/dir.yaml/`` is still refused in one line."""

@@ -25,19 +25,36 @@ REPO = Path(__file__).resolve().parents[1]
 DRY_RUN_TIMEOUT_S = 300
 
 
-@pytest.mark.parametrize("argv, targets", [
-    (["snakemake", "-j2", "--directory", ".test", "results/a.csv", "all"], ["results/a.csv", "all"]),
-    (["/env/lib/python3.11/site-packages/snakemake/__main__.py", "--nocolor", "-n", "results/runs/model/sem.h5"],
-     ["results/runs/model/sem.h5"]),
-    (["snakemake", "-n", "--quiet", "rules"], []),
-    (["snakemake", "-j1", "--forcerun", "bench_sem", "bench_fem", "--", "results/benchmarks/sem.csv"],
-     ["results/benchmarks/sem.csv"]),
-    (["snakemake", "--config", "targets={sets: [model]}", "--", "results/tables/table2_r1_l30.csv"],
-     ["results/tables/table2_r1_l30.csv"]),
-    (["pytest", "results/a.csv"], []),
-    ([], []),
-], ids=["targets after options", "python -m snakemake", "a list option's value", "after --", "after --config",
-        "not snakemake", "no command line"])
+@pytest.mark.parametrize(
+    "argv, targets",
+    [
+        (["snakemake", "-j2", "--directory", ".test", "results/a.csv", "all"], ["results/a.csv", "all"]),
+        (
+            ["/env/lib/python3.11/site-packages/snakemake/__main__.py", "--nocolor", "-n", "results/runs/model/sem.h5"],
+            ["results/runs/model/sem.h5"],
+        ),
+        (["snakemake", "-n", "--quiet", "rules"], []),
+        (
+            ["snakemake", "-j1", "--forcerun", "bench_sem", "bench_fem", "--", "results/benchmarks/sem.csv"],
+            ["results/benchmarks/sem.csv"],
+        ),
+        (
+            ["snakemake", "--config", "targets={sets: [model]}", "--", "results/tables/table2_r1_l30.csv"],
+            ["results/tables/table2_r1_l30.csv"],
+        ),
+        (["pytest", "results/a.csv"], []),
+        ([], []),
+    ],
+    ids=[
+        "targets after options",
+        "python -m snakemake",
+        "a list option's value",
+        "after --",
+        "after --config",
+        "not snakemake",
+        "no command line",
+    ],
+)
 def test_snakemakes_parser_reads_the_targets_of_a_command_line(argv: list[str], targets: list[str]) -> None:
     """snakemake.cli.get_argument_parser still exists and names its positionals ``targets``."""
     assert command_line_targets(argv) == targets
@@ -83,20 +100,35 @@ def test_the_lock_of_a_live_snakemake_is_kept(tmp_path: Path) -> None:
     assert all(lock.exists() for lock in locks)
 
 
-@pytest.mark.parametrize("command, is_snakemake", [
-    (["/env/bin/python3.11", "/env/bin/snakemake", "-j2"], True),  # the console script, by its #! line
-    (["snakemake", "-n"], True),
-    (["python", "-m", "snakemake", "-j2"], True),
-    (["python3", "-u", "-X", "dev", "-m", "snakemake"], True),
-    (["python", "/env/lib/python3.11/site-packages/snakemake/__main__.py", "-n"], True),
-    (["timeout", "500", "snakemake", "-j2"], False),
-    (["/usr/bin/time", "/env/bin/snakemake", "-j2"], False),
-    (["bash", "-c", "snakemake -j2 && echo done"], False),
-    (["python", "-c", "import snakemake"], False),
-    (["python", "-m", "pytest", "tests/snakemake"], False),
-    ([], False),
-], ids=["console script", "snakemake", "python -m", "python options", "__main__.py", "timeout", "time",
-        "shell", "python -c", "another module", "no command line"])
+@pytest.mark.parametrize(
+    "command, is_snakemake",
+    [
+        (["/env/bin/python3.11", "/env/bin/snakemake", "-j2"], True),  # the console script, by its #! line
+        (["snakemake", "-n"], True),
+        (["python", "-m", "snakemake", "-j2"], True),
+        (["python3", "-u", "-X", "dev", "-m", "snakemake"], True),
+        (["python", "/env/lib/python3.11/site-packages/snakemake/__main__.py", "-n"], True),
+        (["timeout", "500", "snakemake", "-j2"], False),
+        (["/usr/bin/time", "/env/bin/snakemake", "-j2"], False),
+        (["bash", "-c", "snakemake -j2 && echo done"], False),
+        (["python", "-c", "import snakemake"], False),
+        (["python", "-m", "pytest", "tests/snakemake"], False),
+        ([], False),
+    ],
+    ids=[
+        "console script",
+        "snakemake",
+        "python -m",
+        "python options",
+        "__main__.py",
+        "timeout",
+        "time",
+        "shell",
+        "python -c",
+        "another module",
+        "no command line",
+    ],
+)
 def test_a_process_is_a_snakemake_run_by_what_it_executes(command: list[str], is_snakemake: bool) -> None:
     assert runs_snakemake(command) is is_snakemake
 
@@ -132,9 +164,27 @@ def test_a_dry_run_leaves_the_plan_cache(tmp_path: Path) -> None:
     shutil.copytree(REPO / ".test" / "config", project / "config")
     shutil.copytree(REPO / "config", tmp_path / "config")
     env = {key: value for key, value in os.environ.items() if not key.startswith("SNAKEMAKE") and key != "PYTHONPATH"}
-    run = subprocess.run([sys.executable, "-m", "snakemake", "--nocolor", "-n", "--quiet", "rules",
-                          "--snakefile", str(REPO / "Snakefile"), "--directory", str(project)],
-                         cwd=tmp_path, env=env, capture_output=True, text=True, timeout=DRY_RUN_TIMEOUT_S, check=False)
+    run = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "snakemake",
+            "--nocolor",
+            "-n",
+            "--quiet",
+            "rules",
+            "--snakefile",
+            str(REPO / "Snakefile"),
+            "--directory",
+            str(project),
+        ],
+        cwd=tmp_path,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=DRY_RUN_TIMEOUT_S,
+        check=False,
+    )
     assert run.returncode == 0, run.stdout + run.stderr
     with open(project / CACHE_FILE, "rb") as handle:
         stored = pickle.load(handle)

@@ -17,9 +17,7 @@ from rodimpact.storage import provenance
 
 from helpers.repo import ROOT as REPO_ROOT
 
-VERSION_RE = re.compile(
-    rf"^{re.escape(rodimpact.__version__)}\+(unknown|g[0-9a-f]{{4,40}}(\.dirty)?)$"
-)
+VERSION_RE = re.compile(rf"^{re.escape(rodimpact.__version__)}\+(unknown|g[0-9a-f]{{4,40}}(\.dirty)?)$")
 
 
 def test_canonical_json_is_order_independent_and_compact() -> None:

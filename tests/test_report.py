@@ -28,18 +28,28 @@ from helpers.repo import ROOT as REPO_ROOT
 needs_chromium = pytest.mark.skipif(
     not (CHROMIUM.is_file() and CHROMEDRIVER.is_file()),
     reason=f"{CHROMIUM} or {CHROMEDRIVER} is missing (apt-get install chromium chromium-driver; "
-           "make report-check installs them)")
+    "make report-check installs them)",
+)
 
 #: The report's title (workflow/report/workflow.rst).
 TITLE = "rodimpact: the axial impact of a rigid body on an elastic rod"
 #: The categories of the full report (and Benchmarks, after make bench): the description lists each.
-CATEGORIES = ("Comparison with measurements", "The experiment's sensor", "Paper, Fig. 2 and Fig. 4", "Error against run time", "Parameter sweeps",
-              "Stability", "The force handed on", "Benchmarks")
+CATEGORIES = (
+    "Comparison with measurements",
+    "The experiment's sensor",
+    "Paper, Fig. 2 and Fig. 4",
+    "Error against run time",
+    "Parameter sweeps",
+    "Stability",
+    "The force handed on",
+    "Benchmarks",
+)
 
 
 def _box(top: float, bottom: float, uncovered: bool = True) -> TitleBox:
-    return TitleBox(text="t", top=top, bottom=bottom, left=287.0, right=781.0, width=1400.0, height=757.0,
-                    uncovered=uncovered)
+    return TitleBox(
+        text="t", top=top, bottom=bottom, left=287.0, right=781.0, width=1400.0, height=757.0, uncovered=uncovered
+    )
 
 
 def test_the_title_is_visible_only_whole_inside_the_window_and_uncovered() -> None:
@@ -52,7 +62,8 @@ def test_the_title_is_visible_only_whole_inside_the_window_and_uncovered() -> No
 def _page(path: Path, description_px: int) -> Path:
     """A page laid out as snakemake's report: a navigation bar, and a full-height pane that centres
     its content (the description, ``description_px`` high, beside a tall graph)."""
-    path.write_text(textwrap.dedent(f"""\
+    path.write_text(
+        textwrap.dedent(f"""\
         <!doctype html><html><head><meta charset="utf-8"><style>
         body {{ margin: 0 }} .row {{ display: flex; width: 100vw; height: 100vh }}
         nav {{ width: 20%; height: 100vh; overflow: auto; background: #334155 }}
@@ -64,7 +75,9 @@ def _page(path: Path, description_px: int) -> Path:
         <div class="prose" style="max-width: 32rem"><h1 class="title">{TITLE}</h1>
         <p style="height: {description_px}px">A description.</p></div>
         <div style="max-height: 100vh; width: 400px; height: 2000px"></div></div></div></div></body></html>
-        """), encoding="utf-8")
+        """),
+        encoding="utf-8",
+    )
     return path
 
 
@@ -84,8 +97,15 @@ def test_a_short_description_shows_the_title_and_a_tall_one_hides_it(tmp_path: P
 
 def _snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess:
     env = {k: v for k, v in os.environ.items() if not k.startswith("SNAKEMAKE") and k != "PYTHONPATH"}
-    return subprocess.run([sys.executable, "-m", "snakemake", "--nocolor", "-j1", *args], cwd=workdir, env=env,
-                          capture_output=True, text=True, timeout=300, check=False)
+    return subprocess.run(
+        [sys.executable, "-m", "snakemake", "--nocolor", "-j1", *args],
+        cwd=workdir,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+    )
 
 
 @pytest.mark.workflow
@@ -93,15 +113,20 @@ def _snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess:
 def test_the_report_description_fits_the_first_screen(tmp_path: Path) -> None:
     """The description of workflow/report/workflow.rst, with the shipped configuration and every
     category of the full report (one small result each), rendered by ``snakemake --report``."""
-    rules = "\n".join(textwrap.dedent(f"""\
+    rules = "\n".join(
+        textwrap.dedent(f"""\
         rule r{i}:
             output: report("out/r{i}.txt", category={name!r})
             shell: "echo {i} > {{output}}"
-        """) for i, name in enumerate(CATEGORIES))
+        """)
+        for i, name in enumerate(CATEGORIES)
+    )
     (tmp_path / "Snakefile").write_text(
         f'configfile: "{REPO_ROOT / "config" / "config.yaml"}"\n'
         f'report: "{REPO_ROOT / "workflow" / "report" / "workflow.rst"}"\n\n'
-        f'rule all:\n    input: [f"out/r{{i}}.txt" for i in range({len(CATEGORIES)})]\n\n{rules}', encoding="utf-8")
+        f'rule all:\n    input: [f"out/r{{i}}.txt" for i in range({len(CATEGORIES)})]\n\n{rules}',
+        encoding="utf-8",
+    )
     build = _snakemake(tmp_path)
     assert build.returncode == 0, build.stderr[-3000:]
     report = _snakemake(tmp_path, "--report", "report.html")

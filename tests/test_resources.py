@@ -55,8 +55,9 @@ def with_numerics(case, method, **settings):
 def test_finer_fem_axi_level_needs_more_memory_and_time(project, model):
     config, _ = project
     levels = config["work_precision"]["methods"]["fem_axi"]["levels"]
-    estimates = [estimate_resources(level_case(model, "fem_axi", config["numerics"], level), "fem_axi")
-                 for level in levels]
+    estimates = [
+        estimate_resources(level_case(model, "fem_axi", config["numerics"], level), "fem_axi") for level in levels
+    ]
     dofs = [fem_axi_dofs(level_case(model, "fem_axi", config["numerics"], level)) for level in levels]
     assert dofs == sorted(dofs) and dofs[-1] > 2 * dofs[0]
     for coarse, fine in zip(estimates, estimates[1:]):
@@ -90,8 +91,10 @@ def test_a_contact_over_many_round_trips_costs_more_per_step_only_off_the_grid(p
         return estimate_resources(with_numerics(case, "sem_paper", **numerics), "sem_paper").runtime_min
 
     def off_grid(case):  # the case's 20000th of its Hertz time, nudged off the round trip
-        return {"dt_s": ImpactProblem.from_case(case).rigid_contact.contact_time_s / 20000 * (1 + 1e-6),
-                "steps_per_contact": None}
+        return {
+            "dt_s": ImpactProblem.from_case(case).rigid_contact.contact_time_s / 20000 * (1 + 1e-6),
+            "steps_per_contact": None,
+        }
 
     assert runtime(long, **off_grid(long)) > runtime(short, **off_grid(short))
     on_grid = {"dt_s": None, "steps_per_contact": 20000}
@@ -109,8 +112,7 @@ def test_floors_and_attempts(model):
 def test_timed_runs_ask_for_the_repeats(model):
     case = with_numerics(model, "fem_axi", **COARSE_AXI)
     once = estimate_resources(case, "fem_axi")
-    timed = estimate_resources(case, "fem_axi", timing={"min_repeats": 30, "min_total_s": 1.0,
-                                                        "max_total_s": 10_000.0})
+    timed = estimate_resources(case, "fem_axi", timing={"min_repeats": 30, "min_total_s": 1.0, "max_total_s": 10_000.0})
     assert timed.runtime_min > once.runtime_min and timed.mem_mb == once.mem_mb
 
 
@@ -140,19 +142,22 @@ def test_a_batch_that_indents_its_points_asks_for_the_indentations(shipped_proje
     assert all(cost.solve_s > 2.5 for cost in indentations)  # the heaviest row's indentation took 2.5 s
 
 
-@pytest.mark.parametrize("call, name", [
-    (lambda case: estimate_resources(case, "fem2d"), "method"),
-    (lambda case: estimate_resources(case, 3), "method"),
-    (lambda case: estimate_resources([case], "sem"), "case"),
-    (lambda case: estimate_resources({**case, "numerics": {}}, "sem"), "case"),
-    (lambda case: estimate_resources({k: v for k, v in case.items() if k != "rod"}, "sem"), "case"),
-    (lambda case: estimate_resources(case, "sem", timing={"min_repeats": 0}), "timing"),
-    (lambda case: estimate_sequence([]), "runs"),
-    (lambda case: estimate_sequence([(case, "sem", 0)]), "runs"),
-    (lambda case: estimate_resources(case, "sem").for_attempt(0), "attempt"),
-    (lambda case: JobResources(threads=1, mem_mb=0, runtime_min=1), "mem_mb"),
-    (lambda case: JobResources(threads=1.5, mem_mb=1, runtime_min=1), "threads"),
-])
+@pytest.mark.parametrize(
+    "call, name",
+    [
+        (lambda case: estimate_resources(case, "fem2d"), "method"),
+        (lambda case: estimate_resources(case, 3), "method"),
+        (lambda case: estimate_resources([case], "sem"), "case"),
+        (lambda case: estimate_resources({**case, "numerics": {}}, "sem"), "case"),
+        (lambda case: estimate_resources({k: v for k, v in case.items() if k != "rod"}, "sem"), "case"),
+        (lambda case: estimate_resources(case, "sem", timing={"min_repeats": 0}), "timing"),
+        (lambda case: estimate_sequence([]), "runs"),
+        (lambda case: estimate_sequence([(case, "sem", 0)]), "runs"),
+        (lambda case: estimate_resources(case, "sem").for_attempt(0), "attempt"),
+        (lambda case: JobResources(threads=1, mem_mb=0, runtime_min=1), "mem_mb"),
+        (lambda case: JobResources(threads=1.5, mem_mb=1, runtime_min=1), "threads"),
+    ],
+)
 def test_bad_input_is_refused_by_name(model, call, name):
     with pytest.raises(ValueError, match=f"^{name}"):
         call(model)
@@ -175,8 +180,10 @@ def test_dof_bound_covers_the_meshes(model):
     from rodimpact.solvers.fem_axi.problem import AxiImpact
     from rodimpact.solvers.fem_axi.solver import build_model as _build
 
-    for case in (with_numerics(model, "fem_axi", **COARSE_AXI),
-                 with_numerics(model, "fem_axi", elements_across=6, element="P1")):
+    for case in (
+        with_numerics(model, "fem_axi", **COARSE_AXI),
+        with_numerics(model, "fem_axi", elements_across=6, element="P1"),
+    ):
         model = _build(AxiImpact.from_case(case), FEMAxiOptions.from_settings(case["numerics"]["fem_axi"]))
         rod, imp = model.rod, model.impactor
         built = rod.basis.N + imp.basis.N
@@ -204,8 +211,13 @@ def test_estimate_covers_a_measured_run(model, method, settings):
     """A real run in a fresh process (the job's solver process): the estimate asks for at
     least SAFETY times its peak memory and its wall time."""
     case = with_numerics(model, method, **settings)
-    done = subprocess.run([sys.executable, "-c", _MEASURE, json.dumps(case), method], capture_output=True,
-                          text=True, timeout=120, check=False)
+    done = subprocess.run(
+        [sys.executable, "-c", _MEASURE, json.dumps(case), method],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
     assert done.returncode == 0, done.stderr[-3000:]
     measured = json.loads(done.stdout.splitlines()[-1])
     assert measured["success"]
@@ -217,10 +229,23 @@ def test_estimate_covers_a_measured_run(model, method, settings):
 def test_bench_margins_table():
     import pandas as pd
 
-    frame = pd.DataFrame([{"case": "model", "method": "fem_axi", "n_dofs": 100, "n_dofs_estimate": 150,
-                           "wall_time_s": 10.0, "runtime_estimate_s": 60.0, "runtime_margin": 6.0,
-                           "peak_memory_MiB": 200.0, "mem_estimate_MiB": 800.0, "mem_margin": 4.0},
-                          {"case": "model", "method": "fem1d"}])
+    frame = pd.DataFrame(
+        [
+            {
+                "case": "model",
+                "method": "fem_axi",
+                "n_dofs": 100,
+                "n_dofs_estimate": 150,
+                "wall_time_s": 10.0,
+                "runtime_estimate_s": 60.0,
+                "runtime_margin": 6.0,
+                "peak_memory_MiB": 200.0,
+                "mem_estimate_MiB": 800.0,
+                "mem_margin": 4.0,
+            },
+            {"case": "model", "method": "fem1d"},
+        ]
+    )
     assert list(resource_margins(frame)["case"]) == ["model"]
     with pytest.raises(ValueError, match="^frame"):
         resource_margins(frame.drop(columns=["mem_estimate_MiB"]))

@@ -57,8 +57,9 @@ def test_semi_infinite_rod_matches_the_equivalent_ode():
         return y[0] - y[2] if t > 0 else 1.0
 
     separation.terminal, separation.direction = True, -1
-    ode = solve_ivp(rhs, (0, 1.0), [0.0, 1.0, 0.0], events=separation, rtol=1e-12, atol=1e-22,
-                    method="DOP853", dense_output=True)
+    ode = solve_ivp(
+        rhs, (0, 1.0), [0.0, 1.0, 0.0], events=separation, rtol=1e-12, atol=1e-22, method="DOP853", dense_output=True
+    )
     t_end = ode.t_events[0][0]
 
     result = solve(problem, 1000)
@@ -115,8 +116,7 @@ def test_energy_balance_converges(reference):
     errors = [abs(solve(model_problem(), n).energy_error) for n in steps]
     assert 1.8 < observed_order(steps, errors) < 2.2
     assert abs(reference.energy_error) < 1e-8
-    assert reference.rod_energy_J == pytest.approx(0.5 * 0.5 * (1 - reference.rebound_velocity_m_s**2),
-                                                   rel=1e-7)
+    assert reference.rod_energy_J == pytest.approx(0.5 * 0.5 * (1 - reference.rebound_velocity_m_s**2), rel=1e-7)
 
 
 def test_contact_end_is_located_between_steps(reference):
@@ -133,7 +133,8 @@ def test_contact_end_is_located_between_steps(reference):
 
 def test_implicit_scheme_stable_where_the_papers_scheme_is_not():
     """A thin wire (small impedance Z, stiff contact k_c = dP/dalpha): the lagged force is
-    unstable for steps beyond about 2 Z / k_c (docs/paper-notes.md, "The paper's scheme"); the implicit scheme is not."""
+    unstable for steps beyond about 2 Z / k_c (docs/paper-notes.md, "The paper's scheme"); the
+    implicit scheme is not."""
     problem = ImpactProblem(0.01, 1.0, HertzLaw(hertz_constant(0.005, STEEL)), Rod(1.0, 1e-6, STEEL))
     fine = solve(problem, 1000)
     alpha_peak = (fine.peak_force_N.max() / problem.contact.k) ** (2.0 / 3.0)

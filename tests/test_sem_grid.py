@@ -83,8 +83,11 @@ def test_commensurate_step_divides_or_spans_whole_round_trips():
     assert CommensurateGrid.of(0.37e-6, period, -1, True) is None
 
 
-@pytest.mark.parametrize("problem", [model_problem(), two_contact_problem(), model_problem("free")],
-                         ids=["model", "two_contacts", "free_end"])
+@pytest.mark.parametrize(
+    "problem",
+    [model_problem(), two_contact_problem(), model_problem("free")],
+    ids=["model", "two_contacts", "free_end"],
+)
 def test_tight_contact_loop_is_the_general_step_bit_for_bit(problem, monkeypatch):
     """The contact loop of the fast path does the general step's operations: the same
     histories to the last bit, contacts, events and all."""

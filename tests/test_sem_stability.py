@@ -82,12 +82,15 @@ def test_config_refuses_an_unstable_paper_step_before_any_job(tmp_path):
     (tmp_path / "cases").mkdir()
     (tmp_path / "config.yaml").write_text(
         "cases_dir: cases\nmaterials: materials.yaml\ntargets: {sets: [thin]}\n"
-        "numerics:\n  sem_paper: {steps_per_contact: 20}\n")
+        "numerics:\n  sem_paper: {steps_per_contact: 20}\n"
+    )
     (tmp_path / "materials.yaml").write_text(
-        "materials:\n  steel: {youngs_modulus_pa: 2.1e+11, poisson_ratio: 0.3, density_kg_m3: 7800.0}\n")
+        "materials:\n  steel: {youngs_modulus_pa: 2.1e+11, poisson_ratio: 0.3, density_kg_m3: 7800.0}\n"
+    )
     (tmp_path / "cases" / "thin.yaml").write_text(
         "cases:\n  - id: wire\n    impactor: {mass_kg: 0.2, radius_m: 0.005, velocity_m_s: 1.0, material: steel}\n"
-        "    rod: {length_m: 10.0, area_m2: 1.0e-6, material: steel}\n    methods: [sem_paper]\n")
+        "    rod: {length_m: 10.0, area_m2: 1.0e-6, material: steel}\n    methods: [sem_paper]\n"
+    )
     config = load_global_config(tmp_path / "config.yaml", schema_dir="workflow/schemas")
     with pytest.raises(ConfigError) as error:
         load_project(config, root=tmp_path, schema_dir="workflow/schemas")
@@ -103,8 +106,10 @@ def test_automatic_step_meets_its_tolerance(tolerance):
     result = solve_sem(problem, SEMOptions(tolerance=tolerance))
     assert result.success and result.extra["step_choice"] == "auto"
     assert result.extra["tolerance"] == tolerance
-    error = max(abs(result.contact_time_s / reference.contact_time_s - 1),
-                abs(result.peak_force_N.max() / reference.peak_force_N.max() - 1))
+    error = max(
+        abs(result.contact_time_s / reference.contact_time_s - 1),
+        abs(result.peak_force_N.max() / reference.peak_force_N.max() - 1),
+    )
     assert error < tolerance
     # the step-doubling estimate is the error's size, not a gross over- or under-estimate
     assert error / 5 < result.extra["error_estimate"] < 5 * error

@@ -15,14 +15,27 @@ def names(files):
 
 def test_solver_closure_has_the_physics_and_not_the_presentation():
     files = names(module_sources(SRC, ["rodimpact.jobs.runner"]))
-    assert {"jobs/runner.py", "storage/runs.py", "contact/hertz.py", "model/responses.py",
-            "solvers/registry.py", "solvers/sem/options.py", "__init__.py"} <= files
+    assert {
+        "jobs/runner.py",
+        "storage/runs.py",
+        "contact/hertz.py",
+        "model/responses.py",
+        "solvers/registry.py",
+        "solvers/sem/options.py",
+        "__init__.py",
+    } <= files
     assert not any(f.startswith("present/") for f in files) and "tools/bench.py" not in files
 
 
 def test_presentation_closure_has_no_solver():
     files = names(module_sources(SRC, ["rodimpact.present.artifacts"]))
-    assert {"present/artifacts.py", "present/figures.py", "present/tables.py", "storage/runs.py", "storage/atomic.py"} <= files
+    assert {
+        "present/artifacts.py",
+        "present/figures.py",
+        "present/tables.py",
+        "storage/runs.py",
+        "storage/atomic.py",
+    } <= files
     assert not any(f.endswith(("solver.py", "stepper.py")) for f in files)
 
 

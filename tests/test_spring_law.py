@@ -55,8 +55,9 @@ def test_the_damped_oscillator_closed_form_is_the_ode_solution() -> None:
         return y[0] if t > 0 else 1.0
 
     separation.terminal, separation.direction = True, -1
-    dense = solve_ivp(rhs, (0.0, 1e-3), [0.0, VELOCITY], method="DOP853", rtol=1e-12, atol=1e-18,
-                      events=separation, dense_output=True)
+    dense = solve_ivp(
+        rhs, (0.0, 1e-3), [0.0, VELOCITY], method="DOP853", rtol=1e-12, atol=1e-18, events=separation, dense_output=True
+    )
     t_end = dense.t_events[0][0]
     assert exact.contact_time_s == pytest.approx(t_end, rel=1e-9)
     t = np.linspace(0.0, t_end, 200_001)
@@ -79,8 +80,9 @@ def smooth_exact(smooth_case):
     material = Material.from_mapping(rod["material"])
     impedance = material.density_kg_m3 * wave_speed(material) * rod["area_m2"]
     impactor = smooth_case["impactor"]
-    return semi_infinite_rod_contact(smooth_case["contact"]["stiffness_n_per_m"], impactor["mass_kg"],
-                                     impactor["velocity_m_s"], impedance)
+    return semi_infinite_rod_contact(
+        smooth_case["contact"]["stiffness_n_per_m"], impactor["mass_kg"], impactor["velocity_m_s"], impedance
+    )
 
 
 def test_the_smooth_case_ends_its_contact_before_the_reflection_returns(smooth_case, smooth_exact) -> None:
@@ -99,8 +101,9 @@ RTOL = {"sem": 1e-6, "fem1d": 1e-6}
 def test_the_methods_give_the_closed_form_on_the_smooth_case(smooth_case, smooth_exact, method) -> None:
     result = run_case(smooth_case, method)
     assert result.success, result.message
-    assert result.contact_end_s[0] - result.contact_start_s[0] == pytest.approx(smooth_exact.contact_time_s,
-                                                                                rel=RTOL[method])
+    assert result.contact_end_s[0] - result.contact_start_s[0] == pytest.approx(
+        smooth_exact.contact_time_s, rel=RTOL[method]
+    )
     first = result.peak_time_s <= result.contact_end_s[0]
     assert first.sum() == 1  # one force maximum in the first contact
     assert result.peak_force_N[first][0] == pytest.approx(smooth_exact.peak_force_N, rel=10 * RTOL[method])

@@ -61,8 +61,13 @@ def film_as_layer(film: dict[str, Any], name: str = "film", thickness_m: float |
     """A case's resolved film as a stack's layer (its material resolved, ranges and all)."""
     h = film["thickness_m"] if thickness_m is None else thickness_m
     low, high = film["thickness_range_m"] if thickness_m is None else (0.5 * h, 1.5 * h)
-    return {"name": name, "thickness_m": h, "thickness_range_m": [low, high], "material": film["material"],
-            "source": ""}
+    return {
+        "name": name,
+        "thickness_m": h,
+        "thickness_range_m": [low, high],
+        "material": film["material"],
+        "source": "",
+    }
 
 
 def with_contact(case: dict[str, Any], contact: dict[str, Any] | None) -> dict[str, Any]:
@@ -88,6 +93,7 @@ def one_layer_stack_case(case: dict[str, Any]) -> dict[str, Any]:
 
 # ------------------------------------------------------------------ 1. one layer is the film
 
+
 @pytest.fixture(scope="module")
 def film_and_one_layer(shipped_project):
     film = shipped_project.cases[FILM]
@@ -100,8 +106,11 @@ def test_one_layer_stack_resolves_to_the_films_law(film_and_one_layer):
     film_case, stack_case = film_and_one_layer
     assert stack_case["contact"]["law"] == "hertz_stack" and stack_case["id"] == film_case["id"]
     # the film's layer carries its area, the stack's layers leave it to the stack
-    as_layer = [dataclasses.replace(layer, area_m2=None)
-                for case in (stack_case, film_case) for layer in Stack.of(case["contact"]).layers]
+    as_layer = [
+        dataclasses.replace(layer, area_m2=None)
+        for case in (stack_case, film_case)
+        for layer in Stack.of(case["contact"]).layers
+    ]
     assert len(as_layer) == 2 and as_layer[0] == as_layer[1]
     assert Stack.of(stack_case["contact"]).area_m2 == film_case["contact"]["film"]["area_m2"]
     imp, rod = film_case["impactor"], film_case["rod"]
@@ -126,8 +135,9 @@ def test_one_layer_stack_runs_as_the_film(film_and_one_layer, method):
     assert stack.time.shape == film.time.shape
     np.testing.assert_allclose(stack.time, film.time, rtol=1e-9, atol=0.0)
     assert stack.contact_time_s == pytest.approx(film.contact_time_s, rel=1e-9)
-    np.testing.assert_allclose(stack.contact_force, film.contact_force, rtol=1e-9,
-                               atol=1e-9 * float(film.contact_force.max()))
+    np.testing.assert_allclose(
+        stack.contact_force, film.contact_force, rtol=1e-9, atol=1e-9 * float(film.contact_force.max())
+    )
 
 
 def test_one_layer_stack_indents_as_the_film(shipped_project):
@@ -144,6 +154,7 @@ def test_one_layer_stack_indents_as_the_film(shipped_project):
 
 
 # ------------------------------------------------------------- 2. vanishing layers are Hertz
+
 
 def _sensor_with_thickness(case: dict[str, Any], thickness_m: float) -> dict[str, Any]:
     """The sensor case with every layer ``thickness_m`` thick (ranges around it)."""
@@ -213,6 +224,7 @@ def test_vanishing_layers_run_as_hertz(shipped_project):
 
 # --------------------------------------------------- 3. two layers of one material are one
 
+
 def pvdf(thickness_m: float, name: str = "pvdf") -> FilmLayer:
     return FilmLayer(thickness_m, 3.0e9, 0.35, 1780.0, name=name)
 
@@ -232,8 +244,11 @@ def test_thin_layer_law_of_two_halves_is_the_one_layer_law():
     # four layers of three materials: M_eff = H / sum(h_i / M_i)
     ink, glue = FilmLayer(6e-6, 1e10, 0.37, 4000.0), FilmLayer(15e-6, 2e9, 0.35, 1100.0)
     sensor = Stack((ink, pvdf(28e-6), ink, glue))
-    compliance = (2 * 6e-6 / constrained_modulus(1e10, 0.37) + 28e-6 / constrained_modulus(3e9, 0.35)
-                  + 15e-6 / constrained_modulus(2e9, 0.35))
+    compliance = (
+        2 * 6e-6 / constrained_modulus(1e10, 0.37)
+        + 28e-6 / constrained_modulus(3e9, 0.35)
+        + 15e-6 / constrained_modulus(2e9, 0.35)
+    )
     assert sensor.constrained_modulus_pa == pytest.approx(55e-6 / compliance, rel=1e-12)
     reversed_law = Stack(tuple(reversed(sensor.layers))).thin_layer_law(RADIUS, STEEL, ALUMINIUM)
     assert reversed_law.c == pytest.approx(sensor.thin_layer_law(RADIUS, STEEL, ALUMINIUM).c, rel=1e-12)
@@ -250,6 +265,7 @@ def test_continuum_indents_two_halves_as_one_layer():
       3.5 um against 4 of 7 um): rtol 5e-3. Measured 2.1e-3 (largest at the smallest load);
       the 28 um layer itself moves by 2.1e-3 from 4 to 8 elements and by 7.5e-4 from 8 to 16
       (a converging sequence whose 4-element error is ~3e-3 of its limit)."""
+
     def problem(stack: Stack) -> AxiImpact:
         return AxiImpact(MASS, VELOCITY, RADIUS, STEEL, "cap", 0.01, 0.0301, ALUMINIUM, "fixed", stack=stack)
 
@@ -278,8 +294,9 @@ def test_calibrated_time_of_two_halves_is_the_films(shipped_project):
     film_case = shipped_project.cases[FILM_CAL]
     film = film_case["contact"]["film"]
     halves = [film_as_layer(film, "top half", 14e-6), film_as_layer(film, "bottom half", 14e-6)]
-    two_case = with_contact(film_case, stack_contact("tabulated", halves, film["area_m2"],
-                                                     **{"from": film_case["contact"]["from"]}))
+    two_case = with_contact(
+        film_case, stack_contact("tabulated", halves, film["area_m2"], **{"from": film_case["contact"]["from"]})
+    )
     reference = calibrated_time_us(film_case)
     assert 20.0 < reference < 40.0
     assert calibrated_time_us(two_case, {"film_layers": 2}) == pytest.approx(reference, rel=1e-9)
@@ -287,6 +304,7 @@ def test_calibrated_time_of_two_halves_is_the_films(shipped_project):
 
 
 # ------------------------------------------------ 4. fem_axi converges through the electrodes
+
 
 @pytest.fixture(scope="module")
 def sensor_runs(shipped_project):
@@ -324,6 +342,7 @@ def test_fem_axi_converges_through_the_sensors_layers(shipped_project, sensor_ru
 
 # ------------------------------------------------------------ 5. the band's parameters
 
+
 def test_stack_parameters_of_the_sensor(shipped_project):
     """The sensor as built: one thickness for the two electrodes (one print), one for the film,
     one for the bond line, then each range of each material once (silver_ink is two layers'),
@@ -333,17 +352,27 @@ def test_stack_parameters_of_the_sensor(shipped_project):
     parameters = stack_parameters(case)
     names = [p.name for p in parameters]
     assert len(names) == len(set(names))
-    assert names[:3] == ["silver-ink electrode: thickness_m", "piezo film (PVDF): thickness_m",
-                         "bond line (cyanoacrylate): thickness_m"]
+    assert names[:3] == [
+        "silver-ink electrode: thickness_m",
+        "piezo film (PVDF): thickness_m",
+        "bond line (cyanoacrylate): thickness_m",
+    ]
     by_name = {p.name: p for p in parameters}
     for layer in layers:
         p = by_name[f"{layer['name']}: thickness_m"]
         assert (p.nominal, [p.low, p.high]) == (layer["thickness_m"], layer["thickness_range_m"])
     materials = {layer["material"]["name"]: layer["material"] for layer in layers}
-    expected = {f"{name}: {constant}": (material[constant], *bounds)
-                for name, material in materials.items() for constant, bounds in material.get("ranges", {}).items()}
-    assert {"silver_ink: youngs_modulus_pa", "pvdf: youngs_modulus_pa", "pvdf: poisson_ratio",
-            "cyanoacrylate: youngs_modulus_pa"} <= set(expected)
+    expected = {
+        f"{name}: {constant}": (material[constant], *bounds)
+        for name, material in materials.items()
+        for constant, bounds in material.get("ranges", {}).items()
+    }
+    assert {
+        "silver_ink: youngs_modulus_pa",
+        "pvdf: youngs_modulus_pa",
+        "pvdf: poisson_ratio",
+        "cyanoacrylate: youngs_modulus_pa",
+    } <= set(expected)
     assert {n: (p.nominal, p.low, p.high) for n, p in by_name.items() if not n.endswith("thickness_m")} == expected
     for p in parameters:
         assert p.low < p.high and p.low <= p.nominal <= p.high
@@ -368,8 +397,11 @@ def test_with_values_changes_both_electrodes_and_not_the_case(shipped_project):
     assert sum(layer["name"] == "silver-ink electrode" for layer in new) == 2
     stack = Stack.of(changed["contact"])
     assert stack.thickness_m == pytest.approx(2 * 1e-5 + 28e-6 + 15e-6, rel=1e-12)
-    compliance = sum(layer["thickness_m"] / constrained_modulus(layer["material"]["youngs_modulus_pa"],
-                                                                layer["material"]["poisson_ratio"]) for layer in new)
+    compliance = sum(
+        layer["thickness_m"]
+        / constrained_modulus(layer["material"]["youngs_modulus_pa"], layer["material"]["poisson_ratio"])
+        for layer in new
+    )
     assert stack.constrained_modulus_pa == pytest.approx(stack.thickness_m / compliance, rel=1e-12)
     # the changed case's parameters read the new nominal values
     assert {p.name: p.nominal for p in stack_parameters(changed)}["silver-ink electrode: thickness_m"] == 1.0e-5

@@ -13,13 +13,32 @@ from rodimpact.solvers.stepping import NON_FINITE_ENERGY, Outcome, StepHistory, 
 
 def _history(force: list[float], ends: list[float], starts: list[float]) -> StepHistory:
     n = len(force)
-    return StepHistory(t=[1e-6 * i for i in range(n)], force=force, x=[0.0] * n, w=[1.0] * (n - 1) + [-0.5],
-                       u_end=[0.0] * n, alpha=[0.0] * n, starts=starts, ends=ends, n_newton=7)
+    return StepHistory(
+        t=[1e-6 * i for i in range(n)],
+        force=force,
+        x=[0.0] * n,
+        w=[1.0] * (n - 1) + [-0.5],
+        u_end=[0.0] * n,
+        alpha=[0.0] * n,
+        starts=starts,
+        ends=ends,
+        n_newton=7,
+    )
 
 
 def _result(history: StepHistory, outcome: Outcome, error: float, **more):
-    return history.result(history.nodes(), outcome, scheme="test", dt_s=1e-6, energy_error=error,
-                          rod_energy_J=0.25, n_events=3, extra={"a": 1}, extra_series={}, **more)
+    return history.result(
+        history.nodes(),
+        outcome,
+        scheme="test",
+        dt_s=1e-6,
+        energy_error=error,
+        rod_energy_J=0.25,
+        n_events=3,
+        extra={"a": 1},
+        extra_series={},
+        **more,
+    )
 
 
 def test_energy_error_is_the_loss_of_the_total_over_its_start():

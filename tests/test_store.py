@@ -197,9 +197,7 @@ def test_not_a_run_file(tmp_path: Path) -> None:
 
 
 @pytest.mark.parametrize("module, where", [(runs, "_write_summary"), (atomic, "_fsync_file")])
-def test_failed_write_leaves_nothing(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, module: Any, where: str
-) -> None:
+def test_failed_write_leaves_nothing(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, module: Any, where: str) -> None:
     def boom(*args: Any, **kwargs: Any) -> None:
         raise OSError("disk full (simulated)")
 
@@ -262,7 +260,11 @@ def test_temporary_file_name(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) ->
         ({"series": {"time": (np.arange(3.0), "s")}}, TypeError, r"series\['time'\]"),
         ({"series": {"time": (np.arange(3.0), None, "t")}}, TypeError, r"series\['time'\]"),
         ({"series": {"time": (np.arange(3.0), "s", "t"), "a/b": ([1, 2, 3], "m", "x")}}, ValueError, "series name"),
-        ({"summary": {k: v for k, v in make_summary().items() if k != "energy_error"}}, ValueError, r"summary.*energy_error"),
+        (
+            {"summary": {k: v for k, v in make_summary().items() if k != "energy_error"}},
+            ValueError,
+            r"summary.*energy_error",
+        ),
         ({"summary": make_summary() | {"peak_time_s": [1.0]}}, ValueError, r"summary.*peak_time_s"),
         ({"summary": make_summary() | {"contact_time_s": "long"}}, TypeError, r"summary\['contact_time_s'\]"),
         ({"summary": make_summary() | {"extra": None}}, TypeError, r"summary\['extra'\]"),
@@ -277,9 +279,7 @@ def test_temporary_file_name(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) ->
         ({"summary": [("contact_time_s", 1.0)]}, TypeError, "summary"),
     ],
 )  # fmt: skip
-def test_validation_errors(
-    tmp_path: Path, overrides: dict[str, Any], exc: type[Exception], pattern: str
-) -> None:
+def test_validation_errors(tmp_path: Path, overrides: dict[str, Any], exc: type[Exception], pattern: str) -> None:
     target = tmp_path / "run.h5"
     with pytest.raises(exc, match=pattern):
         write_good(target, **overrides)

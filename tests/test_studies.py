@@ -53,8 +53,14 @@ def test_a_failed_study_run_is_data_and_a_failed_paper_run_writes_nothing(projec
 
 def test_timing_repeats_and_records_the_machine(project, config, tmp_path):
     case = level_case(project.cases["ball_3.16mm-r1_l30"], "sem", config["numerics"], {"steps_per_contact": 100})
-    path = run_to_file(case, "sem", tmp_path / "timed.h5", level=0, timing=Timing(3, 0.0, 60.0),
-                       study={"name": "work_precision", "level": 0, "overrides": {"steps_per_contact": 100}})
+    path = run_to_file(
+        case,
+        "sem",
+        tmp_path / "timed.h5",
+        level=0,
+        timing=Timing(3, 0.0, 60.0),
+        study={"name": "work_precision", "level": 0, "overrides": {"steps_per_contact": 100}},
+    )
     rec = read_run(path)
     assert rec.summary["wall_time_repeats"] == 3
     assert rec.summary["wall_time_min_s"] <= rec.wall_time_s <= rec.summary["wall_time_max_s"]
@@ -75,7 +81,9 @@ def sweep(project, config, tmp_path_factory):
             case = level_case(project.cases["ball_3.16mm-r1_l30"], method, config["numerics"], overrides)
             records.append(read_run(run_to_file(case, method, folder / f"{method}_{level}.h5", level=level)))
     frame = work_precision_frame(records, methods)
-    return frame, observed_orders(frame, methods, fit_levels=4, arrival_window=config["work_precision"]["arrival_window"])
+    return frame, observed_orders(
+        frame, methods, fit_levels=4, arrival_window=config["work_precision"]["arrival_window"]
+    )
 
 
 def test_work_precision_errors_fall_with_cost(sweep):

@@ -59,9 +59,12 @@ def _imported(tree: ast.Module) -> list[tuple[str, int]]:
 
 
 def test_no_module_imports_conftest_or_another_test_module() -> None:
-    wrong = [f"{path.relative_to(TESTS)}:{line} imports {name}" for path in MODULES
-             for name, line in _imported(_tree(path))
-             if name.split(".")[0] == "conftest" or name.split(".")[0].startswith("test_")]
+    wrong = [
+        f"{path.relative_to(TESTS)}:{line} imports {name}"
+        for path in MODULES
+        for name, line in _imported(_tree(path))
+        if name.split(".")[0] == "conftest" or name.split(".")[0].startswith("test_")
+    ]
     assert wrong == []
 
 
@@ -92,8 +95,10 @@ def _runs_snakemake_itself(node: ast.AST) -> bool:
         if isinstance(sub, ast.Call) and isinstance(sub.func, ast.Name):
             if sub.func.id in RUNNERS:
                 return True
-            if sub.func.id == "audit" and not any(k.arg == "workflow" and isinstance(k.value, ast.Constant)
-                                                  and k.value.value is False for k in sub.keywords):
+            if sub.func.id == "audit" and not any(
+                k.arg == "workflow" and isinstance(k.value, ast.Constant) and k.value.value is False
+                for k in sub.keywords
+            ):
                 return True
         if isinstance(sub, ast.Call) and _starts_a_process(sub):
             for words in (_strings(arg) for arg in sub.args if isinstance(arg, (ast.List, ast.Tuple))):
@@ -121,8 +126,13 @@ def _called(node: ast.AST) -> set[str]:
 
 def _is_workflow_mark(node: ast.AST) -> bool:
     """``pytest.mark.workflow``, alone or in a list of marks."""
-    return any(isinstance(n, ast.Attribute) and n.attr == "workflow" and isinstance(n.value, ast.Attribute)
-               and n.value.attr == "mark" for n in ast.walk(node))
+    return any(
+        isinstance(n, ast.Attribute)
+        and n.attr == "workflow"
+        and isinstance(n.value, ast.Attribute)
+        and n.value.attr == "mark"
+        for n in ast.walk(node)
+    )
 
 
 def unmarked_snakemake_tests(tree: ast.Module) -> list[str]:
@@ -131,8 +141,12 @@ def unmarked_snakemake_tests(tree: ast.Module) -> list[str]:
     functions = {n.name: n for n in tree.body if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef))}
     classes = [n for n in tree.body if isinstance(n, ast.ClassDef)]
     module_level = [n for n in tree.body if not isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))]
-    if any(isinstance(n, ast.Assign) and any(isinstance(t, ast.Name) and t.id == "pytestmark" for t in n.targets)
-           and _is_workflow_mark(n.value) for n in module_level):
+    if any(
+        isinstance(n, ast.Assign)
+        and any(isinstance(t, ast.Name) and t.id == "pytestmark" for t in n.targets)
+        and _is_workflow_mark(n.value)
+        for n in module_level
+    ):
         return []
     runs = {name for name, node in functions.items() if _runs_snakemake_itself(node)}
     if any(_runs_snakemake_itself(n) for n in module_level + classes):
@@ -142,8 +156,11 @@ def unmarked_snakemake_tests(tree: ast.Module) -> list[str]:
         more = {name for name, node in functions.items() if name not in runs and _called(node) & runs}
         runs |= more
         grew = bool(more)
-    return sorted(name for name in runs if name.startswith("test_")
-                  and not any(_is_workflow_mark(d) for d in functions[name].decorator_list))
+    return sorted(
+        name
+        for name in runs
+        if name.startswith("test_") and not any(_is_workflow_mark(d) for d in functions[name].decorator_list)
+    )
 
 
 @pytest.mark.parametrize("path", TEST_MODULES, ids=lambda p: p.name)
@@ -170,9 +187,12 @@ def test_the_marker_check_finds_what_runs_snakemake() -> None:
     assert _marked_check("from snakemake.utils import Paramspace\ndef test_g():\n    Paramspace\n") == []
     assert _marked_check("def test_k():\n    from snakemake.api import SnakemakeApi\n") == ["test_k"]
     assert _marked_check("def test_l():\n    from snakemake.persistence.file import FilePersistence\n") == []
-    assert _marked_check("@pytest.mark.parametrize('argv', [['snakemake', '-n']])\ndef test_m(argv):\n"
-                         "    parse(argv)\n") == []
+    assert (
+        _marked_check("@pytest.mark.parametrize('argv', [['snakemake', '-n']])\ndef test_m(argv):\n    parse(argv)\n")
+        == []
+    )
     assert _marked_check(helper + "@pytest.mark.workflow\ndef test_h(tmp_path):\n    _build(tmp_path)\n") == []
     assert _marked_check("pytestmark = pytest.mark.workflow\n" + helper + "def test_i(p):\n    _build(p)\n") == []
-    assert _marked_check("pytestmark = [pytest.mark.workflow, pytest.mark.slow]\ndef test_j(p):\n"
-                         "    snakemake(p)\n") == []
+    assert (
+        _marked_check("pytestmark = [pytest.mark.workflow, pytest.mark.slow]\ndef test_j(p):\n    snakemake(p)\n") == []
+    )

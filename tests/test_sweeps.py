@@ -31,11 +31,14 @@ def test_linear_range_and_list() -> None:
     assert sweep_values([0.3225, 1.0]) == [0.3225, 1.0]
 
 
-@pytest.mark.parametrize("spec, field", [
-    ({"start": 0.0, "stop": 1.0, "num": 3}, "start"),
-    ({"start": 1.0, "stop": 2.0, "num": 1}, "num"),
-    ({"start": 1.0, "stop": 2.0, "num": 3, "spacing": "cubic"}, "spacing"),
-])
+@pytest.mark.parametrize(
+    "spec, field",
+    [
+        ({"start": 0.0, "stop": 1.0, "num": 3}, "start"),
+        ({"start": 1.0, "stop": 2.0, "num": 1}, "num"),
+        ({"start": 1.0, "stop": 2.0, "num": 3, "spacing": "cubic"}, "spacing"),
+    ],
+)
 def test_bad_range_is_refused_naming_the_field(spec: dict, field: str) -> None:
     with pytest.raises(ValueError, match=f"^{field}"):
         sweep_values(spec)
@@ -77,10 +80,13 @@ def test_table2_balls_are_solid_balls_of_the_sweeps_steel(project) -> None:
 
 
 def test_shipped_sweep_is_expanded_over_the_variants_and_not_a_row(project) -> None:
-    no_film = [v for v in project.variants["table2"] if "film" not in v and "sensor" not in v and not v.endswith("_cal")]
+    no_film = [
+        v for v in project.variants["table2"] if "film" not in v and "sensor" not in v and not v.endswith("_cal")
+    ]
     sensor = ["ball_sweep_sensor-r10_l30_sensor_cal", "ball_sweep_sensor-r1_l30_sensor_cal"]
-    assert sorted(project.sweeps) == sorted([f"ball_sweep-{v}" for v in no_film] + ["ball_sweep_film-r10_l30_film"]
-                                            + sensor)
+    assert sorted(project.sweeps) == sorted(
+        [f"ball_sweep-{v}" for v in no_film] + ["ball_sweep_film-r10_l30_film"] + sensor
+    )
     assert not [c for c in project.cases_in("table2") if c["row"] == "ball_sweep"]
     assert [c["id"] for c in project.sweeps_in("table2", "r1_l30")] == ["ball_sweep-r1_l30"]
     assert project.sweeps_in("model") == []
@@ -99,11 +105,18 @@ def test_paramspace_names_round_trip_to_the_grids_floats(project) -> None:
 
 def test_every_parameter_sets_its_field(project) -> None:
     case = project.sweeps["ball_sweep-r1_l30"]
-    where = {"ball_diameter_m": ("impactor", "radius_m", 0.0123 / 2), "mass_kg": ("impactor", "mass_kg", 0.0123),
-             "radius_m": ("impactor", "radius_m", 0.0123), "velocity_m_s": ("impactor", "velocity_m_s", 0.0123),
-             "rod_length_m": ("rod", "length_m", 0.0123)}
-    film = {"film_modulus_pa": ("material", "youngs_modulus_pa", 2.5e9), "film_poisson_ratio": ("material", "poisson_ratio", 0.31),
-            "film_thickness_m": (None, "thickness_m", 3.0e-5)}
+    where = {
+        "ball_diameter_m": ("impactor", "radius_m", 0.0123 / 2),
+        "mass_kg": ("impactor", "mass_kg", 0.0123),
+        "radius_m": ("impactor", "radius_m", 0.0123),
+        "velocity_m_s": ("impactor", "velocity_m_s", 0.0123),
+        "rod_length_m": ("rod", "length_m", 0.0123),
+    }
+    film = {
+        "film_modulus_pa": ("material", "youngs_modulus_pa", 2.5e9),
+        "film_poisson_ratio": ("material", "poisson_ratio", 0.31),
+        "film_thickness_m": (None, "thickness_m", 3.0e-5),
+    }
     assert set(where) | set(film) == set(SWEEP_PARAMETERS)
     film_case = project.sweeps["ball_sweep_film-r10_l30_film"]
     for name, (part, field, value) in film.items():
@@ -129,8 +142,10 @@ def test_contact_time_along_the_sweep_follows_hertz_for_a_rigid_rod(project) -> 
 
     case = project.sweeps["ball_sweep-r10_l30"]
     diameters = [1e-3, 2e-3, 4e-3]
-    times = [run_case(sweep_point_case(case, {"ball_diameter_m": d}, "p"), "sem").summary()["contact_time_s"]
-             for d in diameters]
+    times = [
+        run_case(sweep_point_case(case, {"ball_diameter_m": d}, "p"), "sem").summary()["contact_time_s"]
+        for d in diameters
+    ]
     slope = np.polyfit(np.log(diameters), np.log(times), 1)[0]
     assert slope == pytest.approx(1.0, abs=0.05)
 
@@ -140,8 +155,10 @@ def test_sweep_table_reads_the_points(tmp_path: Path, project) -> None:
     from rodimpact.storage.runs import read_summary
 
     case = project.sweeps["ball_sweep-r1_l30"]
-    paths = [run_to_file(sweep_point_case(case, {"ball_diameter_m": d}, f"d{d}"), "sem", tmp_path / f"{d}.h5")
-             for d in (3e-3, 2e-3)]
+    paths = [
+        run_to_file(sweep_point_case(case, {"ball_diameter_m": d}, f"d{d}"), "sem", tmp_path / f"{d}.h5")
+        for d in (3e-3, 2e-3)
+    ]
     frame = sweep_results_frame([read_summary(p) for p in paths])
     assert list(frame["ball_diameter_m"]) == [2e-3, 3e-3]  # sorted by mass
     assert set(frame["sweep"]) == {"ball_sweep-r1_l30"} and set(frame["variant"]) == {"r1_l30"}

@@ -40,26 +40,50 @@ from rodimpact.storage.runs import RunRecord
 PAGE_WIDTH_PT = 6.0 * 72.27
 
 #: Table 2 of the paper (diameter mm, mass g, measured µs, FEM µs, FEM error %, SEM µs, SEM error %).
-ROWS = [(3.16, 0.13, 36.42, 31.20, 14.33, 15.32, 57.93), (4.75, 0.44, 46.83, 60.75, 29.72, 23.63, 49.54),
-        (5.56, 0.71, 52.26, 78.09, 49.42, 27.90, 46.61), (6.34, 1.04, 60.05, 81.61, 35.90, 31.71, 47.19),
-        (9.51, 3.51, 84.96, 106.21, 25.01, 47.94, 43.57), (12.73, 8.46, 111.10, 121.71, 9.54, 64.82, 41.66)]
+ROWS = [
+    (3.16, 0.13, 36.42, 31.20, 14.33, 15.32, 57.93),
+    (4.75, 0.44, 46.83, 60.75, 29.72, 23.63, 49.54),
+    (5.56, 0.71, 52.26, 78.09, 49.42, 27.90, 46.61),
+    (6.34, 1.04, 60.05, 81.61, 35.90, 31.71, 47.19),
+    (9.51, 3.51, 84.96, 106.21, 25.01, 47.94, 43.57),
+    (12.73, 8.46, 111.10, 121.71, 9.54, 64.82, 41.66),
+]
 
 
 def _record(row: tuple, variant: str, method: str, contact_time_us: float) -> RunRecord:
     diameter, mass, measured, fem, fem_err, sem, sem_err = row
     case_id = f"ball_{diameter}mm-{variant}"
     config = {
-        "id": case_id, "row": f"ball_{diameter}mm", "variant": variant,
-        "impactor": {"radius_m": diameter / 2000, "mass_kg": mass / 1000, "velocity_m_s": 0.3225,
-                     "material": {"name": "steel"}},
+        "id": case_id,
+        "row": f"ball_{diameter}mm",
+        "variant": variant,
+        "impactor": {
+            "radius_m": diameter / 2000,
+            "mass_kg": mass / 1000,
+            "velocity_m_s": 0.3225,
+            "material": {"name": "steel"},
+        },
         "rod": {"radius_m": 0.01, "length_m": 0.0301, "material": {"name": "aluminium_table1"}},
         "measured": {"contact_time_us": measured},
-        "published": {"fem": {"contact_time_us": fem, "error_pct": fem_err},
-                      "sem": {"contact_time_us": sem, "error_pct": sem_err}},
+        "published": {
+            "fem": {"contact_time_us": fem, "error_pct": fem_err},
+            "sem": {"contact_time_us": sem, "error_pct": sem_err},
+        },
     }
-    return RunRecord(path=Path(f"{case_id}/{method}.h5"), case_id=case_id, method=method, config=config,
-                     config_sha256="", code_version="", library_versions={}, wall_time_s=0.0, created_utc="",
-                     series={}, units={}, summary={"contact_time_s": contact_time_us * 1e-6})
+    return RunRecord(
+        path=Path(f"{case_id}/{method}.h5"),
+        case_id=case_id,
+        method=method,
+        config=config,
+        config_sha256="",
+        code_version="",
+        library_versions={},
+        wall_time_s=0.0,
+        created_utc="",
+        series={},
+        units={},
+        summary={"contact_time_s": contact_time_us * 1e-6},
+    )
 
 
 def _records(methods: tuple[str, ...], variant: str = "r10_l30") -> list[RunRecord]:
@@ -74,14 +98,24 @@ def table2(tmp_path_factory) -> dict:
     records = _records(("sem", "fem1d", "fem_axi"))
     frame = table2_frame(records)
     paths = {ext: out / f"table2_r10_l30.{ext}" for ext in ("csv", "md", "html", "tex")}
-    write_table(frame, **paths, caption="Table 2", views=table_views.reading_views(frame, "r10_l30", records, "Table 2", "Belyaev, Shurpatov and Ma (2018)"))
-    return {"frame": frame, "records": records, **{ext: p.read_text(encoding="utf-8") for ext, p in paths.items()},
-            "paths": paths}
+    write_table(
+        frame,
+        **paths,
+        caption="Table 2",
+        views=table_views.reading_views(frame, "r10_l30", records, "Table 2", "Belyaev, Shurpatov and Ma (2018)"),
+    )
+    return {
+        "frame": frame,
+        "records": records,
+        **{ext: p.read_text(encoding="utf-8") for ext, p in paths.items()},
+        "paths": paths,
+    }
 
 
 # ---------------------------------------------------------------------------------------------
 # columns: one place for labels and units
 # ---------------------------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("name, header", [
     ("measured_us", "Measured (µs)"), ("published_sem_error_pct", "Paper SEM error (%)"),
@@ -117,8 +151,10 @@ def test_cells_round_and_mark_what_is_missing() -> None:
 
 
 def test_latex_escapes_text_and_sets_units() -> None:
-    assert latex_escape("r10_l30: 28 µm, 3.1e-06 m², 2·3, 50% & #1") == \
-        r"r10\_l30: 28 $\mu$m, 3.1e-06 m$^2$, 2$\cdot$3, 50\% \& \#1"
+    assert (
+        latex_escape("r10_l30: 28 µm, 3.1e-06 m², 2·3, 50% & #1")
+        == r"r10\_l30: 28 $\mu$m, 3.1e-06 m$^2$, 2$\cdot$3, 50\% \& \#1"
+    )
 
 
 def test_long_labels_wrap_in_two_balanced_lines() -> None:
@@ -131,11 +167,14 @@ def test_long_labels_wrap_in_two_balanced_lines() -> None:
 # panels
 # ---------------------------------------------------------------------------------------------
 
+
 def test_panels_split_evenly_and_repeat_the_key() -> None:
     frame = pd.DataFrame({c: [1.0, 2.0] for c in ["mass_g", *(f"v{i}_us" for i in range(9))]})
     shown = panels(frame, "T", ["mass_g", "absent_us"], [f"v{i}_us" for i in range(9)], label="tab:t")
-    assert [p.columns for p in shown] == [("mass_g", "v0_us", "v1_us", "v2_us", "v3_us", "v4_us"),
-                                          ("mass_g", "v5_us", "v6_us", "v7_us", "v8_us")]
+    assert [p.columns for p in shown] == [
+        ("mass_g", "v0_us", "v1_us", "v2_us", "v3_us", "v4_us"),
+        ("mass_g", "v5_us", "v6_us", "v7_us", "v8_us"),
+    ]
     assert [p.label for p in shown] == ["tab:t-1", "tab:t-2"]
     assert [p.title for p in shown] == ["T, part 1 of 2", "T, part 2 of 2"]
     with pytest.raises(ValueError, match="no room"):
@@ -146,51 +185,194 @@ def test_panels_by_a_column_show_each_group_alone() -> None:
     frame = pd.DataFrame({"variant": ["a", "b", "a"], "row": ["x", "y", "z"], "force_N": [1.0, 2.0, 3.0]})
     shown = panels(frame, "Indentation", ["row"], ["force_N"], by="variant")
     assert [(p.title, p.columns, p.rows) for p in shown] == [
-        ("Indentation: reading a", ("row", "force_N"), (0, 2)), ("Indentation: reading b", ("row", "force_N"), (1,))]
+        ("Indentation: reading a", ("row", "force_N"), (0, 2)),
+        ("Indentation: reading b", ("row", "force_N"), (1,)),
+    ]
     assert list(shown[0].cells(frame)["row"]) == ["x", "z"]
 
 
 #: The columns each table's frame has (the CSV headers the workflow writes), and its view.
 FRAMES = {
-    "table2_variants": (table_views.variants_views, [
-        "variant", "film", "contact_law", "method", "n_cases", "mean_error_pct", "max_error_pct",
-        "mean_signed_error_pct", "paper_method", "paper_mean_error_pct", "paper_max_error_pct"]),
-    "fig2_comparison": (table_views.comparison_views, [
-        "case_id", "method", "contact_time_us", "n_maxima", "max_1_kN", "max_2_kN", "max_3_kN",
-        "contact_time_vs_sem_pct", "maxima_vs_sem_pct", "paper_fem_vs_sem_contact_time_pct",
-        "paper_fem_vs_sem_extrema_pct"]),
-    "table2_film": (table_views.film_table_views, [
-        "row", "mass_g", "diameter_mm", "measured_us", "published_fem_us", "published_sem_us", "sem_no_film_us",
-        "fem1d_no_film_us", "fem_axi_no_film_us", "sem_film_us", "fem1d_film_us", "fem_axi_film_us",
-        "sem_film_calibrated_us", "sem_no_film_calibrated_us", "band_min_us", "band_max_us",
-        "published_fem_error_pct", "published_sem_error_pct", "sem_no_film_error_pct", "fem1d_no_film_error_pct",
-        "fem_axi_no_film_error_pct", "sem_film_error_pct", "fem1d_film_error_pct", "fem_axi_film_error_pct",
-        "sem_film_calibrated_error_pct", "sem_no_film_calibrated_error_pct", "radius_to_thickness",
-        "model_form_pct"]),
-    "film_band": (table_views.film_band_views, [
-        "variant", "row", "case_id", "mass_g", "measured_us", "nominal_us", "band_min_us", "band_max_us",
-        "measured_in_band", "monotone"]),
-    "film_indentation": (table_views.film_indentation_views, [
-        "case_id", "variant", "row", "point", "force_N", "continuum_approach_um", "law_approach_um", "law",
-        "law_error_pct", "contact_radius_um", "film_thickness_um", "radius_to_film_thickness",
-        "interpolation_error_half"]),
-    "sweep": (table_views.sweep_views, [
-        "sweep", "row", "variant", "method", "ball_diameter_m", "mass_g", "diameter_mm", "velocity_m_s",
-        "rod_length_mm", "contact_time_us", "first_peak_force_N", "max_force_N", "n_contacts", "film_modulus_pa"]),
-    "work_precision_orders": (table_views.orders_views, [
-        "case_id", "method", "quantity", "expected_order", "observed_order", "order_stderr", "fitted_levels", "monotone",
-        "sign_change", "within_expected", "asymptotic", "arrival_offset", "gci_order", "gci_pct", "oscillatory",
-        "u_osc_pct"]),
-    "stability": (table_views.stability_views, [
-        "case_id", "method", "status", "success", "finite", "min_force_N", "energy_error", "energy_tolerance",
-        "contact_time_s", "reference_contact_time_s", "contact_time_error", "contact_time_tolerance", "n_contacts",
-        "contact_intervals_us", "wall_time_s", "message", "verdict"]),
+    "table2_variants": (
+        table_views.variants_views,
+        [
+            "variant",
+            "film",
+            "contact_law",
+            "method",
+            "n_cases",
+            "mean_error_pct",
+            "max_error_pct",
+            "mean_signed_error_pct",
+            "paper_method",
+            "paper_mean_error_pct",
+            "paper_max_error_pct",
+        ],
+    ),
+    "fig2_comparison": (
+        table_views.comparison_views,
+        [
+            "case_id",
+            "method",
+            "contact_time_us",
+            "n_maxima",
+            "max_1_kN",
+            "max_2_kN",
+            "max_3_kN",
+            "contact_time_vs_sem_pct",
+            "maxima_vs_sem_pct",
+            "paper_fem_vs_sem_contact_time_pct",
+            "paper_fem_vs_sem_extrema_pct",
+        ],
+    ),
+    "table2_film": (
+        table_views.film_table_views,
+        [
+            "row",
+            "mass_g",
+            "diameter_mm",
+            "measured_us",
+            "published_fem_us",
+            "published_sem_us",
+            "sem_no_film_us",
+            "fem1d_no_film_us",
+            "fem_axi_no_film_us",
+            "sem_film_us",
+            "fem1d_film_us",
+            "fem_axi_film_us",
+            "sem_film_calibrated_us",
+            "sem_no_film_calibrated_us",
+            "band_min_us",
+            "band_max_us",
+            "published_fem_error_pct",
+            "published_sem_error_pct",
+            "sem_no_film_error_pct",
+            "fem1d_no_film_error_pct",
+            "fem_axi_no_film_error_pct",
+            "sem_film_error_pct",
+            "fem1d_film_error_pct",
+            "fem_axi_film_error_pct",
+            "sem_film_calibrated_error_pct",
+            "sem_no_film_calibrated_error_pct",
+            "radius_to_thickness",
+            "model_form_pct",
+        ],
+    ),
+    "film_band": (
+        table_views.film_band_views,
+        [
+            "variant",
+            "row",
+            "case_id",
+            "mass_g",
+            "measured_us",
+            "nominal_us",
+            "band_min_us",
+            "band_max_us",
+            "measured_in_band",
+            "monotone",
+        ],
+    ),
+    "film_indentation": (
+        table_views.film_indentation_views,
+        [
+            "case_id",
+            "variant",
+            "row",
+            "point",
+            "force_N",
+            "continuum_approach_um",
+            "law_approach_um",
+            "law",
+            "law_error_pct",
+            "contact_radius_um",
+            "film_thickness_um",
+            "radius_to_film_thickness",
+            "interpolation_error_half",
+        ],
+    ),
+    "sweep": (
+        table_views.sweep_views,
+        [
+            "sweep",
+            "row",
+            "variant",
+            "method",
+            "ball_diameter_m",
+            "mass_g",
+            "diameter_mm",
+            "velocity_m_s",
+            "rod_length_mm",
+            "contact_time_us",
+            "first_peak_force_N",
+            "max_force_N",
+            "n_contacts",
+            "film_modulus_pa",
+        ],
+    ),
+    "work_precision_orders": (
+        table_views.orders_views,
+        [
+            "case_id",
+            "method",
+            "quantity",
+            "expected_order",
+            "observed_order",
+            "order_stderr",
+            "fitted_levels",
+            "monotone",
+            "sign_change",
+            "within_expected",
+            "asymptotic",
+            "arrival_offset",
+            "gci_order",
+            "gci_pct",
+            "oscillatory",
+            "u_osc_pct",
+        ],
+    ),
+    "stability": (
+        table_views.stability_views,
+        [
+            "case_id",
+            "method",
+            "status",
+            "success",
+            "finite",
+            "min_force_N",
+            "energy_error",
+            "energy_tolerance",
+            "contact_time_s",
+            "reference_contact_time_s",
+            "contact_time_error",
+            "contact_time_tolerance",
+            "n_contacts",
+            "contact_intervals_us",
+            "wall_time_s",
+            "message",
+            "verdict",
+        ],
+    ),
 }
 
 
 def _frame(columns: list[str]) -> pd.DataFrame:
-    text = {"variant", "row", "case_id", "method", "sweep", "contact_law", "paper_method", "law", "quantity",
-            "fitted_levels", "status", "message", "verdict", "contact_intervals_us"}
+    text = {
+        "variant",
+        "row",
+        "case_id",
+        "method",
+        "sweep",
+        "contact_law",
+        "paper_method",
+        "law",
+        "quantity",
+        "fitted_levels",
+        "status",
+        "message",
+        "verdict",
+        "contact_intervals_us",
+    }
     return pd.DataFrame({c: (["r10_l30", "r1_l30", "r10_l30"] if c in text else [1.25, 2.5, 3.75]) for c in columns})
 
 
@@ -219,6 +401,7 @@ def test_every_view_shows_words_and_units_in_a_page(name: str) -> None:
 # ---------------------------------------------------------------------------------------------
 # Table 2: CSV, HTML, LaTeX, Markdown
 # ---------------------------------------------------------------------------------------------
+
 
 def test_table2_csv_keeps_every_column_at_full_precision(table2: dict) -> None:
     back = pd.read_csv(table2["paths"]["csv"])
@@ -279,10 +462,26 @@ def test_table2_html_is_two_tables_with_units(table2: dict) -> None:
     parser.feed(table2["html"])
     assert parser.tags <= {"div", "table", "caption", "thead", "tbody", "tr", "th", "td", "br", "span"}
     times, errors = parser.tables
-    assert times["th"] == ["Diameter (mm)", "Mass (g)", "Measured (µs)", "Paper FEM (µs)", "Paper SEM (µs)",
-                           "SEM (µs)", "FEM 1-D (µs)", "FEM axisym. (µs)"]
-    assert errors["th"] == ["Diameter (mm)", "Mass (g)", "Paper FEM (%)", "Paper SEM (%)", "SEM (%)", "FEM 1-D (%)",
-                            "FEM axisym. (%)", "SEM vs paper SEM (%)"]
+    assert times["th"] == [
+        "Diameter (mm)",
+        "Mass (g)",
+        "Measured (µs)",
+        "Paper FEM (µs)",
+        "Paper SEM (µs)",
+        "SEM (µs)",
+        "FEM 1-D (µs)",
+        "FEM axisym. (µs)",
+    ]
+    assert errors["th"] == [
+        "Diameter (mm)",
+        "Mass (g)",
+        "Paper FEM (%)",
+        "Paper SEM (%)",
+        "SEM (%)",
+        "FEM 1-D (%)",
+        "FEM axisym. (%)",
+        "SEM vs paper SEM (%)",
+    ]
     assert len(times["rows"]) == len(errors["rows"]) == 6
     assert times["rows"][0] == ["3.16", "0.13", "36.42", "31.20", "15.32", "21.85", "22.22", "22.58"]
     assert errors["rows"][-1][2:5] == ["9.54", "41.66", "40.00"]  # |0.6 t - t| / t
@@ -379,10 +578,18 @@ def test_the_width_estimate_counts_the_widest_line() -> None:
 @pytest.mark.skipif(shutil.which("pdflatex") is None, reason="pdflatex is not installed: the structure is checked")
 def test_table2_latex_compiles(table2: dict, tmp_path: Path) -> None:
     document = tmp_path / "t.tex"
-    document.write_text("\\documentclass{article}\n\\usepackage{booktabs}\n\\setlength{\\textwidth}{6in}\n"
-                        "\\begin{document}\n\\input{" + str(table2["paths"]["tex"]) + "}\n\\end{document}\n")
-    run = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", document.name], cwd=tmp_path,
-                         capture_output=True, text=True, timeout=120, check=False)
+    document.write_text(
+        "\\documentclass{article}\n\\usepackage{booktabs}\n\\setlength{\\textwidth}{6in}\n"
+        "\\begin{document}\n\\input{" + str(table2["paths"]["tex"]) + "}\n\\end{document}\n"
+    )
+    run = subprocess.run(
+        ["pdflatex", "-interaction=nonstopmode", "-halt-on-error", document.name],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
     assert run.returncode == 0, run.stdout[-2000:]
     assert "Overfull \\hbox" not in (tmp_path / "t.log").read_text(errors="replace")
 

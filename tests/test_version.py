@@ -19,8 +19,9 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def _git(repo: Path, *args: str) -> None:
-    subprocess.run(("git", "-C", str(repo), "-c", "user.name=t", "-c", "user.email=t@t", *args),
-                   check=True, capture_output=True)
+    subprocess.run(
+        ("git", "-C", str(repo), "-c", "user.name=t", "-c", "user.email=t@t", *args), check=True, capture_output=True
+    )
 
 
 def _scm(repo: Path) -> str:

@@ -59,8 +59,13 @@ def _field(result) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 def model_runs() -> dict:
     """The model impact by sem and fem1d, with and without the field."""
     problem = model_problem()
-    return {"problem": problem, "sem": solve_sem(problem, field=GRID), "fem1d": solve_fem1d(problem, field=GRID),
-            "sem_plain": solve_sem(problem), "fem1d_plain": solve_fem1d(problem)}
+    return {
+        "problem": problem,
+        "sem": solve_sem(problem, field=GRID),
+        "fem1d": solve_fem1d(problem, field=GRID),
+        "sem_plain": solve_sem(problem),
+        "fem1d_plain": solve_fem1d(problem),
+    }
 
 
 # --------------------------------------------------------------------------- the physics
@@ -151,13 +156,24 @@ def test_recording_the_field_changes_nothing_else(model_runs: dict, name: str) -
     speed it is drawn with."""
     with_field, plain = model_runs[name], model_runs[f"{name}_plain"]
     assert plain.field == {} and with_field.field
-    for dataset in ("time", "contact_force", "approach", "impactor_displacement", "impactor_velocity",
-                    "rod_end_displacement", "contact_start_s", "contact_end_s", "peak_force_N"):
+    for dataset in (
+        "time",
+        "contact_force",
+        "approach",
+        "impactor_displacement",
+        "impactor_velocity",
+        "rod_end_displacement",
+        "contact_start_s",
+        "contact_end_s",
+        "peak_force_N",
+    ):
         assert np.array_equal(getattr(with_field, dataset), getattr(plain, dataset)), dataset
     assert with_field.extra_series.keys() == plain.extra_series.keys()
     for key, (values, units, description) in plain.extra_series.items():
         assert np.array_equal(with_field.extra_series[key][0], values) and with_field.extra_series[key][1:] == (
-            units, description)
+            units,
+            description,
+        )
     summary, plain_summary = with_field.summary(), plain.summary()
     assert set(summary) - set(plain_summary) == {"wave_speed_m_s"}
     for key, value in plain_summary.items():
@@ -220,22 +236,47 @@ def test_a_stored_field_has_units_dimension_scales_and_is_in_the_digest(wave_cas
 def test_a_run_without_a_field_keeps_the_digest_of_its_series_and_summary(tmp_path: Path) -> None:
     """The digest covers a field under field/<name>; without one it is the series' and the
     summary's alone, as before fields existed."""
-    series = {"time": (np.linspace(0.0, 1e-4, 5), "s", "time since first contact"),
-              "contact_force": (np.array([0.0, 2.0, 3.0, 1.0, 0.0]), "N", "contact force P(t)")}
-    summary = {"contact_time_s": 1e-4, "peak_force_N": np.array([3.0]), "peak_time_s": np.array([5e-5]),
-               "rebound_velocity_m_s": -0.1, "energy_error": 0.0}
-    path = write_run(tmp_path / "plain.h5", config={"id": "c"}, method="sem", series=series, summary=summary,
-                     wall_time_s=0.0, code_version="0.1.0+gtest")
+    series = {
+        "time": (np.linspace(0.0, 1e-4, 5), "s", "time since first contact"),
+        "contact_force": (np.array([0.0, 2.0, 3.0, 1.0, 0.0]), "N", "contact force P(t)"),
+    }
+    summary = {
+        "contact_time_s": 1e-4,
+        "peak_force_N": np.array([3.0]),
+        "peak_time_s": np.array([5e-5]),
+        "rebound_velocity_m_s": -0.1,
+        "energy_error": 0.0,
+    }
+    path = write_run(
+        tmp_path / "plain.h5",
+        config={"id": "c"},
+        method="sem",
+        series=series,
+        summary=summary,
+        wall_time_s=0.0,
+        code_version="0.1.0+gtest",
+    )
     with h5py.File(path) as h5:
         stored = h5.attrs["data_sha256"]
         assert "field" not in h5
     record = read_run(path)
     assert stored == data_sha256(canonical_json({"id": "c"}), "sem", series, record.summary)
-    field = {"time": (np.array([0.0, 5e-5]), "s", "t"), "x": (np.array([0.0, 0.5]), "m", "x"),
-             "strain": (np.zeros((2, 3)), "1", "strain")}
+    field = {
+        "time": (np.array([0.0, 5e-5]), "s", "t"),
+        "x": (np.array([0.0, 0.5]), "m", "x"),
+        "strain": (np.zeros((2, 3)), "1", "strain"),
+    }
     with pytest.raises(ValueError, match="expected"):
-        write_run(tmp_path / "bad.h5", config={"id": "c"}, method="sem", series=series, summary=summary,
-                  wall_time_s=0.0, code_version="0.1.0+gtest", field=field)
+        write_run(
+            tmp_path / "bad.h5",
+            config={"id": "c"},
+            method="sem",
+            series=series,
+            summary=summary,
+            wall_time_s=0.0,
+            code_version="0.1.0+gtest",
+            field=field,
+        )
     assert not (tmp_path / "bad.h5").exists()
 
 
@@ -264,14 +305,19 @@ def _edit_model(root: Path, change) -> str:
 
 def test_the_field_is_asked_for_only_where_a_method_records_it(project_dir: Path) -> None:
     assert "recorded by sem, fem1d only; the case runs none of them (methods: sem_paper, fem_axi)" in _edit_model(
-        project_dir, lambda case: case.update(methods=["sem_paper", "fem_axi"]))
+        project_dir, lambda case: case.update(methods=["sem_paper", "fem_axi"])
+    )
 
 
 def test_the_field_grid_goes_with_the_field_and_within_its_bounds(project_dir: Path) -> None:
     message = _edit_model(project_dir, lambda case: case.update(field_grid={"sections": 1}))
     assert "field 'field_grid.sections': must be >= 2, got 1" in message
-    message = _edit_model(project_dir, lambda case: case.update(
-        field_grid={"sections": 81}, outputs=[o for o in case["outputs"] if o != "strain_field"]))
+    message = _edit_model(
+        project_dir,
+        lambda case: case.update(
+            field_grid={"sections": 81}, outputs=[o for o in case["outputs"] if o != "strain_field"]
+        ),
+    )
     assert "field 'field_grid': is the grid of the output 'strain_field', which the case does not list" in message
 
 

@@ -133,8 +133,7 @@ def expected(built: Path) -> dict:
     """What the build must contain, from its own configuration."""
     project = project_cases(built)
     variants = sorted(project.variants["table2"])
-    by_variant = {v: [case_run(c, m) for c in project.cases_in("table2", v) for m in c["methods"]]
-                  for v in variants}
+    by_variant = {v: [case_run(c, m) for c in project.cases_in("table2", v) for m in c["methods"]] for v in variants}
     runs = [case_run(c, m) for name in ("model", "table2", "example")
             for c in project.cases_in(name) for m in c["methods"]]  # fmt: skip
     example = [case_run(c, m) for c in project.cases_in("example") for m in c["methods"]]
@@ -177,12 +176,18 @@ def stored_hashes(built: Path, expected: dict) -> dict[str, str]:
 
 
 def test_full_build_produces_every_artifact(built: Path, expected: dict) -> None:
-    film = [f"results/tables/{name}.{ext}" for name in ("table2_film", "film_band", "film_indentation")
-            for ext in ("csv", "md", "provenance.json")]
+    film = [
+        f"results/tables/{name}.{ext}"
+        for name in ("table2_film", "film_band", "film_indentation")
+        for ext in ("csv", "md", "provenance.json")
+    ]
     film += [f"results/figures/film_force.{ext}" for ext in ("pdf", "png")]
     film += [f"results/studies/film_band_{FILM_VARIANT}.h5"]
-    film += [f"results/indentation/{v}/{c['id']}.h5" for v in expected["calibrated_variants"]
-             for c in expected["project"].cases_in("table2", v)]
+    film += [
+        f"results/indentation/{v}/{c['id']}.h5"
+        for v in expected["calibrated_variants"]
+        for c in expected["project"].cases_in("table2", v)
+    ]
     artifacts = [
         *(f"results/tables/table2_{v}.{ext}" for v in expected["variants"]
           for ext in ("csv", "md", "tex", "provenance.json")),
@@ -266,8 +271,12 @@ def test_study_tables(built: Path) -> None:
     sweep = pd.read_csv(built / "results/tables/work_precision.csv")
     # three levels of each 1-D method on model; on the smooth case sem and fem1d only (its per_case)
     assert sorted(Counter(zip(sweep["case_id"], sweep["method"])).items()) == [
-        (("linear_spring", "fem1d"), 3), (("linear_spring", "sem"), 3),
-        (("model", "fem1d"), 3), (("model", "sem"), 3), (("model", "sem_paper"), 3)]
+        (("linear_spring", "fem1d"), 3),
+        (("linear_spring", "sem"), 3),
+        (("model", "fem1d"), 3),
+        (("model", "sem"), 3),
+        (("model", "sem_paper"), 3),
+    ]
     assert (sweep["wall_time_s"] > 0).all() and sweep["err_contact_time"].notna().all()
     assert sweep["machine"].str.contains("logical CPUs").all()
     stability_map = pd.read_csv(built / "results/tables/stability_map.csv")
@@ -311,9 +320,7 @@ def test_table2_csvs(built: Path, expected: dict) -> None:
         assert row.n_cases == len(expected["project"].cases_in("table2", row.variant)), row
 
 
-def test_table_provenance_matches_run_files(
-    built: Path, expected: dict, stored_hashes: dict[str, str]
-) -> None:
+def test_table_provenance_matches_run_files(built: Path, expected: dict, stored_hashes: dict[str, str]) -> None:
     for variant, runs in expected["table2_runs"].items():
         record = json.loads((built / f"results/tables/table2_{variant}.provenance.json").read_text())
         assert_inputs_match(record["inputs"], runs, stored_hashes)
@@ -323,11 +330,16 @@ def test_table_provenance_matches_run_files(
     assert_inputs_match(record["inputs"], all_table2, stored_hashes)
 
 
-@pytest.mark.parametrize("figure", ["fig2_contact_force", "fig4_midrod_displacement", "table2_contact_time",
-                                    *(f"wave_map_{case}" for case in WAVE_CASES)])
-def test_figures_carry_provenance(
-    built: Path, expected: dict, stored_hashes: dict[str, str], figure: str
-) -> None:
+@pytest.mark.parametrize(
+    "figure",
+    [
+        "fig2_contact_force",
+        "fig4_midrod_displacement",
+        "table2_contact_time",
+        *(f"wave_map_{case}" for case in WAVE_CASES),
+    ],
+)
+def test_figures_carry_provenance(built: Path, expected: dict, stored_hashes: dict[str, str], figure: str) -> None:
     runs = (
         expected["model_runs"]
         if figure in ("fig2_contact_force", "fig4_midrod_displacement")
@@ -364,8 +376,12 @@ def test_every_set_with_measurements_is_compared(built: Path, expected: dict) ->
     summary, a figure, and a figure per measured force history."""
     project = expected["project"]
     tables = sorted(p.name for p in (built / "results/tables").glob("compare_*.csv"))
-    assert tables == ["compare_example.csv", "compare_example_summary.csv", "compare_table2.csv",
-                      "compare_table2_summary.csv"]
+    assert tables == [
+        "compare_example.csv",
+        "compare_example_summary.csv",
+        "compare_table2.csv",
+        "compare_table2_summary.csv",
+    ]
     example = pd.read_csv(built / "results/tables/compare_example.csv")
     cases = project.sets["example"]
     assert sorted(set(example["case_id"])) == sorted(cases)
@@ -396,8 +412,10 @@ def test_sweep_points_are_runs_and_a_table(built: Path, expected: dict) -> None:
     for modulus, curve in film.groupby("film_modulus_pa"):  # a softer film, a longer contact
         stiffer = film[(film["film_modulus_pa"] > modulus) & film["ball_diameter_m"].isin(curve["ball_diameter_m"])]
         for row in stiffer.itertuples():
-            assert row.contact_time_us < curve.loc[curve["ball_diameter_m"] == row.ball_diameter_m,
-                                                   "contact_time_us"].item()
+            assert (
+                row.contact_time_us
+                < curve.loc[curve["ball_diameter_m"] == row.ball_diameter_m, "contact_time_us"].item()
+            )
     table = table[table["sweep"] != film_sweep]
     for (sweep, variant), curve in table.groupby(["sweep", "variant"]):
         assert curve["mass_g"].is_monotonic_increasing and curve["contact_time_us"].is_monotonic_increasing, variant
@@ -426,8 +444,11 @@ def test_provenance_audit_passes_on_a_fresh_build(built: Path) -> None:
     h5 = [p.relative_to(built).as_posix() for p in (built / "results").rglob("*.h5")]
     bands = ("results/studies/film_band_", "results/studies/sensor_band/")
     runs = [p for p in h5 if not p.startswith(("results/indentation/", *bands))]
-    artifacts = [p for p in (built / "results").rglob("*") if p.is_file() and p.parent.name in ("tables", "figures")
-                 and not p.name.endswith(".provenance.json")]
+    artifacts = [
+        p
+        for p in (built / "results").rglob("*")
+        if p.is_file() and p.parent.name in ("tables", "figures") and not p.name.endswith(".provenance.json")
+    ]
     assert kinds["run"] == len(runs) and kinds["artifact"] >= len(artifacts) >= 20 and not kinds["unknown"], kinds
     assert kinds["band"] == len([p for p in h5 if p.startswith(bands)]) >= 3, kinds
     # a copy is an untagged history: its version is 0.0.0.post1 (rodimpact._version), plus the commit
@@ -444,8 +465,12 @@ def test_provenance_audit_fails_on_hand_edits_and_stale_artifacts(dottest: DotTe
     model_yaml = project / "config/cases/model.yaml"
     model_yaml.write_text(model_yaml.read_text().replace("velocity_m_s: 1.0\n", "velocity_m_s: 1.1\n"))
 
-    proc = subprocess.run([sys.executable, "-m", "rodimpact.tools.audit", "--root", str(project)],
-                          capture_output=True, text=True, check=False)
+    proc = subprocess.run(
+        [sys.executable, "-m", "rodimpact.tools.audit", "--root", str(project)],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
     assert proc.returncode == 1, proc.stdout + proc.stderr
     failed = {}
     for line in proc.stdout.splitlines():

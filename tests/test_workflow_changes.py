@@ -64,7 +64,8 @@ def test_only_the_cases_asking_for_the_field_have_a_wave_map(tmp_path: Path) -> 
     does not list strain_field has none, and none of its runs pays for it."""
     project = copy_project(tmp_path / "project")
     assert [c for c, case in project_cases(project).cases.items() if "strain_field" in case["outputs"]] == list(
-        WAVE_CASES)
+        WAVE_CASES
+    )
     target = "results/figures/wave_map_model.png"
     run = snakemake(project, "-n", "-j2", target)
     assert run.returncode == 0, run.describe()
@@ -106,8 +107,9 @@ def test_new_row_in_table2_yaml_is_computed(changed: DotTestBuild) -> None:
     new_case = "ball_8.00mm-r10_l30"
     before = pd.read_csv(changed.workdir / "results/tables/table2_r10_l30.csv")
 
-    run = snakemake(changed.project, "-j2", "results/tables/table2_r10_l30.csv", timeout=BUILD_TIMEOUT_S,
-                    workdir=DOTTEST)
+    run = snakemake(
+        changed.project, "-j2", "results/tables/table2_r10_l30.csv", timeout=BUILD_TIMEOUT_S, workdir=DOTTEST
+    )
     assert run.returncode == 0, run.describe()
     # The existing runs are reused: the new ball's case file, its three runs, then the table.
     assert job_stats(run.output) == {"case_file": 1, "solve": 3, "readings_table": 1}, run.describe()
@@ -151,8 +153,6 @@ def test_new_case_file_is_picked_up(tmp_path: Path) -> None:
     assert resolved.cases["my_ball"]["rod"]["area_m2"] == pytest.approx(1.0e-4)
 
 
-
-
 def test_a_new_experiment_with_measurements_gets_its_comparison(tmp_path: Path) -> None:
     """A new case file with measured values and a force history, its set added to targets.sets:
     its comparison table, figure and history figure are built, with no code change."""
@@ -162,22 +162,35 @@ def test_a_new_experiment_with_measurements_gets_its_comparison(tmp_path: Path) 
     t = np.arange(-10.0, 80.0, 0.5)  # µs: a half-sine of 60 µs and 300 N
     force = np.where((t > 0) & (t < 60.0), 300.0 * np.sin(np.pi * np.clip(t, 0, 60) / 60.0), 0.0)
     (cases / "my_lab/ball_a.csv").write_text("time_us,force_N\n" + "".join(f"{a},{b}\n" for a, b in zip(t, force)))
-    (cases / "my_lab.yaml").write_text(NEW_CASE_FILE.replace("my_experiment", "my_lab").replace(
-        'measured: {contact_time_us: 50.0, source: "lab notebook, page 1"}',
-        'methods: [sem]\n    measured: {contact_time_us: 50.0, peak_force_n: 250.0, source: "lab notebook, page 1",\n'
-        '               force_history: {file: my_lab/ball_a.csv, note: "piezo film, 1 MOhm"}}'), encoding="utf-8")
+    (cases / "my_lab.yaml").write_text(
+        NEW_CASE_FILE.replace("my_experiment", "my_lab").replace(
+            'measured: {contact_time_us: 50.0, source: "lab notebook, page 1"}',
+            "methods: [sem]\n    measured: {contact_time_us: 50.0, peak_force_n: 250.0, "
+            'source: "lab notebook, page 1",\n'
+            '               force_history: {file: my_lab/ball_a.csv, note: "piezo film, 1 MOhm"}}',
+        ),
+        encoding="utf-8",
+    )
     config_file = project / "config/config.yaml"
     config = yaml.safe_load(config_file.read_text(encoding="utf-8"))
     config["targets"]["sets"] = ["my_lab"]
     config_file.write_text(yaml.safe_dump(config, sort_keys=False), encoding="utf-8")
-    targets = ["results/tables/compare_my_lab.csv", "results/figures/compare_my_lab.png",
-               "results/figures/compare_my_lab_my_ball.png"]
+    targets = [
+        "results/tables/compare_my_lab.csv",
+        "results/figures/compare_my_lab.png",
+        "results/figures/compare_my_lab_my_ball.png",
+    ]
     run = snakemake(project, "-j2", *targets, timeout=BUILD_TIMEOUT_S)
     assert run.returncode == 0, run.describe()
     assert job_stats(run.output) == {"case_file": 1, "solve": 1, "compare": 1, "compare_history": 1}, run.describe()
     table = pd.read_csv(project / targets[0])
-    assert set(table["quantity"]) == {"contact_time_us", "peak_force_n", "signal_contact_time_us",
-                                      "history_l2_pct", "history_max_pct"}
+    assert set(table["quantity"]) == {
+        "contact_time_us",
+        "peak_force_n",
+        "signal_contact_time_us",
+        "history_l2_pct",
+        "history_max_pct",
+    }
     assert (table["source"] == "lab notebook, page 1").all()
     time = table[table["quantity"] == "contact_time_us"].iloc[0]
     assert time["error_pct"] == pytest.approx(100 * (time["computed"] - 50.0) / 50.0, rel=1e-12)
@@ -217,22 +230,42 @@ def test_a_new_experiment_with_readings_gets_the_tables_of_table2(tmp_path: Path
     config = yaml.safe_load(config_file.read_text(encoding="utf-8"))
     config["targets"]["sets"] = ["drops"]
     config_file.write_text(yaml.safe_dump(config, sort_keys=False), encoding="utf-8")
-    targets = [*(f"results/tables/drops_{v}.md" for v in ("short", "long")), "results/tables/drops_variants.csv",
-               "results/figures/drops_contact_time.png", "results/tables/compare_drops.csv"]
+    targets = [
+        *(f"results/tables/drops_{v}.md" for v in ("short", "long")),
+        "results/tables/drops_variants.csv",
+        "results/figures/drops_contact_time.png",
+        "results/tables/compare_drops.csv",
+    ]
     run = snakemake(project, "-j2", *targets, timeout=BUILD_TIMEOUT_S)
     assert run.returncode == 0, run.describe()
     stats = job_stats(run.output)
-    assert {k: stats.get(k) for k in ("readings_table", "readings_summary", "fig_readings", "compare",
-                                      "film_table", "sensor_band", "indentation")} == {
-        "readings_table": 2, "readings_summary": 1, "fig_readings": 1, "compare": 1, "film_table": None,
-        "sensor_band": None, "indentation": None}, run.describe()
+    assert {
+        k: stats.get(k)
+        for k in (
+            "readings_table",
+            "readings_summary",
+            "fig_readings",
+            "compare",
+            "film_table",
+            "sensor_band",
+            "indentation",
+        )
+    } == {
+        "readings_table": 2,
+        "readings_summary": 1,
+        "fig_readings": 1,
+        "compare": 1,
+        "film_table": None,
+        "sensor_band": None,
+        "indentation": None,
+    }, run.describe()
     for variant, length in (("short", 0.20), ("long", 0.21)):
         table = pd.read_csv(project / f"results/tables/drops_{variant}.csv")
         assert list(table["case_id"]) == [f"ball_a-{variant}", f"ball_b-{variant}"]
         assert not [c for c in table.columns if "published" in c]
         assert table["sem_error_pct"].tolist() == pytest.approx(
-            (100 * (table["sem_us"] - table["measured_us"]).abs() / table["measured_us"]).tolist(),
-            rel=1e-8)  # the CSV keeps ten significant digits
+            (100 * (table["sem_us"] - table["measured_us"]).abs() / table["measured_us"]).tolist(), rel=1e-8
+        )  # the CSV keeps ten significant digits
         md = (project / f"results/tables/drops_{variant}.md").read_text(encoding="utf-8")
         assert md.startswith(f"Drop tests, rod reading {variant}: rod radius 5 mm, length {1000 * length:g} mm")
         assert "Paper" not in md and "Table~2" not in (project / f"results/tables/drops_{variant}.tex").read_text()
@@ -258,17 +291,27 @@ def test_changed_case_value_reruns_only_that_case(changed: DotTestBuild) -> None
     # model's runs and what shows them (its forces handed on too), and the studies built on model: its work-precision
     # levels (3 methods x 3 levels in .test, a job per method) and the stability map, whose
     # base case it is (a job per method and one for the references)
-    assert job_stats(run.output) == {"case_file": 1, "solve": 4, "paper_model": 1,
-                                     "all": 1, "solve_levels": 3, "work_precision_table": 1,
-                                     "work_precision_figure": 1, "solve_map": 3,
-                                     "stability_map": 1, "forces": 1, "fig_force_fit": 1,
-                                     "wave_map": 1}, run.describe()
+    assert job_stats(run.output) == {
+        "case_file": 1,
+        "solve": 4,
+        "paper_model": 1,
+        "all": 1,
+        "solve_levels": 3,
+        "work_precision_table": 1,
+        "work_precision_figure": 1,
+        "solve_map": 3,
+        "stability_map": 1,
+        "forces": 1,
+        "fig_force_fit": 1,
+        "wave_map": 1,
+    }, run.describe()
     assert pending(rows := summary(changed.project, workdir=DOTTEST), "case_file") == {"results/cases/model.yaml"}
     assert pending(rows, "solve") == {run_batch("model", m) for m in ("sem", "sem_paper", "fem1d", "fem_axi")}
     assert pending(rows, "paper_model") == {
-        f"results/figures/{name}.{ext}" for name in ("fig2_contact_force", "fig4_midrod_displacement")
-        for ext in ("pdf", "png", "provenance.json")} | {
-        f"results/tables/fig2_comparison.{ext}" for ext in ("csv", "md", "html", "provenance.json")}
+        f"results/figures/{name}.{ext}"
+        for name in ("fig2_contact_force", "fig4_midrod_displacement")
+        for ext in ("pdf", "png", "provenance.json")
+    } | {f"results/tables/fig2_comparison.{ext}" for ext in ("csv", "md", "html", "provenance.json")}
     assert not {p for p in pending(rows) if "table2" in p or "ball_" in p}
 
 
@@ -280,8 +323,12 @@ def test_code_change_reruns_the_solvers(changed: DotTestBuild) -> None:
     assert run.returncode == 0, run.describe()
     stats = job_stats(run.output)
     project = project_cases(changed.workdir)
-    batches = {(c.get("variant") or c["set"], m) for name in ("model", "table2", "example")
-               for c in project.cases_in(name) for m in c["methods"]}
+    batches = {
+        (c.get("variant") or c["set"], m)
+        for name in ("model", "table2", "example")
+        for c in project.cases_in(name)
+        for m in c["methods"]
+    }
     assert stats.get("solve") == len(batches), run.describe()  # every batch of runs of the target sets
     # the code is a param (the digest of the sources a rule runs), not sixty input files
     assert "Params have changed since last execution" in run.output, run.describe()
@@ -303,20 +350,30 @@ def test_a_methods_code_change_reruns_only_its_runs(changed: DotTestBuild) -> No
     # as built; test_a_methods_code_change_reruns_the_law_it_calibrates: the film's)
     calibrated = {c["id"]: c for c in cases if (c.get("contact") or {}).get("law") == "tabulated"}
     assert calibrated
-    assert pending(rows, "solve") == {run_batch(c["id"], "fem_axi") for c in cases
-                                      if "fem_axi" in c["methods"] and c["set"] in ("model", "table2")} | {
-        run_batch(case, m) for case, c in calibrated.items() for m in c["methods"]}
+    assert pending(rows, "solve") == {
+        run_batch(c["id"], "fem_axi") for c in cases if "fem_axi" in c["methods"] and c["set"] in ("model", "table2")
+    } | {run_batch(case, m) for case, c in calibrated.items() for m in c["methods"]}
     assert pending(rows, "indentation") == {f"results/indentation/{c['variant']}" for c in calibrated.values()}
     assert pending(rows, "sensor_band") == {f"results/studies/sensor_band/{c['variant']}" for c in calibrated.values()}
     # and the calibrated sweeps' points, whose batches indent each point with fem_axi's code
-    sweeps = {s for s, c in project_cases(changed.workdir).sweeps.items()
-              if (c.get("contact") or {}).get("law") == "tabulated"}
+    sweeps = {
+        s
+        for s, c in project_cases(changed.workdir).sweeps.items()
+        if (c.get("contact") or {}).get("law") == "tabulated"
+    }
     assert sweeps and {p for p in reruns if p.startswith("results/sweeps/")} == {
-        p.relative_to(changed.workdir).as_posix() for s in sweeps for p in (changed.workdir / "results/sweeps" / s).rglob("*.h5")}
-    assert reruns and all("fem_axi" in path or Path(path).stem in calibrated
-                          or path.startswith(("results/indentation/", "results/studies/sensor_band/"))
-                          or Path(path).parts[2:3] and Path(path).parts[2] in sweeps
-                          for path in reruns), sorted(reruns)
+        p.relative_to(changed.workdir).as_posix()
+        for s in sweeps
+        for p in (changed.workdir / "results/sweeps" / s).rglob("*.h5")
+    }
+    assert reruns and all(
+        "fem_axi" in path
+        or Path(path).stem in calibrated
+        or path.startswith(("results/indentation/", "results/studies/sensor_band/"))
+        or Path(path).parts[2:3]
+        and Path(path).parts[2] in sweeps
+        for path in reruns
+    ), sorted(reruns)
 
 
 #: A run of the law calibrated by fem_axi's indentation (the text's rod without the film), and
@@ -369,5 +426,6 @@ def test_the_studys_separate_cases_are_a_target_of_their_own(tmp_path: Path) -> 
     assert "results/convergence/ball_12.73mm-r1_l30/" not in everything.output
     separate = snakemake(project, "-n", "results/tables/work_precision_separate_orders.md")
     assert separate.returncode == 0, separate.describe()
-    assert job_stats(separate.output) == {"case_file": 1, "solve_levels": 1,
-                                          "work_precision_separate_table": 1}, separate.describe()
+    assert job_stats(separate.output) == {"case_file": 1, "solve_levels": 1, "work_precision_separate_table": 1}, (
+        separate.describe()
+    )

@@ -23,7 +23,7 @@ def test_jobs_run_the_checkouts_own_code(tmp_path: Path) -> None:
     runner.write_text(runner.read_text() + '\nraise ImportError("runner.py of the copy")\n')
     run = snakemake(project, "-j1", run_batch("model", "sem"), timeout=BUILD_TIMEOUT_S)
     assert run.returncode != 0, run.describe()
-    log = (project / "logs" / "runs" / "model" / "sem.log")
+    log = project / "logs" / "runs" / "model" / "sem.log"
     assert "runner.py of the copy" in run.output + (log.read_text() if log.exists() else ""), run.describe()
 
 
@@ -38,8 +38,9 @@ def _unknown_method(project: Path) -> None:
     path = project / "config/cases/model.yaml"
     text = path.read_text(encoding="utf-8")
     assert text.count("methods: [sem, sem_paper, fem1d, fem_axi]") == 1
-    path.write_text(text.replace("methods: [sem, sem_paper, fem1d, fem_axi]", "methods: [sem, fem2d]"),
-                    encoding="utf-8")
+    path.write_text(
+        text.replace("methods: [sem, sem_paper, fem1d, fem_axi]", "methods: [sem, fem2d]"), encoding="utf-8"
+    )
 
 
 def _unknown_variant(project: Path) -> None:
@@ -58,9 +59,7 @@ def _unknown_variant(project: Path) -> None:
         pytest.param(_unknown_variant, "config/cases/table2.yaml", "ball_4.75mm", "variants[1]", id="unknown-variant"),
     ],
 )  # fmt: skip
-def test_bad_input_stops_before_any_job(
-    tmp_path: Path, break_config, file: str, case: str, field: str
-) -> None:
+def test_bad_input_stops_before_any_job(tmp_path: Path, break_config, file: str, case: str, field: str) -> None:
     project = copy_project(tmp_path / "project")
     break_config(project)
     run = snakemake(project, "-n", "-j2")

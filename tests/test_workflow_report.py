@@ -23,8 +23,14 @@ from helpers.snakemake_cli import snakemake
 
 REPORT_TIMEOUT_S = 120
 REPORT_MAX_BYTES = 20 * 2**20
-REPORT_CATEGORIES = {"The experiment's sensor", "Paper, Fig. 2 and Fig. 4", "Error against run time", "Stability",
-                     "The force handed on", "Comparison with measurements"}
+REPORT_CATEGORIES = {
+    "The experiment's sensor",
+    "Paper, Fig. 2 and Fig. 4",
+    "Error against run time",
+    "Stability",
+    "The force handed on",
+    "Comparison with measurements",
+}
 REPORT_MIME = {".csv": "text/csv", ".png": "image/png", ".pdf": "application/pdf"}
 #: The attribute through which each tag makes a browser fetch something as the page renders.
 FETCHING = {"script": "src", "link": "href", "img": "src", "iframe": "src", "frame": "src",
@@ -46,8 +52,9 @@ class _Fetches(HTMLParser):
         if address is not None and not address.startswith("data:"):
             self.fetched.append((tag, address))
         style = values.get("style") or ""
-        self.fetched += [(tag, url) for url in re.findall(r"url\(\s*['\"]?([^'\")]+)", style)
-                         if not url.startswith("data:")]
+        self.fetched += [
+            (tag, url) for url in re.findall(r"url\(\s*['\"]?([^'\")]+)", style) if not url.startswith("data:")
+        ]
 
 
 def _fetched(markup: str) -> list[tuple[str, str]]:
@@ -92,18 +99,31 @@ def _expected_report(workdir: Path) -> dict[str, list[str]]:
     expected: dict[str, list[str]] = {}
     for variant in variants:
         expected[f"results/tables/table2_{variant}.csv"] = [
-            f"Table 2 of the paper, rod geometry reading {variant}", "41.66 % to 57.93 %",
-            "9.54 % to 49.42 %", '(docs/paper-notes.md, "Impulse responses")', '(docs/paper-notes.md, "The experiment\'s rod")', "table2_variants.csv",
+            f"Table 2 of the paper, rod geometry reading {variant}",
+            "41.66 % to 57.93 %",
+            "9.54 % to 49.42 %",
+            '(docs/paper-notes.md, "Impulse responses")',
+            '(docs/paper-notes.md, "The experiment\'s rod")',
+            "table2_variants.csv",
             *(case["id"] for case in project.cases_in("table2", variant)),
-            *(settings[m] for m in project.cases_in("table2", variant)[0]["methods"])]
+            *(settings[m] for m in project.cases_in("table2", variant)[0]["methods"]),
+        ]
     expected["results/tables/table2_variants.csv"] = [
-        "Error against the measurements, per rod geometry reading and method", "Paper's mean error",
-        *variants, *(settings[m] for m in table2)]
+        "Error against the measurements, per rod geometry reading and method",
+        "Paper's mean error",
+        *variants,
+        *(settings[m] for m in table2),
+    ]
     expected["results/tables/table2_film.csv"] = [
-        "Table 2 without the sensor, with the film alone and with the sensor as built", "Against the paper"]
+        "Table 2 without the sensor, with the film alone and with the sensor as built",
+        "Against the paper",
+    ]
     if config.get("sensor", {}).get("band"):
         expected["results/tables/sensor_band.csv"] = [
-            "The sensor as built: the continuum's prediction and its band", "What to see", "sensor_band/{reading}/*.h5"]
+            "The sensor as built: the continuum's prediction and its band",
+            "What to see",
+            "sensor_band/{reading}/*.h5",
+        ]
     if config.get("sensor", {}).get("fit"):
         expected["results/tables/sensor_fit.csv"] = ["A fit, not a prediction", "Held out", "never extrapolates"]
         for ext in ("png", "pdf"):
@@ -118,64 +138,110 @@ def _expected_report(workdir: Path) -> dict[str, list[str]]:
         swept = project.sweeps_in(name) if hasattr(project, "sweeps_in") else []
         if swept:
             expected[f"results/tables/sweep_{name}.csv"] = [
-                f"Parameter sweeps of the case set {name}", *(c["id"] for c in swept),
-                *(settings[m] for m in sorted({m for c in swept for m in c["sweep"]["methods"]}))]
+                f"Parameter sweeps of the case set {name}",
+                *(c["id"] for c in swept),
+                *(settings[m] for m in sorted({m for c in swept for m in c["sweep"]["methods"]})),
+            ]
     for name in config["targets"]["sets"]:  # every set with measurements, compared (compare.smk)
         cases = measured_cases(project.cases_in(name))
         if not cases:
             continue
-        expected[f"results/tables/compare_{name}.csv"] = ["A case set against its measurements", "What to see",
-                                                          "Comparing with your experiment"]
+        expected[f"results/tables/compare_{name}.csv"] = [
+            "A case set against its measurements",
+            "What to see",
+            "Comparing with your experiment",
+        ]
         for ext in ("png", "pdf"):
             expected[f"results/figures/compare_{name}.{ext}"] = ["measured values (black", "What to see"]
             for case in (c for c in cases if c["measured"].get("force_history")):
                 expected[f"results/figures/compare_{name}_{case['id']}.{ext}"] = [
-                    "measured contact force against time", "What to see"]
+                    "measured contact force against time",
+                    "What to see",
+                ]
     for ext in ("png", "pdf"):
         expected[f"results/figures/table2_contact_time.{ext}"] = [
-            "Contact time against ball mass", *plain, *sweep_text, "41.66 % to 57.93 %",
-            *(settings[m] for m in table2)]
+            "Contact time against ball mass",
+            *plain,
+            *sweep_text,
+            "41.66 % to 57.93 %",
+            *(settings[m] for m in table2),
+        ]
         expected[f"results/figures/fig2_contact_force.{ext}"] = [
-            "Fig. 2 of the paper: the contact force P(t)", "11 % in contact time", "9 % in the local extrema",
-            "300,000 nodes", "fig2_comparison.csv", *(settings[m] for m in model)]
+            "Fig. 2 of the paper: the contact force P(t)",
+            "11 % in contact time",
+            "9 % in the local extrema",
+            "300,000 nodes",
+            "fig2_comparison.csv",
+            *(settings[m] for m in model),
+        ]
         expected[f"results/figures/fig4_midrod_displacement.{ext}"] = [
             "Fig. 4 of the paper: the axial displacement of the cross-section at 0.5 of the rod length",
-            *(settings[m] for m in model)]
+            *(settings[m] for m in model),
+        ]
         for case in config["work_precision"]["cases"]:
             expected[f"results/figures/work_precision_{case}.{ext}"] = [
-                f"Error against run time, case {case}", "The paper has no such study",
-                "Filled markers: the levels the order is fitted on", "p the method's expected order",
-                *(f"{m}: {len(spec['levels'])} levels" for m, spec in config["work_precision"]["methods"].items())]
+                f"Error against run time, case {case}",
+                "The paper has no such study",
+                "Filled markers: the levels the order is fitted on",
+                "p the method's expected order",
+                *(f"{m}: {len(spec['levels'])} levels" for m, spec in config["work_precision"]["methods"].items()),
+            ]
         spec = config["stability"]["map"]
         expected[f"results/figures/stability_map.{ext}"] = [
-            "Stability map of the SEM schemes", f"{spec['steps_per_contact']} steps per Hertz time",
+            "Stability map of the SEM schemes",
+            f"{spec['steps_per_contact']} steps per Hertz time",
             ", ".join(map(str, spec["mass_kg"])) + " kg",
             f"{len(spec['mass_kg']) * len(spec['impedance_kg_s'])} points",
-            "2 Z / k_c(α_H)"]
+            "2 Z / k_c(α_H)",
+        ]
         expected[f"results/figures/force_fit_model.{ext}"] = [
-            "The contact force handed on", "Chebyshev series", "1 % of the largest force"]
+            "The contact force handed on",
+            "Chebyshev series",
+            "1 % of the largest force",
+        ]
         for case in (c for c, spec in project.cases.items() if "strain_field" in spec["outputs"]):
             grid = project.cases[case]["field_grid"]
             expected[f"results/figures/wave_map_{case}.{ext}"] = [
-                "The waves in the rod: the axial strain", case, "The incident wave", "Its reflection at the far end",
-                "The superposition during the contact", "The waves left after the separation",
-                f"recorded on {grid['sections']} cross-sections", "a superposition of waves propagating",
-                *(settings[m] for m in ("sem", "fem1d"))]
+                "The waves in the rod: the axial strain",
+                case,
+                "The incident wave",
+                "Its reflection at the far end",
+                "The superposition during the contact",
+                "The waves left after the separation",
+                f"recorded on {grid['sections']} cross-sections",
+                "a superposition of waves propagating",
+                *(settings[m] for m in ("sem", "fem1d")),
+            ]
     expected["results/tables/stability_map.csv"] = expected["results/figures/stability_map.png"]
     expected["results/tables/fig2_comparison.csv"] = [
-        "Fig. 2's numbers", "Contact time vs SEM", "11 % and 9 %", *(settings[m] for m in model)]
+        "Fig. 2's numbers",
+        "Contact time vs SEM",
+        "11 % and 9 %",
+        *(settings[m] for m in model),
+    ]
     levels = [f"{m}: {len(spec['levels'])} levels" for m, spec in config["work_precision"]["methods"].items()]
     expected["results/tables/work_precision.csv"] = ["Every level of the error-against-run-time study", *levels]
     expected["results/tables/work_precision_orders.csv"] = [
-        "Orders of convergence", "Observed order against Expected order", "grid convergence index", *levels,
-        *(f"expected orders: contact time {spec['expected_orders']['contact_time']}"
-          for spec in config["work_precision"]["methods"].values())]
+        "Orders of convergence",
+        "Observed order against Expected order",
+        "grid convergence index",
+        *levels,
+        *(
+            f"expected orders: contact time {spec['expected_orders']['contact_time']}"
+            for spec in config["work_precision"]["methods"].values()
+        ),
+    ]
     stress = [c for name in config["stability"]["sets"] for c in project.cases_in(name)]
     expected["results/tables/stability.csv"] = [
-        "Stability on stiff and extreme cases", "verdict", *(c["id"] for c in stress),
-        *(f"{m}: relative contact-time error {tolerance['contact_time']}"
-          for m, tolerance in config["stability"]["tolerances"].items()),
-        *(settings[m] for m in sorted({m for c in stress for m in c["methods"]}))]
+        "Stability on stiff and extreme cases",
+        "verdict",
+        *(c["id"] for c in stress),
+        *(
+            f"{m}: relative contact-time error {tolerance['contact_time']}"
+            for m, tolerance in config["stability"]["tolerances"].items()
+        ),
+        *(settings[m] for m in sorted({m for c in stress for m in c["methods"]})),
+    ]
     return expected
 
 
@@ -220,8 +286,12 @@ def test_report_is_self_contained_and_captioned(dottest: DotTestBuild, tmp_path:
         missing = [phrase for phrase in expected[path] if phrase not in caption]
         assert not missing, f"{path}: caption lacks {missing}:\n{caption}"
     # the tables shown in their captions are the artifacts' own HTML tables, rounded
-    shown = [*(f"table2_{v}" for v in sorted(project_cases(project).variants["table2"])), "table2_variants", "fig2_comparison",
-             *(Path(p).stem for p in expected if p.startswith("results/tables/sweep_"))]
+    shown = [
+        *(f"table2_{v}" for v in sorted(project_cases(project).variants["table2"])),
+        "table2_variants",
+        "fig2_comparison",
+        *(Path(p).stem for p in expected if p.startswith("results/tables/sweep_")),
+    ]
     for stem in shown:
         table = _text((project / f"results/tables/{stem}.html").read_text(encoding="utf-8"))
         assert table and table in _text(results[f"results/tables/{stem}.csv"]["caption"]), stem
@@ -231,6 +301,9 @@ def test_report_is_self_contained_and_captioned(dottest: DotTestBuild, tmp_path:
     description = _report_variable(page, "workflow_desc")
     assert "system-message" not in description and _fetched(description) == []
     text = _text(description)
-    for phrase in ["rodimpact: the axial impact of a rigid body on an elastic rod", "DOI 10.18721/JPM.11115",
-                   *REPORT_CATEGORIES]:
+    for phrase in [
+        "rodimpact: the axial impact of a rigid body on an elastic rod",
+        "DOI 10.18721/JPM.11115",
+        *REPORT_CATEGORIES,
+    ]:
         assert phrase in text, f"the description lacks {phrase!r}:\n{text}"

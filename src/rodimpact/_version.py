@@ -31,8 +31,9 @@ _DESCRIBED = re.compile(r"^v(?P<tag>\d+(?:\.\d+)*)-(?P<distance>\d+)-g[0-9a-f]+(
 
 
 def _git(root: Path, *args: str) -> str:
-    return subprocess.run(("git", "-C", str(root), *args), capture_output=True, text=True,
-                          check=True, timeout=30).stdout.strip()
+    return subprocess.run(
+        ("git", "-C", str(root), *args), capture_output=True, text=True, check=True, timeout=30
+    ).stdout.strip()
 
 
 def git_version(root: str | Path) -> str | None:

@@ -138,8 +138,9 @@ def slurm_copy(dest: Path) -> Path:
 def user_environment(cluster: LocalSlurm) -> dict[str, str]:
     """What a user's shell holds: this environment without snakemake's own variables and
     PYTHONPATH (the workflow sets its own), the cluster's ``SLURM_CONF``, and the partition."""
-    env = {key: value for key, value in cluster.env().items()
-           if not key.startswith("SNAKEMAKE") and key != "PYTHONPATH"}
+    env = {
+        key: value for key, value in cluster.env().items() if not key.startswith("SNAKEMAKE") and key != "PYTHONPATH"
+    }
     env["SBATCH_PARTITION"] = PARTITION
     return env
 
@@ -196,14 +197,18 @@ class SnakemakeProcess:
     """``timeout -s INT <timeout_s> snakemake <args>`` started in ``project``, its output in ``log``,
     in a session of its own (a terminal's Ctrl-C reaches this script, which then stops it)."""
 
-    def __init__(self, project: Path, args: tuple[str, ...], env: dict[str, str], timeout_s: int,
-                 log: Path) -> None:
+    def __init__(self, project: Path, args: tuple[str, ...], env: dict[str, str], timeout_s: int, log: Path) -> None:
         snakemake = Path(sys.executable).parent / "snakemake"
         self.log, self.started = log, time.monotonic()
         with open(log, "w", encoding="utf-8") as out:
-            self.proc = subprocess.Popen(["timeout", "-s", "INT", str(timeout_s), str(snakemake), *args],
-                                         cwd=project, env=env, stdout=out, stderr=subprocess.STDOUT,
-                                         start_new_session=True)
+            self.proc = subprocess.Popen(
+                ["timeout", "-s", "INT", str(timeout_s), str(snakemake), *args],
+                cwd=project,
+                env=env,
+                stdout=out,
+                stderr=subprocess.STDOUT,
+                start_new_session=True,
+            )
         self.seconds: float | None = None
 
     def done(self) -> bool:
@@ -231,8 +236,9 @@ class SnakemakeProcess:
     def result(self) -> SnakemakeRun:
         """The finished run."""
         self.done()
-        return SnakemakeRun(self.proc.returncode, self.log.read_text(encoding="utf-8", errors="replace"),
-                            self.seconds or 0.0, self.log)
+        return SnakemakeRun(
+            self.proc.returncode, self.log.read_text(encoding="utf-8", errors="replace"), self.seconds or 0.0, self.log
+        )
 
 
 def stop(processes: list[SnakemakeProcess]) -> None:
@@ -264,8 +270,7 @@ def wait_until_done(processes: dict[str, SnakemakeProcess], watch: PlanCacheWatc
         stop(list(processes.values()))
 
 
-def run_snakemake(project: Path, args: tuple[str, ...], env: dict[str, str], timeout_s: int,
-                  log: Path) -> SnakemakeRun:
+def run_snakemake(project: Path, args: tuple[str, ...], env: dict[str, str], timeout_s: int, log: Path) -> SnakemakeRun:
     """One snakemake run to its end (see :class:`SnakemakeProcess`)."""
     process = SnakemakeProcess(project, args, env, timeout_s, log)
     try:
@@ -324,55 +329,88 @@ class Report:
         return ok
 
 
-def check_build(run: SnakemakeRun, jobs: list[dict[str, str]], project: Path, reference: Path,
-                report: Report) -> None:
+def check_build(run: SnakemakeRun, jobs: list[dict[str, str]], project: Path, reference: Path, report: Report) -> None:
     """The build through SLURM: it succeeded, its submissions, and its results against ``reference``."""
-    if not report.check(run.returncode == 0, f"the build through SLURM exits 0 (exit {run.returncode}, "
-                                            f"{run.seconds:.0f} s; log {run.log})", run.tail()):
+    if not report.check(
+        run.returncode == 0,
+        f"the build through SLURM exits 0 (exit {run.returncode}, {run.seconds:.0f} s; log {run.log})",
+        run.tail(),
+    ):
         return
-    report.check(sorted(run.submitted, key=int) == [job["id"] for job in jobs],
-                 f"snakemake reports the scheduler's {len(jobs)} sbatch submissions",
-                 f"snakemake: {run.submitted}\nsqueue: {jobs}")
-    report.check(all(job["state"] == "COMPLETED" for job in jobs), "every SLURM job completed",
-                 "\n".join(str(job) for job in jobs if job["state"] != "COMPLETED"))
+    report.check(
+        sorted(run.submitted, key=int) == [job["id"] for job in jobs],
+        f"snakemake reports the scheduler's {len(jobs)} sbatch submissions",
+        f"snakemake: {run.submitted}\nsqueue: {jobs}",
+    )
+    report.check(
+        all(job["state"] == "COMPLETED" for job in jobs),
+        "every SLURM job completed",
+        "\n".join(str(job) for job in jobs if job["state"] != "COMPLETED"),
+    )
     kinds = submission_kinds(jobs, set(profile_settings().get("group-components", {})))
     say(f"     {len(jobs)} submissions: " + ", ".join(f"{kind} {n}" for kind, n in sorted(kinds.items())))
     counts, problems = compare_builds(reference, project / DOTTEST)
-    report.check(not problems, f"the SLURM build equals the local build {reference}: {counts['files']} files, "
-                               f"{counts['hdf5']} HDF5 files ({counts['datasets']} datasets), "
-                               f"{counts['tables']} tables", "\n".join(problems[:60]))
-    audit = subprocess.run([sys.executable, "-m", "rodimpact.tools.audit", "--root", DOTTEST], cwd=project,
-                           capture_output=True, text=True, check=False)
+    report.check(
+        not problems,
+        f"the SLURM build equals the local build {reference}: {counts['files']} files, "
+        f"{counts['hdf5']} HDF5 files ({counts['datasets']} datasets), "
+        f"{counts['tables']} tables",
+        "\n".join(problems[:60]),
+    )
+    audit = subprocess.run(
+        [sys.executable, "-m", "rodimpact.tools.audit", "--root", DOTTEST],
+        cwd=project,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
     last = (audit.stdout.strip().splitlines() or [""])[-1]
-    report.check(audit.returncode == 0, f"provenance audit of the SLURM build: {last}",
-                 (audit.stdout + audit.stderr)[-3000:])
+    report.check(
+        audit.returncode == 0, f"provenance audit of the SLURM build: {last}", (audit.stdout + audit.stderr)[-3000:]
+    )
 
 
 def check_failure(run: SnakemakeRun, jobs: list[dict[str, str]], project: Path, report: Report) -> None:
     """The run with a failing job: a non-zero status before the timeout, the logs named, one
     submission per attempt, each asking for more."""
     timed_out = run.returncode in (124, -signal.SIGINT, 128 + signal.SIGINT)
-    report.check(run.returncode != 0 and not timed_out,
-                 f"the run with a failing job exits non-zero before its timeout (exit {run.returncode}, "
-                 f"{run.seconds:.0f} s; log {run.log})", run.tail())
+    report.check(
+        run.returncode != 0 and not timed_out,
+        f"the run with a failing job exits non-zero before its timeout (exit {run.returncode}, "
+        f"{run.seconds:.0f} s; log {run.log})",
+        run.tail(),
+    )
     workdir = project / DOTTEST
     named = sorted(set(re.findall(r"(\S*\.snakemake/slurm_logs/\S+?\.log)", run.output)))
     logs = [path for path in (Path(p) if Path(p).is_absolute() else workdir / p for p in named) if path.is_file()]
-    holding = [str(path.relative_to(workdir)) for path in logs
-               if FAILURE_MESSAGE in path.read_text(encoding="utf-8", errors="replace")]
-    report.check(bool(holding), f"its output names the failed job's SLURM log, which holds the error: {holding}",
-                 f"named: {named}\n{run.tail()}")
+    holding = [
+        str(path.relative_to(workdir))
+        for path in logs
+        if FAILURE_MESSAGE in path.read_text(encoding="utf-8", errors="replace")
+    ]
+    report.check(
+        bool(holding),
+        f"its output names the failed job's SLURM log, which holds the error: {holding}",
+        f"named: {named}\n{run.tail()}",
+    )
     rule_log = workdir / FAILING_RULE_LOG
-    report.check(FAILING_RULE_LOG in run.output and rule_log.is_file()
-                 and FAILURE_MESSAGE in rule_log.read_text(encoding="utf-8", errors="replace"),
-                 f"its output names the rule's log {FAILING_RULE_LOG}, which holds the error", run.tail())
+    report.check(
+        FAILING_RULE_LOG in run.output
+        and rule_log.is_file()
+        and FAILURE_MESSAGE in rule_log.read_text(encoding="utf-8", errors="replace"),
+        f"its output names the rule's log {FAILING_RULE_LOG}, which holds the error",
+        run.tail(),
+    )
     retries = int(profile_settings().get("retries", 0))
     asked = [(job["memory"], job["time_limit"]) for job in jobs]
     first = re.fullmatch(r"(\d+)M", asked[0][0]) if asked else None
     more = bool(first) and [m for m, _ in asked] == [f"{int(first.group(1)) * k}M" for k in range(1, len(asked) + 1)]
-    report.check(len(jobs) == retries + 1 and all(job["state"] == "FAILED" for job in jobs) and more,
-                 f"it was submitted {retries + 1} times (retries: {retries}), each attempt asking for more: "
-                 f"{', '.join(f'{m} {t}' for m, t in asked)}", str(jobs))
+    report.check(
+        len(jobs) == retries + 1 and all(job["state"] == "FAILED" for job in jobs) and more,
+        f"it was submitted {retries + 1} times (retries: {retries}), each attempt asking for more: "
+        f"{', '.join(f'{m} {t}' for m, t in asked)}",
+        str(jobs),
+    )
 
 
 def check_single_target(cluster: LocalSlurm, project: Path, report: Report) -> None:
@@ -380,16 +418,25 @@ def check_single_target(cluster: LocalSlurm, project: Path, report: Report) -> N
     env = user_environment(cluster)
     planned = []
     for number, profile in enumerate((USER_COMMAND[:2], ())):
-        run = run_snakemake(project, (*profile, "--directory", DOTTEST, "-n", SINGLE_TARGET), env,
-                            DRY_RUN_TIMEOUT_S, project.parent / f"dry_run_{number}.log")
+        run = run_snakemake(
+            project,
+            (*profile, "--directory", DOTTEST, "-n", SINGLE_TARGET),
+            env,
+            DRY_RUN_TIMEOUT_S,
+            project.parent / f"dry_run_{number}.log",
+        )
         planned.append(job_stats(run.output) if run.returncode == 0 else {"exit": run.returncode})
     slurm, local = planned
-    report.check(slurm == local and bool(local), f"one target ({SINGLE_TARGET}) plans the same jobs through the "
-                                                 f"profile as locally: {local}", f"{slurm} != {local}")
+    report.check(
+        slurm == local and bool(local),
+        f"one target ({SINGLE_TARGET}) plans the same jobs through the profile as locally: {local}",
+        f"{slurm} != {local}",
+    )
 
 
-def check_cluster_runs(cluster: LocalSlurm, pristine: Path, scratch: Path, reference: Path,
-                       local: BuildTiming | None, report: Report) -> None:
+def check_cluster_runs(
+    cluster: LocalSlurm, pristine: Path, scratch: Path, reference: Path, local: BuildTiming | None, report: Report
+) -> None:
     """The build, then the failing run (each in a copy of ``pristine``, the scheduler to itself:
     the build is timed), then one target's plan; check each, and write the benchmark."""
     env = user_environment(cluster)
@@ -406,16 +453,24 @@ def check_cluster_runs(cluster: LocalSlurm, pristine: Path, scratch: Path, refer
     check_build(build, jobs, built, reference, report)
     say(f"     {PLAN_CACHE} written {watch.writes} times during the build (at least)")
     if build.returncode == 0:
-        slurm = BuildTiming(build="slurm", jobs=job_count(built / DOTTEST), submissions=len(jobs),
-                            wall_s=build.seconds, measured="timed by the check (planning included)")
+        slurm = BuildTiming(
+            build="slurm",
+            jobs=job_count(built / DOTTEST),
+            submissions=len(jobs),
+            wall_s=build.seconds,
+            measured="timed by the check (planning included)",
+        )
         path = write_cluster_csv(ROOT / CLUSTER_CSV, local, slurm, ROOT)
         ratio = f", {slurm.wall_s / local.wall_s:.2f} times the local build's {local.wall_s:.0f} s" if local else ""
         say(f"     {slurm.jobs} jobs in {slurm.submissions} submissions, {slurm.wall_s:.0f} s{ratio} -> {path}")
 
-    say(f"     a failing job: snakemake {' '.join(USER_COMMAND)} {FAILING_TARGET}  ({failing}: "
-        f"workflow/scripts/solve_batch.py raises)")
-    failure_process = SnakemakeProcess(failing, (*USER_COMMAND, FAILING_TARGET), env, FAILURE_TIMEOUT_S,
-                                       scratch / "failing_run.log")
+    say(
+        f"     a failing job: snakemake {' '.join(USER_COMMAND)} {FAILING_TARGET}  ({failing}: "
+        f"workflow/scripts/solve_batch.py raises)"
+    )
+    failure_process = SnakemakeProcess(
+        failing, (*USER_COMMAND, FAILING_TARGET), env, FAILURE_TIMEOUT_S, scratch / "failing_run.log"
+    )
     wait_until_done({"the failing run": failure_process})
     failure = failure_process.result()
     report.timings["failing run through SLURM"] = failure.seconds
@@ -442,8 +497,13 @@ def reference_build(pristine: Path, scratch: Path) -> tuple[Path, BuildTiming | 
     if run.returncode != 0:
         raise SlurmError(f"the local build of {DOTTEST} failed, nothing to compare with:\n{run.describe()}")
     say(f"local build to compare with: {project / DOTTEST} ({seconds:.0f} s)")
-    return project / DOTTEST, BuildTiming(build="local", jobs=job_count(project / DOTTEST), submissions=None,
-                                          wall_s=seconds, measured="timed by the check (planning included)")
+    return project / DOTTEST, BuildTiming(
+        build="local",
+        jobs=job_count(project / DOTTEST),
+        submissions=None,
+        wall_s=seconds,
+        measured="timed by the check (planning included)",
+    )
 
 
 # --------------------------------------------------------------------------------------------
@@ -451,12 +511,14 @@ def reference_build(pristine: Path, scratch: Path) -> tuple[Path, BuildTiming | 
 
 def main(argv: list[str] | None = None) -> int:
     """Run every check (see the module docstring); 0 when all pass, else 1."""
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     parser.add_argument("--scratch", type=Path, help="work in this directory (kept) instead of a temporary one")
     parser.add_argument("--keep", action="store_true", help="keep the temporary directory")
-    parser.add_argument("--reference", type=Path,
-                        help="a built .test/ to compare with, instead of the checkout's or a new local build")
+    parser.add_argument(
+        "--reference", type=Path, help="a built .test/ to compare with, instead of the checkout's or a new local build"
+    )
     args = parser.parse_args(argv)
     for signum in (signal.SIGTERM, signal.SIGHUP):
         signal.signal(signum, _interrupt)
@@ -476,15 +538,20 @@ def main(argv: list[str] | None = None) -> int:
         # configuration of the checkout as they are at this moment
         pristine = slurm_copy(scratch / "pristine")
         started = time.monotonic()
-        reference, local = ((args.reference.resolve(), recorded_build(args.reference.resolve())) if args.reference
-                            else reference_build(pristine, scratch))
+        reference, local = (
+            (args.reference.resolve(), recorded_build(args.reference.resolve()))
+            if args.reference
+            else reference_build(pristine, scratch)
+        )
         report.timings["local build to compare with"] = time.monotonic() - started
 
         started = time.monotonic()
         with LocalSlurm(scratch / "slurm-cluster", min_job_age=min_job_age, partition=PARTITION) as cluster:
             report.timings["cluster start"] = time.monotonic() - started
-            say(f"one-node SLURM up: node {cluster.node} idle, partition {PARTITION}, MinJobAge {min_job_age} s, "
-                f"SLURM_CONF={cluster.conf}")
+            say(
+                f"one-node SLURM up: node {cluster.node} idle, partition {PARTITION}, MinJobAge {min_job_age} s, "
+                f"SLURM_CONF={cluster.conf}"
+            )
             check_cluster_runs(cluster, pristine, scratch, reference, local, report)
         say("daemons stopped")
     except (SlurmError, subprocess.CalledProcessError, AssertionError) as error:
@@ -499,10 +566,12 @@ def main(argv: list[str] | None = None) -> int:
         elif args.scratch is None:
             say(f"kept {scratch}")
     print("timings: " + ", ".join(f"{name} {seconds:.0f} s" for name, seconds in report.timings.items()))
-    print("not compared, as they record when or how long: table columns "
-          + "; ".join(f"{table} {', '.join(columns)}" for table, columns in TIMING_COLUMNS.items())
-          + f"; HDF5 attributes {', '.join(VOLATILE_ATTRIBUTES)}; in a run's config_json "
-          + ", ".join(".".join(path) for path in VOLATILE_CONFIG_ENTRIES))
+    print(
+        "not compared, as they record when or how long: table columns "
+        + "; ".join(f"{table} {', '.join(columns)}" for table, columns in TIMING_COLUMNS.items())
+        + f"; HDF5 attributes {', '.join(VOLATILE_ATTRIBUTES)}; in a run's config_json "
+        + ", ".join(".".join(path) for path in VOLATILE_CONFIG_ENTRIES)
+    )
     if report.failures:
         print(f"test-cluster: {len(report.failures)} check(s) failed:\n  " + "\n  ".join(report.failures))
         return 1

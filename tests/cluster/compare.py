@@ -23,17 +23,17 @@ VOLATILE_ATTRIBUTES: dict[str, str] = {
     "wall_time_median_s": "the median of a timed solve's repeats",
     "wall_time_max_s": "the slowest of a timed solve's repeats",
     "code_version": "names the commit of the repository that built the file: each build is made "
-                    "in a repository of its own (the provenance audit checks that it is a commit "
-                    "there, with no uncommitted change)",
+    "in a repository of its own (the provenance audit checks that it is a commit "
+    "there, with no uncommitted change)",
     "data_sha256": "the digest of the run's config, series and summary, which holds the timings "
-                   "above (the provenance audit checks it against the file's content)",
+    "above (the provenance audit checks it against the file's content)",
 }
 #: Entries of a run's ``config_json`` that differ between two builds of the same results, and why.
 VOLATILE_CONFIG_ENTRIES: dict[tuple[str, ...], str] = {
     ("run", "contact_curve", "sha256"): "the SHA-256 of the contact-law curve file's bytes "
-                                        "(results/indentation/*/*.h5), which hold that file's "
-                                        "created_utc and code_version; the curve's data are "
-                                        "compared as a file of their own",
+    "(results/indentation/*/*.h5), which hold that file's "
+    "created_utc and code_version; the curve's data are "
+    "compared as a file of their own",
 }
 #: Derived from ``config_json``: compared when the two ``config_json`` are equal as written.
 DERIVED_ATTRIBUTES: dict[str, str] = {"config_sha256": "the SHA-256 of config_json"}
@@ -98,8 +98,7 @@ def _config_without_volatile(text: str) -> Any:
     return config
 
 
-def _same_attribute(key: str, ref_obj: h5py.HLObject, new_obj: h5py.HLObject, ref: h5py.File,
-                    new: h5py.File) -> bool:
+def _same_attribute(key: str, ref_obj: h5py.HLObject, new_obj: h5py.HLObject, ref: h5py.File, new: h5py.File) -> bool:
     """Whether attribute ``key`` of two objects holds the same data (see the module's tables)."""
     a, b = _plain(ref_obj.attrs[key], ref), _plain(new_obj.attrs[key], new)
     if key == "config_json" and isinstance(a, str) and isinstance(b, str):
@@ -129,8 +128,10 @@ def compare_h5(reference: Path, built: Path) -> list[str]:
     with h5py.File(reference, "r") as ref, h5py.File(built, "r") as new:
         ref_objects, new_objects = _objects(ref), _objects(new)
         if set(ref_objects) != set(new_objects):
-            return [f"objects differ: only in the reference {sorted(set(ref_objects) - set(new_objects))}, "
-                    f"only in the build {sorted(set(new_objects) - set(ref_objects))}"]
+            return [
+                f"objects differ: only in the reference {sorted(set(ref_objects) - set(new_objects))}, "
+                f"only in the build {sorted(set(new_objects) - set(ref_objects))}"
+            ]
         for name, ref_obj in ref_objects.items():
             new_obj = new_objects[name]
             if isinstance(ref_obj, h5py.Dataset):

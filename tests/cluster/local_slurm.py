@@ -222,8 +222,9 @@ class LocalSlurm:
         process only, which then stops it); its output goes to ``log/<name>.out``."""
         out = open(self._paths()["log"] / f"{name}.out", "wb")
         try:
-            proc = subprocess.Popen(command, stdout=out, stderr=subprocess.STDOUT, env=self.env(),
-                                    start_new_session=True)
+            proc = subprocess.Popen(
+                command, stdout=out, stderr=subprocess.STDOUT, env=self.env(), start_new_session=True
+            )
         finally:
             out.close()
         self._daemons.append((name, proc))
@@ -237,8 +238,11 @@ class LocalSlurm:
     def log_tail(self, name: str, chars: int = 800) -> str:
         """The end of a daemon's log (``munged``, ``slurmctld``, ``slurmd``), on one line."""
         texts = []
-        for path in (self._paths()["log"] / f"{name}.log", self._paths()["log"] / f"{name}.out",
-                     self._paths()["munge"] / f"{name}.log"):
+        for path in (
+            self._paths()["log"] / f"{name}.log",
+            self._paths()["log"] / f"{name}.out",
+            self._paths()["munge"] / f"{name}.log",
+        ):
             if path.is_file():
                 texts.append(path.read_text(encoding="utf-8", errors="replace")[-chars:])
         return " | ".join(" ".join(t.split()) for t in texts) or "(no log)"
@@ -250,9 +254,19 @@ class LocalSlurm:
         descriptor = os.open(key, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
         with os.fdopen(descriptor, "wb") as handle:
             handle.write(os.urandom(1024))
-        self._start("munged", [_program("munged"), "--foreground", "--force", f"--key-file={key}",
-                               f"--socket={munge / 'munge.socket'}", f"--pid-file={munge / 'munged.pid'}",
-                               f"--seed-file={munge / 'munged.seed'}", f"--log-file={munge / 'munged.log'}"])
+        self._start(
+            "munged",
+            [
+                _program("munged"),
+                "--foreground",
+                "--force",
+                f"--key-file={key}",
+                f"--socket={munge / 'munge.socket'}",
+                f"--pid-file={munge / 'munged.pid'}",
+                f"--seed-file={munge / 'munged.seed'}",
+                f"--log-file={munge / 'munged.log'}",
+            ],
+        )
         self._wait(lambda: (munge / "munge.socket").exists(), "munged's socket")
 
     def _wait(self, ready: Callable[[], bool], what: str, timeout: float = START_TIMEOUT_S) -> None:
@@ -261,14 +275,17 @@ class LocalSlurm:
         while not ready():
             self._check_alive()
             if time.monotonic() > deadline:
-                raise SlurmError(f"timed out after {timeout:.0f} s waiting for {what}: "
-                                 f"{self.log_tail('slurmctld')} {self.log_tail('slurmd')}")
+                raise SlurmError(
+                    f"timed out after {timeout:.0f} s waiting for {what}: "
+                    f"{self.log_tail('slurmctld')} {self.log_tail('slurmd')}"
+                )
             time.sleep(0.5)
 
     def command(self, *args: str, check: bool = True, timeout: float = 30) -> subprocess.CompletedProcess:
         """A SLURM client command (``sinfo``, ``squeue``...) against this cluster."""
-        proc = subprocess.run([_program(args[0]), *args[1:]], env=self.env(), capture_output=True, text=True,
-                              check=False, timeout=timeout)
+        proc = subprocess.run(
+            [_program(args[0]), *args[1:]], env=self.env(), capture_output=True, text=True, check=False, timeout=timeout
+        )
         if check and proc.returncode != 0:
             raise SlurmError(f"{' '.join(args)} failed: {proc.stderr.strip()}")
         return proc
@@ -284,8 +301,9 @@ class LocalSlurm:
         self._link_node_config()
         self._start_munged()
         self._start("slurmctld", [_program("slurmctld"), "-D", "-i", "-f", str(self.conf)])
-        self._wait(lambda: self.command("scontrol", "ping", check=False, timeout=10).returncode == 0,
-                   "slurmctld to answer")
+        self._wait(
+            lambda: self.command("scontrol", "ping", check=False, timeout=10).returncode == 0, "slurmctld to answer"
+        )
         self._start("slurmd", [_program("slurmd"), "-D", "-N", self.node, "-f", str(self.conf)])
         self._wait(lambda: self.node_state() == "idle", f"node {self.node} to be idle")
 
@@ -298,8 +316,9 @@ class LocalSlurm:
         self.command("scancel", *jobs, check=False, timeout=10)
         deadline = time.monotonic() + timeout
         while time.monotonic() < deadline:
-            running = self.command("squeue", "--noheader", "--format=%A", "--states=RUNNING,COMPLETING",
-                                   check=False, timeout=10)
+            running = self.command(
+                "squeue", "--noheader", "--format=%A", "--states=RUNNING,COMPLETING", check=False, timeout=10
+            )
             if running.returncode != 0 or not running.stdout.split():
                 return
             time.sleep(0.5)
@@ -332,6 +351,7 @@ class LocalSlurm:
             raise
         return self
 
-    def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
-                 traceback: TracebackType | None) -> None:
+    def __exit__(
+        self, kind: type[BaseException] | None, error: BaseException | None, traceback: TracebackType | None
+    ) -> None:
         self.stop()

@@ -55,17 +55,22 @@ def recorded_build(workdir: Path) -> BuildTiming | None:
     if not rows:
         return None
     total = rows[-1]
-    return BuildTiming(build="local", jobs=job_count(workdir), submissions=None, wall_s=total.wall_s,
-                       measured="job records of the checkout's build (first start to last end)")
+    return BuildTiming(
+        build="local",
+        jobs=job_count(workdir),
+        submissions=None,
+        wall_s=total.wall_s,
+        measured="job records of the checkout's build (first start to last end)",
+    )
 
 
 def write_cluster_csv(path: Path, local: BuildTiming | None, slurm: BuildTiming, root: Path) -> Path:
     """Write the local and SLURM rows (the SLURM row with its ratio to the local one)."""
-    commit = subprocess.run(["git", "-C", str(root), "rev-parse", "--short", "HEAD"], capture_output=True,
-                            text=True, check=False).stdout.strip()
+    commit = subprocess.run(
+        ["git", "-C", str(root), "rev-parse", "--short", "HEAD"], capture_output=True, text=True, check=False
+    ).stdout.strip()
     when = datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%dT%H:%M:%SZ")
-    columns = ["build", "jobs", "submissions", "wall_s", "ratio_to_local", "target_ratio", "measured", "commit",
-               "date"]
+    columns = ["build", "jobs", "submissions", "wall_s", "ratio_to_local", "target_ratio", "measured", "commit", "date"]
     rows = []
     for timing in (local, slurm):
         if timing is None:

@@ -30,9 +30,14 @@ def main(argv: list[str]) -> int:
     record, jobscript = Path(argv[0].split("=", 1)[1]), Path(argv[-1])
     match = PROPERTIES.search(jobscript.read_text(encoding="utf-8"))
     properties = json.loads(match.group(1)) if match else {}
-    entry = {"argv": argv[1:-1], "jobscript": jobscript.name,
-             **{key: properties.get(key) for key in ("type", "groupid", "rule", "wildcards", "threads", "resources",
-                                                     "jobid", "output")}}
+    entry = {
+        "argv": argv[1:-1],
+        "jobscript": jobscript.name,
+        **{
+            key: properties.get(key)
+            for key in ("type", "groupid", "rule", "wildcards", "threads", "resources", "jobid", "output")
+        },
+    }
     done = subprocess.run(["/bin/sh", str(jobscript)], stdout=sys.stderr, stderr=sys.stderr, check=False)
     entry["returncode"] = done.returncode
     with record.open("a", encoding="utf-8") as out:

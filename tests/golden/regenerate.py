@@ -41,14 +41,16 @@ def golden_frame() -> pd.DataFrame:
             if method in EXPENSIVE and case["id"] not in EXPENSIVE[method]:
                 continue
             result = run_case(case, method)
-            rows.append({
-                "case_id": case["id"],
-                "method": method,
-                "n_contacts": result.n_contacts,
-                "contact_time_s": result.contact_time_s,
-                "peak_force_N": " ".join(f"{p:.12g}" for p in result.peak_force_N),
-                "rebound_velocity_m_s": result.rebound_velocity_m_s,
-            })
+            rows.append(
+                {
+                    "case_id": case["id"],
+                    "method": method,
+                    "n_contacts": result.n_contacts,
+                    "contact_time_s": result.contact_time_s,
+                    "peak_force_N": " ".join(f"{p:.12g}" for p in result.peak_force_N),
+                    "rebound_velocity_m_s": result.rebound_velocity_m_s,
+                }
+            )
     return pd.DataFrame(rows)
 
 

@@ -27,8 +27,9 @@ LOG = logging.getLogger(__name__)
 #: The working directory of the small configuration, inside the project.
 DOTTEST = ".test"
 #: The fem_axi numerics of config.yaml, which a shrunk copy coarsens.
-COARSE_FEM_AXI = ("steps_per_contact: 300, max_time_factor: 100.0, max_contacts: 50,\n"
-                  "              element: P2, elements_across: 10")
+COARSE_FEM_AXI = (
+    "steps_per_contact: 300, max_time_factor: 100.0, max_contacts: 50,\n              element: P2, elements_across: 10"
+)
 #: The studies of a shrunk copy: work precision of the three 1-D methods on 'model' (coarsest
 #: three levels, timed once), two stress cases without fem_axi, a 2 x 2 stability map.
 SMALL_STRESS = ("short_rod", "rubber_on_steel")
@@ -61,8 +62,12 @@ def copy_project(dest: Path) -> Path:
     config = dest / "config" / "config.yaml"
     text = config.read_text(encoding="utf-8")
     assert text.count(COARSE_FEM_AXI) == 1, "the fem_axi numerics line of config.yaml moved"
-    config.write_text(text.replace(COARSE_FEM_AXI, COARSE_FEM_AXI.replace("300", "80").replace(
-        "elements_across: 10", "elements_across: 4")), encoding="utf-8")
+    config.write_text(
+        text.replace(
+            COARSE_FEM_AXI, COARSE_FEM_AXI.replace("300", "80").replace("elements_across: 10", "elements_across: 4")
+        ),
+        encoding="utf-8",
+    )
     _small_studies(dest)
     git_commit(dest)
     return dest
@@ -84,8 +89,9 @@ def _small_studies(project: Path) -> None:
     study = document["work_precision"]
     study["cases"] = ["model"]
     study["timing"] = {"min_repeats": 1, "min_total_s": 0.0, "max_total_s": 0.0}
-    study["methods"] = {m: {**spec, "levels": spec["levels"][:3]}
-                        for m, spec in study["methods"].items() if m != "fem_axi"}
+    study["methods"] = {
+        m: {**spec, "levels": spec["levels"][:3]} for m, spec in study["methods"].items() if m != "fem_axi"
+    }
     study.pop("separate", None)  # fem_axi on the slowest Table 2 row: not swept here
     study.pop("per_case", None)  # the smooth case is not among the cases here
     document["stability"]["map"].update(mass_kg=[1.0e-3, 1.0e-2], impedance_kg_s=[3.0, 1000.0])
@@ -187,8 +193,13 @@ def reuse_refusal(project: Path = ROOT) -> str | None:
         versions.add(version.decode() if isinstance(version, bytes) else version)
     for version in sorted(versions - {None}):
         commit = version.rpartition("+g")[2]
-        if version.endswith((".dirty", "+unknown")) or "+g" not in version or subprocess.run(
-                ["git", "-C", str(project), "cat-file", "-e", f"{commit}^{{commit}}"], capture_output=True).returncode:
+        if (
+            version.endswith((".dirty", "+unknown"))
+            or "+g" not in version
+            or subprocess.run(
+                ["git", "-C", str(project), "cat-file", "-e", f"{commit}^{{commit}}"], capture_output=True
+            ).returncode
+        ):
             return f"{DOTTEST}/results holds runs of code version {version}, not a commit of this checkout"
     return None
 
@@ -227,8 +238,11 @@ def clone_build(build: DotTestBuild, dest: Path) -> DotTestBuild:
     name (the checkout's, shared read-only, when the build is the checkout's)."""
     if not build.reused:
         return DotTestBuild(clone_built(build.project, dest), reused=False)
-    subprocess.run(["git", "clone", "-q", "--shared", "--no-checkout", str(build.project), str(dest)],
-                   check=True, capture_output=True)
+    subprocess.run(
+        ["git", "clone", "-q", "--shared", "--no-checkout", str(build.project), str(dest)],
+        check=True,
+        capture_output=True,
+    )
     _copy_parts(dest)
     shutil.copytree(build.workdir, dest / DOTTEST, symlinks=True)
     return DotTestBuild(dest, reused=False)

@@ -67,5 +67,6 @@ def model_problem(far_end: str = "fixed") -> ImpactProblem:
 def two_contact_problem() -> ImpactProblem:
     """Table 2's 5.56 mm steel ball (0.71 g, R = 2.78 mm) at 0.3225 m/s on the thin 301 mm
     aluminium rod (radius 1 mm): the ball strikes twice."""
-    return ImpactProblem(0.71e-3, 0.3225, HertzLaw(hertz_constant(2.78e-3, STEEL, ALUMINIUM)),
-                         Rod(0.301, math.pi * 1e-6, ALUMINIUM))
+    return ImpactProblem(
+        0.71e-3, 0.3225, HertzLaw(hertz_constant(2.78e-3, STEEL, ALUMINIUM)), Rod(0.301, math.pi * 1e-6, ALUMINIUM)
+    )

@@ -31,8 +31,7 @@ class Run:
 def snakemake_environment() -> dict[str, str]:
     """This process's environment without snakemake's variables and PYTHONPATH: the workflow
     puts its own checkout's src/ first (workflow/rules/preflight.smk)."""
-    env = {key: value for key, value in os.environ.items()
-           if not key.startswith("SNAKEMAKE") and key != "PYTHONPATH"}
+    env = {key: value for key, value in os.environ.items() if not key.startswith("SNAKEMAKE") and key != "PYTHONPATH"}
     env.update(MPLBACKEND="Agg")
     return env
 
@@ -44,20 +43,39 @@ def snakemake_command(args: tuple[str, ...], workdir: str | None, wrapper: tuple
     return [*wrapper, *program, "--nocolor", *directory, *args]
 
 
-def snakemake(project: Path, *args: str, timeout: float = DRY_RUN_TIMEOUT_S, workdir: str | None = None,
-              wrapper: tuple[str, ...] = ()) -> Run:
+def snakemake(
+    project: Path,
+    *args: str,
+    timeout: float = DRY_RUN_TIMEOUT_S,
+    workdir: str | None = None,
+    wrapper: tuple[str, ...] = (),
+) -> Run:
     """Run the snakemake CLI of this interpreter's environment in ``project`` (the directory of
     the Snakefile); ``workdir``: a working directory of its own inside it (``--directory``,
     such as ``.test``); ``wrapper``: a command that runs it (``("timeout", "500")``)."""
-    proc = subprocess.run(snakemake_command(args, workdir, wrapper), cwd=project, env=snakemake_environment(), capture_output=True,
-                          text=True, timeout=timeout, check=False)
+    proc = subprocess.run(
+        snakemake_command(args, workdir, wrapper),
+        cwd=project,
+        env=snakemake_environment(),
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        check=False,
+    )
     return Run(proc)
 
 
 def start(project: Path, *args: str) -> subprocess.Popen:
     """snakemake in the background, in its own process group (to kill it with its jobs)."""
-    return subprocess.Popen(snakemake_command(args, None), cwd=project, env=snakemake_environment(), stdout=subprocess.PIPE,
-                            stderr=subprocess.STDOUT, text=True, start_new_session=True)
+    return subprocess.Popen(
+        snakemake_command(args, None),
+        cwd=project,
+        env=snakemake_environment(),
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        start_new_session=True,
+    )
 
 
 def job_stats(output: str) -> dict[str, int]:
@@ -100,9 +118,7 @@ def summary(project: Path, *targets: str, workdir: str | None = None) -> list[di
 def pending(rows: list[dict[str, str]], rule: str | None = None) -> set[str]:
     """Output files a run would (re)build, optionally of one rule only."""
     return {
-        row["output_file"]
-        for row in rows
-        if row["plan"] == "update pending" and (rule is None or row["rule"] == rule)
+        row["output_file"] for row in rows if row["plan"] == "update pending" and (rule is None or row["rule"] == rule)
     }
 
 

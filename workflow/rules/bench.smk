@@ -12,23 +12,25 @@ rule bench_sem:
             labels={"artifact": "Both SEM schemes: time and error", "format": "CSV"},
         ),
         provenance="results/benchmarks/sem.provenance.json",
-    params:
-        code=SRC_BENCH,
-        case=lambda w: PROJECT.cases["model"],
     log:
         "logs/benchmarks/sem.log",
+    conda:
+        "../envs/rodimpact.yaml"
     threads: 1
     resources:
         **bench_resources(lambda: sem_bench_runs(PROJECT.cases["model"])),
-    conda:
-        "../envs/rodimpact.yaml"
+    params:
+        code=SRC_BENCH,
+        case=lambda w: PROJECT.cases["model"],
     script:
         "../scripts/bench_sem.py"
 
 
 # 'model' and every case of the reading sets (the paper's: Table 2) that fem_axi runs
-FEM_AXI_BENCH_CASES = [PROJECT.cases["model"], *(c for name in READING_SETS for c in PROJECT.cases_in(name)
-                                                 if "fem_axi" in c["methods"])]
+FEM_AXI_BENCH_CASES = [
+    PROJECT.cases["model"],
+    *(c for name in READING_SETS for c in PROJECT.cases_in(name) if "fem_axi" in c["methods"]),
+]
 
 
 rule bench_fem:
@@ -45,21 +47,19 @@ rule bench_fem:
             labels={"artifact": "fem1d and fem_axi: time, size, agreement", "format": "CSV"},
         ),
         provenance="results/benchmarks/fem.provenance.json",
+    log:
+        "logs/benchmarks/fem.log",
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **bench_resources(lambda: fem_bench_runs(PROJECT.cases["model"], FEM_AXI_BENCH_CASES)),
     params:
         code=SRC_BENCH,
         case=lambda w: PROJECT.cases["model"],
         axi_cases=lambda w: FEM_AXI_BENCH_CASES,
-    log:
-        "logs/benchmarks/fem.log",
-    threads: 1
-    resources:
-        **bench_resources(lambda: fem_bench_runs(PROJECT.cases["model"],
-                                                 FEM_AXI_BENCH_CASES)),
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/bench_fem.py"
-
 
 
 rule bench_sem_scaling:
@@ -75,16 +75,16 @@ rule bench_sem_scaling:
             labels={"artifact": "SEM: time per step against round trips", "format": "CSV"},
         ),
         provenance="results/benchmarks/sem_scaling.provenance.json",
+    log:
+        "logs/benchmarks/sem_scaling.log",
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **bench_resources(lambda: sem_scaling_runs(PROJECT.cases["model"], PROJECT.cases["seconds_contact"])),
     params:
         code=SRC_BENCH,
         model=lambda w: PROJECT.cases["model"],
         stress=lambda w: PROJECT.cases["seconds_contact"],
-    log:
-        "logs/benchmarks/sem_scaling.log",
-    threads: 1
-    resources:
-        **bench_resources(lambda: sem_scaling_runs(PROJECT.cases["model"], PROJECT.cases["seconds_contact"])),
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/bench_sem_scaling.py"

@@ -6,6 +6,7 @@
 # rewrites the case files and so reruns the runs whose file changed. A case file takes about a
 # second: on a cluster it is written on the head node, not submitted.
 
+
 localrules:
     case_file,
 
@@ -15,16 +16,16 @@ rule case_file:
     step and estimated cost."""
     output:
         yaml="results/cases/{name}.yaml",
+    log:
+        "logs/cases/{name}.log",
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_CASES,
         name="{name}",
         cases=case_file_cases,
-    log:
-        "logs/cases/{name}.log",
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/case_file.py"

@@ -144,11 +144,13 @@ def batch_sources(method=None):
 
 
 # The case file's code: its module, and each method's cost model (named by the registry).
-SRC_CASES = sources("rodimpact.jobs.cases", "rodimpact.jobs.logs",
-                    *(spec.cost.partition(":")[0] for spec in METHOD_REGISTRY.values()))
+SRC_CASES = sources(
+    "rodimpact.jobs.cases", "rodimpact.jobs.logs", *(spec.cost.partition(":")[0] for spec in METHOD_REGISTRY.values())
+)
 SRC_PRESENT = sources("rodimpact.present.artifacts", "rodimpact.jobs.logs")
-SRC_BENCH = sources("rodimpact.tools.bench", "rodimpact.tools.bench_scaling", "rodimpact.storage.atomic",
-                    "rodimpact.jobs.logs")
+SRC_BENCH = sources(
+    "rodimpact.tools.bench", "rodimpact.tools.bench_scaling", "rodimpact.storage.atomic", "rodimpact.jobs.logs"
+)
 # the code that computes each kind of curve (a calibrated sweep's batch runs it too), by its modules
 CURVE_CODE = {"indentation": ("rodimpact.jobs.indentation", "rodimpact.jobs.logs")}
 SRC_INDENTATION = sources(*CURVE_CODE["indentation"])
@@ -165,8 +167,10 @@ READING_SET_OF = {v: name for name, variants in READING_SETS.items() for v in va
 # the names that end the other files of a set ({set}_variants, {set}_film, {set}_contact_time)
 _TAKEN = sorted(set(READING_SET_OF) & {"variants", "film", "contact_time"})
 if _TAKEN:
-    sys.exit(f"rodimpact: case set {READING_SET_OF[_TAKEN[0]]!r}: a variant may not be named {_TAKEN[0]!r} "
-             "(the name of another of its set's files)")
+    sys.exit(
+        f"rodimpact: case set {READING_SET_OF[_TAKEN[0]]!r}: a variant may not be named {_TAKEN[0]!r} "
+        "(the name of another of its set's files)"
+    )
 
 
 def reading_cases(variant):
@@ -194,8 +198,9 @@ def set_published(set_name):
 
 
 # each reading in words (its case file's description): the panels' titles
-READING_DESCRIPTIONS = {v: spec.get("description", "") for name in READING_SETS
-                        for v, spec in PROJECT.variants[name].items()}
+READING_DESCRIPTIONS = {
+    v: spec.get("description", "") for name in READING_SETS for v, spec in PROJECT.variants[name].items()
+}
 # The readings whose cases' law needs a film (the law declares it: needs.film): each gets its
 # prediction band over the film's ranges.
 FILM_VARIANTS = [v for v in READING_SET_OF if all(law_of(c.get("contact")).needs.film for c in reading_cases(v))]
@@ -209,9 +214,11 @@ CURVE_SETTINGS = {"indentation": config["numerics"]["fem_axi"]}
 CURVE_COSTS = {"indentation": "rodimpact.solvers.fem_axi.cost:fem_axi_indentation_cost"}
 _NO_CURVE_FILE = [law for law in LAWS.values() if law.needs.curve_rule not in (None, *CURVE_FILES)]
 if _NO_CURVE_FILE:
-    sys.exit(f"rodimpact: the {_NO_CURVE_FILE[0].name} contact law needs a curve from the rule "
-             f"{_NO_CURVE_FILE[0].needs.curve_rule!r}, which the workflow does not have; rules that compute curves: "
-             f"{', '.join(CURVE_FILES)}")
+    sys.exit(
+        f"rodimpact: the {_NO_CURVE_FILE[0].name} contact law needs a curve from the rule "
+        f"{_NO_CURVE_FILE[0].needs.curve_rule!r}, which the workflow does not have; rules that compute curves: "
+        f"{', '.join(CURVE_FILES)}"
+    )
 
 
 def curve_rule_of(case):
@@ -258,8 +265,10 @@ def case_file_cases(wildcards):
         return GROUPS[wildcards.name]
     if wildcards.name in PROJECT.sweeps:
         return [PROJECT.sweeps[wildcards.name]]
-    refuse(f"no case file {wildcards.name!r}: neither a group of runs ({', '.join(GROUPS)}) nor a sweep case "
-           f"({', '.join(PROJECT.sweeps) or 'none'})")
+    refuse(
+        f"no case file {wildcards.name!r}: neither a group of runs ({', '.join(GROUPS)}) nor a sweep case "
+        f"({', '.join(PROJECT.sweeps) or 'none'})"
+    )
 
 
 @per_job
@@ -267,8 +276,10 @@ def indentation_cases_of(wildcards):
     """The cases of a group whose law the indentation calibrates; refuses a group that has none."""
     cases = [c for c in GROUPS.get(wildcards.group, []) if curve_rule_of(c) == "indentation"]
     if not cases:
-        refuse(f"group {wildcards.group!r} has no case whose contact law the indentation calibrates; groups that "
-               f"have: {', '.join(g for g, cs in GROUPS.items() if any(curve_rule_of(c) == 'indentation' for c in cs))}")
+        refuse(
+            f"group {wildcards.group!r} has no case whose contact law the indentation calibrates; groups that "
+            f"have: {', '.join(g for g, cs in GROUPS.items() if any(curve_rule_of(c) == 'indentation' for c in cs))}"
+        )
     return cases
 
 
@@ -281,14 +292,20 @@ def group_of(case):
 GROUPS = {}
 for _case in PROJECT.cases.values():
     GROUPS.setdefault(group_of(_case), []).append(_case)
-_CLASH = sorted({c["variant"] for c in PROJECT.cases.values() if c.get("variant")} & {c["set"] for c in PROJECT.cases.values()})
+_CLASH = sorted(
+    {c["variant"] for c in PROJECT.cases.values() if c.get("variant")} & {c["set"] for c in PROJECT.cases.values()}
+)
 if _CLASH:
-    sys.exit(f"rodimpact: a variant may not be named like a case set ({_CLASH[0]!r}): both name a group of runs, "
-             f"results/runs/{_CLASH[0]}/")
+    sys.exit(
+        f"rodimpact: a variant may not be named like a case set ({_CLASH[0]!r}): both name a group of runs, "
+        f"results/runs/{_CLASH[0]}/"
+    )
 _CLASH = sorted(set(GROUPS) & set(PROJECT.sweeps))
 if _CLASH:
-    sys.exit(f"rodimpact: a sweep case may not be named like a group of runs ({_CLASH[0]!r}): both name a case file, "
-             f"results/cases/{_CLASH[0]}.yaml")
+    sys.exit(
+        f"rodimpact: a sweep case may not be named like a group of runs ({_CLASH[0]!r}): both name a case file, "
+        f"results/cases/{_CLASH[0]}.yaml"
+    )
 
 
 def runs_of(cases):
@@ -321,8 +338,10 @@ def group_runs(wildcards):
             if curve is not None:
                 runs[case["id"]]["contact_curve"] = curve_file_of(case)
     if not runs:
-        refuse(f"no case of group {wildcards.group!r} runs {wildcards.method!r}; its cases' methods: "
-               f"{', '.join(sorted({m for c in cases for m in c['methods']}))}")
+        refuse(
+            f"no case of group {wildcards.group!r} runs {wildcards.method!r}; its cases' methods: "
+            f"{', '.join(sorted({m for c in cases for m in c['methods']}))}"
+        )
     return runs
 
 
@@ -332,12 +351,23 @@ MAP = STABILITY.get("map", {})
 MAP_POINTS = map_point_names(MAP) if MAP else []
 # The stress runs: each set's cases by each method some case of it lists, and the references
 # (one directory per set and method, one file per case, by the rule solve_stress)
-STRESS_DIRS = {(name, m): f"results/stress/{name}/{m}" for name in STABILITY.get("sets", [])
-               for m in METHOD_REGISTRY if any(m in c["methods"] for c in PROJECT.cases_in(name))}
-STRESS_RUNS = [f"results/stress/{name}/{m}/{c['id']}.h5" for name in STABILITY.get("sets", [])
-               for c in PROJECT.cases_in(name) for m in c["methods"]]
-STRESS_REFERENCES = [f"results/stress/{name}/reference/{c['id']}.h5" for name in STABILITY.get("sets", [])
-                     for c in PROJECT.cases_in(name)]
+STRESS_DIRS = {
+    (name, m): f"results/stress/{name}/{m}"
+    for name in STABILITY.get("sets", [])
+    for m in METHOD_REGISTRY
+    if any(m in c["methods"] for c in PROJECT.cases_in(name))
+}
+STRESS_RUNS = [
+    f"results/stress/{name}/{m}/{c['id']}.h5"
+    for name in STABILITY.get("sets", [])
+    for c in PROJECT.cases_in(name)
+    for m in c["methods"]
+]
+STRESS_REFERENCES = [
+    f"results/stress/{name}/reference/{c['id']}.h5"
+    for name in STABILITY.get("sets", [])
+    for c in PROJECT.cases_in(name)
+]
 # The cases that ask for the strain over the rod (output strain_field): each gets its wave map
 # (waves.smk), and only they.
 WAVE_CASES = [case_id for case_id, case in PROJECT.cases.items() if FIELD_OUTPUT in case["outputs"]]
@@ -362,8 +392,10 @@ def sweep_case(case_id, method, level):
     """The case of one sweep level (the method need not be among the case's own, but the study
     must sweep it on the case)."""
     if method not in swept_on(case_id):
-        refuse(f"the work-precision study does not sweep {method!r} on case {case_id!r}; it sweeps "
-               f"{', '.join(swept_on(case_id))}")
+        refuse(
+            f"the work-precision study does not sweep {method!r} on case {case_id!r}; it sweeps "
+            f"{', '.join(swept_on(case_id))}"
+        )
     return level_case(PROJECT.cases[case_id], method, config["numerics"], sweep_level(method, level))
 
 
@@ -392,10 +424,14 @@ WORK_PRECISION_SEPARATE = WORK_PRECISION.get("separate") or {}
 
 # One Paramspace per sweep case: its grid, and the names of its points (one file each); and each
 # point's values by its name (the Paramspace's rows are the grid's points, in order).
-SWEEPS = {case_id: Paramspace(sweep_frame(case["sweep"]), filename_params="*", single_wildcard="sweep_point")
-          for case_id, case in PROJECT.sweeps.items()}
-SWEEP_POINTS = {case_id: dict(zip(space.instance_patterns, sweep_points(PROJECT.sweeps[case_id]["sweep"])))
-                for case_id, space in SWEEPS.items()}
+SWEEPS = {
+    case_id: Paramspace(sweep_frame(case["sweep"]), filename_params="*", single_wildcard="sweep_point")
+    for case_id, case in PROJECT.sweeps.items()
+}
+SWEEP_POINTS = {
+    case_id: dict(zip(space.instance_patterns, sweep_points(PROJECT.sweeps[case_id]["sweep"])))
+    for case_id, space in SWEEPS.items()
+}
 
 
 def sweep_point_dirs(sweep_cases):
@@ -405,8 +441,12 @@ def sweep_point_dirs(sweep_cases):
 
 def sweep_point_runs(sweep_cases):
     """HDF5 files of every point and method of the given sweep cases."""
-    return [f"results/sweeps/{c['id']}/{m}/{point}.h5" for c in sweep_cases for m in c["sweep"]["methods"]
-            for point in SWEEPS[c["id"]].instance_patterns]
+    return [
+        f"results/sweeps/{c['id']}/{m}/{point}.h5"
+        for c in sweep_cases
+        for m in c["sweep"]["methods"]
+        for point in SWEEPS[c["id"]].instance_patterns
+    ]
 
 
 def force_files(cases, ext):
@@ -430,14 +470,18 @@ def default_targets():
         # the contact force handed on (forces.smk)
         targets += [f"results/forces/{name}", f"results/forces/{name}.provenance.json"]
         # the waves in the rod (waves.smk), for the cases that list strain_field
-        targets += expand("results/figures/wave_map_{case}.{ext}", ext=["pdf", "png"],
-                          case=[c["id"] for c in PROJECT.cases_in(name) if c["id"] in WAVE_CASES])
+        targets += expand(
+            "results/figures/wave_map_{case}.{ext}",
+            ext=["pdf", "png"],
+            case=[c["id"] for c in PROJECT.cases_in(name) if c["id"] in WAVE_CASES],
+        )
         if PROJECT.sweeps_in(name):
             targets += expand("results/tables/sweep_{set}.{ext}", set=name, ext=["csv", "md", "provenance.json"])
     if WORK_PRECISION:
         targets += ["results/tables/work_precision.csv", "results/tables/work_precision_orders.md"]
-        targets += expand("results/figures/work_precision_{case}.{ext}", case=WORK_PRECISION["cases"],
-                          ext=["pdf", "png"])
+        targets += expand(
+            "results/figures/work_precision_{case}.{ext}", case=WORK_PRECISION["cases"], ext=["pdf", "png"]
+        )
     targets += compare_targets()
     if STABILITY:
         targets += ["results/tables/stability.csv"]
@@ -478,14 +522,21 @@ SENSOR_FIT_READINGS = [SENSOR_FIT["reading"], *SENSOR_FIT.get("apply_to", [])] i
 def sensor_variants(set_name):
     """A set's readings with the sensor as built (a stack on the rod) -> whether their law is
     calibrated by the continuum: its figure draws them on their rod's panel."""
-    return {v: curve_rule_of(reading_cases(v)[0]) == "indentation" for v in READING_SETS[set_name]
-            if all((c.get("contact") or {}).get("stack") for c in reading_cases(v))}
+    return {
+        v: curve_rule_of(reading_cases(v)[0]) == "indentation"
+        for v in READING_SETS[set_name]
+        if all((c.get("contact") or {}).get("stack") for c in reading_cases(v))
+    }
 
 
 def sensor_band_files(variants):
     """The band files of every case of the given readings (one directory per reading, by the rule sensor_band)."""
-    return [f"results/studies/sensor_band/{reading}/{case}.h5" for v in variants
-            for case, reading in SENSOR_READING_OF.items() if reading == v]
+    return [
+        f"results/studies/sensor_band/{reading}/{case}.h5"
+        for v in variants
+        for case, reading in SENSOR_READING_OF.items()
+        if reading == v
+    ]
 
 
 def sensor_band_dirs(variants):
@@ -511,29 +562,50 @@ def sensor_targets():
 # when their readings are built; the cases whose law the continuum calibrates (one indentation
 # curve each, results/tables/film_indentation.*).
 FILM_TABLE = SENSOR.get("film_table") or {}
-FILM_TABLE_SETS = sorted({READING_SET_OF[v] for v in FILM_TABLE.values()}) \
-    if all(v in READING_SET_OF for v in FILM_TABLE.values()) else []
+FILM_TABLE_SETS = (
+    sorted({READING_SET_OF[v] for v in FILM_TABLE.values()})
+    if all(v in READING_SET_OF for v in FILM_TABLE.values())
+    else []
+)
 FILM_FORCE = SENSOR.get("film_force") or {}
 # its runs: each row on each reading, by each of the methods the case runs
-FILM_FORCE_RUNS = [runs_of([case])[case["methods"].index(method)]
-                   for case in (PROJECT.cases[f"{row}-{variant}"] for row in FILM_FORCE.get("rows", [])
-                                for variant in FILM_FORCE.get("variants", []))
-                   for method in FILM_FORCE["methods"] if method in case["methods"]] \
-    if all(v in READING_SET_OF for v in FILM_FORCE.get("variants", [])) else []
-CALIBRATED_CASES = [c["id"] for name in READING_SETS for c in PROJECT.cases_in(name) if curve_rule_of(c) == "indentation"]
+FILM_FORCE_RUNS = (
+    [
+        runs_of([case])[case["methods"].index(method)]
+        for case in (
+            PROJECT.cases[f"{row}-{variant}"]
+            for row in FILM_FORCE.get("rows", [])
+            for variant in FILM_FORCE.get("variants", [])
+        )
+        for method in FILM_FORCE["methods"]
+        if method in case["methods"]
+    ]
+    if all(v in READING_SET_OF for v in FILM_FORCE.get("variants", []))
+    else []
+)
+CALIBRATED_CASES = [
+    c["id"] for name in READING_SETS for c in PROJECT.cases_in(name) if curve_rule_of(c) == "indentation"
+]
 
 
 def readings_targets():
     """Every reading set's tables and figure; the film's and the continuum's curves, where built."""
     targets = []
     for name, variants in READING_SETS.items():
-        targets += expand("results/tables/{set}_{variant}.{ext}", set=name, variant=variants,
-                          ext=["csv", "md", "tex", "provenance.json"])
+        targets += expand(
+            "results/tables/{set}_{variant}.{ext}",
+            set=name,
+            variant=variants,
+            ext=["csv", "md", "tex", "provenance.json"],
+        )
         targets += expand("results/tables/{set}_variants.{ext}", set=name, ext=["csv", "md", "provenance.json"])
         targets += expand("results/figures/{set}_contact_time.{ext}", set=name, ext=["pdf", "png"])
     targets += expand("results/studies/film_band_{variant}.h5", variant=FILM_VARIANTS)
-    tables = [*(f"{name}_film" for name in FILM_TABLE_SETS), *(["film_band"] if FILM_VARIANTS else []),
-              *(["film_indentation"] if CALIBRATED_CASES else [])]
+    tables = [
+        *(f"{name}_film" for name in FILM_TABLE_SETS),
+        *(["film_band"] if FILM_VARIANTS else []),
+        *(["film_indentation"] if CALIBRATED_CASES else []),
+    ]
     targets += expand("results/tables/{name}.{ext}", name=tables, ext=["csv", "md", "provenance.json"])
     if FILM_FORCE_RUNS:
         targets += expand("results/figures/film_force.{ext}", ext=["pdf", "png"])
@@ -542,8 +614,12 @@ def readings_targets():
 
 # The cases of the compared sets (COMPARE_SETS) with a measured force history (compare.smk).
 SRC_COMPARE = sources("rodimpact.present.compare_artifacts", "rodimpact.jobs.logs")
-HISTORY_CASES = {c["id"]: name for name in COMPARE_SETS for c in measured_cases(PROJECT.cases_in(name))
-                 if c["measured"].get("force_history")}
+HISTORY_CASES = {
+    c["id"]: name
+    for name in COMPARE_SETS
+    for c in measured_cases(PROJECT.cases_in(name))
+    if c["measured"].get("force_history")
+}
 
 
 def compare_runs(set_name):
@@ -553,22 +629,30 @@ def compare_runs(set_name):
 
 def compare_histories(set_name):
     """The measured force histories of a set's cases (inputs: a changed record reruns the comparison)."""
-    return sorted({c["measured"]["force_history"]["path"] for c in measured_cases(PROJECT.cases_in(set_name))
-                   if c["measured"].get("force_history")})
+    return sorted(
+        {
+            c["measured"]["force_history"]["path"]
+            for c in measured_cases(PROJECT.cases_in(set_name))
+            if c["measured"].get("force_history")
+        }
+    )
 
 
 def compare_case_runs(set_name, case_id):
     """The runs of one case with a measured force history, of the set that holds it."""
     if HISTORY_CASES.get(case_id) != set_name:
-        refuse(f"case {case_id!r} has no measured force history in set {set_name!r}; cases that have one: "
-               f"{', '.join(f'{c} ({s})' for c, s in HISTORY_CASES.items()) or 'none'}")
+        refuse(
+            f"case {case_id!r} has no measured force history in set {set_name!r}; cases that have one: "
+            f"{', '.join(f'{c} ({s})' for c, s in HISTORY_CASES.items()) or 'none'}"
+        )
     return runs_of([PROJECT.cases[case_id]])
 
 
 def compare_targets():
     """The comparison of every compared set: its table, its figure, a figure per measured history."""
-    targets = expand("results/tables/compare_{set}.{ext}", set=COMPARE_SETS,
-                     ext=["csv", "md", "html", "tex", "provenance.json"])
+    targets = expand(
+        "results/tables/compare_{set}.{ext}", set=COMPARE_SETS, ext=["csv", "md", "html", "tex", "provenance.json"]
+    )
     targets += expand("results/figures/compare_{set}.{ext}", set=COMPARE_SETS, ext=["pdf", "png"])
     targets += [f"results/figures/compare_{s}_{c}.{ext}" for c, s in HISTORY_CASES.items() for ext in ("pdf", "png")]
     return targets

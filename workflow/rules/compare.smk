@@ -40,24 +40,25 @@ rule compare:
             labels={"set": "{set}", "artifact": "Measured and computed against the mass", "format": "PNG"},
         ),
         figure_provenance="results/figures/compare_{set}.provenance.json",
+    log:
+        "logs/tables/compare_{set}.log",
+    wildcard_constraints:
+        set=one_of(COMPARE_SETS),
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_COMPARE,
         runs=lambda w: compare_runs(w.set),
         set_name="{set}",
         title=lambda w: f"{set_title(w.set)[:1].upper()}{set_title(w.set)[1:]}: measured and computed",
         x=lambda w: PROJECT.compare.get(w.set, {}).get("x", ""),
-        descriptions=lambda w: PROJECT.variants.get(w.set, {}) and {v: d.get("description", v)
-                                                                   for v, d in PROJECT.variants[w.set].items()},
-    wildcard_constraints:
-        set=one_of(COMPARE_SETS),
-    log:
-        "logs/tables/compare_{set}.log",
-    group: GROUP_TABLES
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
+        descriptions=lambda w: PROJECT.variants.get(w.set, {})
+        and {v: d.get("description", v) for v, d in PROJECT.variants[w.set].items()},
     script:
         "../scripts/compare.py"
 
@@ -83,19 +84,20 @@ rule compare_history:
             labels={"set": "{set}", "artifact": "Force history: {case}", "format": "PNG"},
         ),
         provenance="results/figures/compare_{set}_{case}.provenance.json",
-    params:
-        code=SRC_COMPARE,
-        runs=lambda w: compare_case_runs(w.set, w.case),
+    log:
+        "logs/figures/compare_{set}_{case}.log",
     wildcard_constraints:
         set=one_of(COMPARE_SETS),
         case=one_of(HISTORY_CASES),
-    log:
-        "logs/figures/compare_{set}_{case}.log",
-    group: GROUP_TABLES
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
+    params:
+        code=SRC_COMPARE,
+        runs=lambda w: compare_case_runs(w.set, w.case),
     script:
         "../scripts/compare_history.py"

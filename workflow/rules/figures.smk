@@ -48,18 +48,19 @@ rule paper_model:
             labels={"artifact": "Fig. 4: displacement half-way along the rod", "format": "PNG"},
         ),
         fig4_provenance="results/figures/fig4_midrod_displacement.provenance.json",
+    log:
+        "logs/figures/paper_model.log",
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_PRESENT,
         runs=lambda w: runs_of([PROJECT.cases["model"]]),
         fraction=0.5,
-    log:
-        "logs/figures/paper_model.log",
-    group: GROUP_TABLES
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/paper_model.py"
 
@@ -71,10 +72,12 @@ rule fig_readings:
     input:
         runs=run_batches(lambda w: set_reading_runs(w.set)),
         sweep_points=lambda w: sweep_point_dirs(PROJECT.sweeps_in(w.set)),
-        bands=lambda w: expand("results/studies/film_band_{variant}.h5",
-                               variant=[v for v in FILM_VARIANTS if READING_SET_OF[v] == w.set]),
-        sensor_bands=lambda w: sensor_band_dirs([v for v, band in SENSOR_READINGS.items()
-                                                 if band and v in sensor_variants(w.set)]),
+        bands=lambda w: expand(
+            "results/studies/film_band_{variant}.h5", variant=[v for v in FILM_VARIANTS if READING_SET_OF[v] == w.set]
+        ),
+        sensor_bands=lambda w: sensor_band_dirs(
+            [v for v, band in SENSOR_READINGS.items() if band and v in sensor_variants(w.set)]
+        ),
     output:
         pdf=report(
             "results/figures/{set}_contact_time.pdf",
@@ -91,28 +94,30 @@ rule fig_readings:
             labels={"set": "{set}", "artifact": "Contact time against ball mass, every reading", "format": "PNG"},
         ),
         provenance="results/figures/{set}_contact_time.provenance.json",
+    log:
+        "logs/figures/{set}_contact_time.log",
+    wildcard_constraints:
+        set=one_of(READING_SETS),
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_PRESENT,
         runs=lambda w: set_reading_runs(w.set),
         sweep_runs=lambda w: sweep_point_runs(PROJECT.sweeps_in(w.set)),
-        sensor_bands=lambda w: sensor_band_files([v for v, band in SENSOR_READINGS.items()
-                                                  if band and v in sensor_variants(w.set)]),
+        sensor_bands=lambda w: sensor_band_files(
+            [v for v, band in SENSOR_READINGS.items() if band and v in sensor_variants(w.set)]
+        ),
         variants=lambda w: READING_SETS[w.set],
         film_variants=lambda w: [v for v in FILM_VARIANTS if READING_SET_OF[v] == w.set],
         sensors=lambda w: sensor_variants(w.set),
         descriptions=lambda w: {v: READING_DESCRIPTIONS[v] for v in READING_SETS[w.set]},
         title=lambda w: set_title(w.set),
         published=lambda w: set_published(w.set),
-    wildcard_constraints:
-        set=one_of(READING_SETS),
-    log:
-        "logs/figures/{set}_contact_time.log",
-    group: GROUP_TABLES
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/fig_readings.py"
 
@@ -138,19 +143,20 @@ rule fig_film_force:
             labels={"artifact": "Contact force with and without the film", "format": "PNG"},
         ),
         provenance="results/figures/film_force.provenance.json",
+    log:
+        "logs/figures/film_force.log",
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_PRESENT,
         runs=FILM_FORCE_RUNS,
         rows=FILM_FORCE["rows"],
         variants=FILM_FORCE["variants"],
         methods=FILM_FORCE["methods"],
-    log:
-        "logs/figures/film_force.log",
-    group: GROUP_TABLES
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/fig_film_force.py"

@@ -14,20 +14,21 @@ rule forces:
     output:
         forces=directory("results/forces/{set}"),
         provenance="results/forces/{set}.provenance.json",
+    log:
+        "logs/forces/{set}.log",
+    wildcard_constraints:
+        set=one_of(config["targets"]["sets"]),
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_FORCES,
         runs=lambda w: runs_of(PROJECT.cases_in(w.set)),
         names=lambda w: [f"{c['id']}/{m}" for c in PROJECT.cases_in(w.set) for m in c["methods"]],
-    wildcard_constraints:
-        set=one_of(config["targets"]["sets"]),
-    log:
-        "logs/forces/{set}.log",
-    group: GROUP_TABLES
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/force_export.py"
 
@@ -51,17 +52,18 @@ rule fig_force_fit:
             labels={"artifact": "Contact force and its closed form", "format": "PNG"},
         ),
         provenance="results/figures/force_fit_model.provenance.json",
+    log:
+        "logs/figures/force_fit_model.log",
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_PRESENT,
         runs=lambda w: runs_of([PROJECT.cases["model"]]),
         jsons=lambda w: force_files([PROJECT.cases["model"]], "json"),
-    log:
-        "logs/figures/force_fit_model.log",
-    group: GROUP_TABLES
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/fig_force_fit.py"

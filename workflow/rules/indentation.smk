@@ -13,18 +13,19 @@ rule indentation:
         case=lambda w: case_file_of(indentation_cases_of(w)[0]["id"]),
     output:
         curves=directory("results/indentation/{group}"),
+    log:
+        "logs/indentation/{group}.log",
+    group:
+        GROUP_SOLVERS
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_INDENTATION,
         cases=indentation_cases_of,
         numerics=lambda w: config["numerics"]["fem_axi"],
-    log:
-        "logs/indentation/{group}.log",
-    group: GROUP_SOLVERS
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/indentation.py"
 
@@ -36,17 +37,18 @@ rule film_band:
         cases=lambda w: sorted({case_file_of(c["id"]) for c in reading_cases(w.variant)}),
     output:
         h5="results/studies/film_band_{variant}.h5",
+    log:
+        "logs/studies/film_band_{variant}.log",
+    group:
+        GROUP_SOLVERS
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_BAND,
         cases=lambda w: reading_cases(w.variant),
         variant="{variant}",
-    log:
-        "logs/studies/film_band_{variant}.log",
-    group: GROUP_SOLVERS
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/film_band.py"

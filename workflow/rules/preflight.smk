@@ -47,8 +47,10 @@ def preflight_config(path):
     except (YamlError, UnicodeDecodeError, IsADirectoryError) as error:
         sys.exit(f"rodimpact: invalid configuration: {path}: {error}")
     if not isinstance(document, dict):
-        sys.exit(f"rodimpact: invalid configuration: {path}: must be a mapping of settings, got "
-                 f"{type(document).__name__}")
+        sys.exit(
+            f"rodimpact: invalid configuration: {path}: must be a mapping of settings, got "
+            f"{type(document).__name__}"
+        )
 
 
 preflight_config(CONFIG_FILE)

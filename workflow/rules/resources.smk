@@ -14,10 +14,15 @@ def level_runs(wildcards):
     """The levels of the method of the wildcard in the work-precision sweep on the case of the
     wildcard, by file name (level0, level1, ...); refuses a method the study does not sweep there."""
     levels = WORK_PRECISION.get("methods", {}).get(wildcards.method, {}).get("levels", [])
-    runs = {f"level{k}": {"case": sweep_case(wildcards.case, wildcards.method, k), "method": wildcards.method,
-                          "level": k, "study": {"name": "work_precision", "level": k,
-                                                "overrides": sweep_level(wildcards.method, k)}}
-            for k in range(len(levels))}
+    runs = {
+        f"level{k}": {
+            "case": sweep_case(wildcards.case, wildcards.method, k),
+            "method": wildcards.method,
+            "level": k,
+            "study": {"name": "work_precision", "level": k, "overrides": sweep_level(wildcards.method, k)},
+        }
+        for k in range(len(levels))
+    }
     return runs or refuse(f"the work-precision study does not sweep {wildcards.method!r}")
 
 
@@ -28,13 +33,18 @@ def sweep_batch_runs(wildcards):
     case_id = wildcards.case
     case = PROJECT.sweeps[case_id]
     if wildcards.method not in case["sweep"]["methods"]:
-        refuse(f"sweep {case_id!r} does not run {wildcards.method!r}; its methods: "
-               f"{', '.join(case['sweep']['methods'])}")
+        refuse(
+            f"sweep {case_id!r} does not run {wildcards.method!r}; its methods: "
+            f"{', '.join(case['sweep']['methods'])}"
+        )
     runs = {}
     for name, values in SWEEP_POINTS[case_id].items():
         point = sweep_point_case(case, values, name)
-        runs[name] = {"case": point, "method": wildcards.method,
-                      "study": {"name": "sweep", "sweep": case_id, "point": name}}
+        runs[name] = {
+            "case": point,
+            "method": wildcards.method,
+            "study": {"name": "sweep", "sweep": case_id, "point": name},
+        }
         builder = curve_rule_of(point)
         if builder is not None:  # no rule computes a point's curve, its batch does
             runs[name]["curve"] = {"rule": builder, "settings": CURVE_SETTINGS[builder]}
@@ -48,10 +58,19 @@ def stress_runs(wildcards):
     cases = PROJECT.cases_in(wildcards.set)
     if wildcards.stress_method == "reference":
         tolerance = config["stability"]["reference_tolerance"]
-        return {c["id"]: {"case": reference_case(c, config["numerics"], tolerance), "method": "sem",
-                          "case_file": case_file_of(c["id"])} for c in cases}
-    runs = {c["id"]: {"case": c, "method": wildcards.stress_method, "case_file": case_file_of(c["id"])}
-            for c in cases if wildcards.stress_method in c["methods"]}
+        return {
+            c["id"]: {
+                "case": reference_case(c, config["numerics"], tolerance),
+                "method": "sem",
+                "case_file": case_file_of(c["id"]),
+            }
+            for c in cases
+        }
+    runs = {
+        c["id"]: {"case": c, "method": wildcards.stress_method, "case_file": case_file_of(c["id"])}
+        for c in cases
+        if wildcards.stress_method in c["methods"]
+    }
     if not runs:
         refuse(f"no case of the stress set {wildcards.set!r} runs {wildcards.stress_method!r}")
     return runs
@@ -67,8 +86,10 @@ def map_runs(wildcards):
     """Every point of the stability map (each impactor mass at every rod impedance) by one method
     or its sem reference, by file name (m{i}_z{j})."""
     base, method = PROJECT.cases[MAP["base_case"]], map_method_of(wildcards)
-    return {name: {"case": map_point_case(base, MAP, name, wildcards.map_method, config["numerics"]),
-                   "method": method} for name in MAP_POINTS}
+    return {
+        name: {"case": map_point_case(base, MAP, name, wildcards.map_method, config["numerics"]), "method": method}
+        for name in MAP_POINTS
+    }
 
 
 def map_method_of(wildcards):
@@ -79,23 +100,36 @@ def map_method_of(wildcards):
 def _resources(estimate):
     """``resources:`` entries from ``estimate(wildcards) -> JobResources``, scaled by the attempt."""
     estimate = per_job(estimate)
-    return {"mem_mb": lambda wildcards, attempt: estimate(wildcards).for_attempt(attempt).mem_mb,
-            "runtime": lambda wildcards, attempt: estimate(wildcards).for_attempt(attempt).runtime_min}
+    return {
+        "mem_mb": lambda wildcards, attempt: estimate(wildcards).for_attempt(attempt).mem_mb,
+        "runtime": lambda wildcards, attempt: estimate(wildcards).for_attempt(attempt).runtime_min,
+    }
 
 
 def batch_resources(runs, timing=None):
     """Resources of a batch rule: ``runs(wildcards)`` maps its outputs to their runs (``case``,
     ``method``), solved one after another; ``timing`` when each is timed."""
-    return _resources(lambda w: PLAN.remember(([(r["case"], r["method"], 1) for r in runs(w).values()], timing,
-                                               [(r["case"], r["curve"]) for r in runs(w).values() if "curve" in r]),
-                                              _estimate_batch))
+    return _resources(
+        lambda w: PLAN.remember(
+            (
+                [(r["case"], r["method"], 1) for r in runs(w).values()],
+                timing,
+                [(r["case"], r["curve"]) for r in runs(w).values() if "curve" in r],
+            ),
+            _estimate_batch,
+        )
+    )
 
 
 def _estimate_batch(runs, timing, curves):
-    costs = {name: getattr(importlib.import_module(path.partition(":")[0]), path.partition(":")[2])
-             for name, path in CURVE_COSTS.items() if any(curve["rule"] == name for _, curve in curves)}
-    return estimate_sequence(runs, timing=timing, extra=[costs[curve["rule"]](case, curve["settings"])
-                                                         for case, curve in curves])
+    costs = {
+        name: getattr(importlib.import_module(path.partition(":")[0]), path.partition(":")[2])
+        for name, path in CURVE_COSTS.items()
+        if any(curve["rule"] == name for _, curve in curves)
+    }
+    return estimate_sequence(
+        runs, timing=timing, extra=[costs[curve["rule"]](case, curve["settings"]) for case, curve in curves]
+    )
 
 
 def bench_resources(runs):

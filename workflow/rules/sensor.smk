@@ -11,6 +11,17 @@ rule sensor_band:
         curves=lambda w: sorted({os.path.dirname(curve_file_of(c)) for c in reading_cases(w.variant)}),
     output:
         bands=directory("results/studies/sensor_band/{variant}"),
+    log:
+        "logs/studies/sensor_band/{variant}.log",
+    wildcard_constraints:
+        variant=one_of(SENSOR_READINGS),
+    group:
+        GROUP_SOLVERS
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_SENSOR,
         cases=lambda w: reading_cases(w.variant),
@@ -19,16 +30,6 @@ rule sensor_band:
         band=lambda w: SENSOR_READINGS[w.variant],
         grid=SENSOR_GRID,
         numerics=lambda w: config["numerics"]["fem_axi"],
-    wildcard_constraints:
-        variant=one_of(SENSOR_READINGS),
-    log:
-        "logs/studies/sensor_band/{variant}.log",
-    group: GROUP_SOLVERS
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/sensor_band.py"
 
@@ -49,17 +50,18 @@ rule sensor_band_table:
         md="results/tables/sensor_band.md",
         html="results/tables/sensor_band.html",
         provenance="results/tables/sensor_band.provenance.json",
-    params:
-        code=SRC_SENSOR_TABLES,
-        bands=sensor_band_files([v for v, band in SENSOR_READINGS.items() if band]),
     log:
         "logs/tables/sensor_band.log",
-    group: GROUP_TABLES
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
+    params:
+        code=SRC_SENSOR_TABLES,
+        bands=sensor_band_files([v for v, band in SENSOR_READINGS.items() if band]),
     script:
         "../scripts/sensor_band_table.py"
 
@@ -81,19 +83,20 @@ rule sensor_fit:
         html="results/tables/sensor_fit.html",
         summary="results/tables/sensor_fit.json",
         provenance="results/tables/sensor_fit.provenance.json",
+    log:
+        "logs/tables/sensor_fit.log",
+    group:
+        GROUP_SOLVERS
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_SENSOR_TABLES,
         fitted=sensor_band_files([SENSOR_FIT["reading"]] if SENSOR_FIT else []),
         applied=sensor_band_files(SENSOR_FIT.get("apply_to", []) if SENSOR_FIT else []),
         layer=SENSOR_FIT["layer"] if SENSOR_FIT else "",
-    log:
-        "logs/tables/sensor_fit.log",
-    group: GROUP_SOLVERS
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/sensor_fit.py"
 
@@ -119,19 +122,20 @@ rule fig_sensor_fit:
             labels={"artifact": "A fit of the bond line (figure)", "format": "PNG"},
         ),
         provenance="results/figures/sensor_fit.provenance.json",
+    log:
+        "logs/figures/sensor_fit.log",
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_SENSOR_TABLES,
         fitted=sensor_band_files([SENSOR_FIT["reading"]] if SENSOR_FIT else []),
         applied=sensor_band_files(SENSOR_FIT.get("apply_to", []) if SENSOR_FIT else []),
         layer=SENSOR_FIT["layer"] if SENSOR_FIT else "",
         descriptions=READING_DESCRIPTIONS,
-    log:
-        "logs/figures/sensor_fit.log",
-    group: GROUP_TABLES
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/fig_sensor_fit.py"

@@ -6,23 +6,25 @@ rule solve:
     lists it: one file per case, results/runs/{group}/{method}/{case}.h5, each written whole."""
     input:
         cases=lambda w: sorted({run["case_file"] for run in group_runs(w).values()}),
-        curves=lambda w: sorted({os.path.dirname(run["contact_curve"]) for run in group_runs(w).values()
-                                 if "contact_curve" in run}),
+        curves=lambda w: sorted(
+            {os.path.dirname(run["contact_curve"]) for run in group_runs(w).values() if "contact_curve" in run}
+        ),
     output:
         runs=directory("results/runs/{group}/{method}"),
+    log:
+        "logs/runs/{group}/{method}.log",
+    group:
+        GROUP_SOLVERS
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **batch_resources(group_runs),
     params:
         code=batch_sources(),
         runs=group_runs,
         keep_failed=False,
         timing=None,
-    log:
-        "logs/runs/{group}/{method}.log",
-    group: GROUP_SOLVERS
-    threads: 1
-    resources:
-        **batch_resources(group_runs),
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/solve_batch.py"
 
@@ -39,19 +41,20 @@ rule solve_levels:
         case=case_file(lambda w: w.case),
     output:
         runs=directory("results/convergence/{case}/{method}"),
+    log:
+        "logs/convergence/{case}/{method}.log",
+    group:
+        GROUP_SOLVERS
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **batch_resources(level_runs, timing=WORK_PRECISION.get("timing", {})),
     params:
         code=batch_sources(),
         runs=level_runs,
         keep_failed=False,
         timing=WORK_PRECISION.get("timing", {}),
-    log:
-        "logs/convergence/{case}/{method}.log",
-    group: GROUP_SOLVERS
-    threads: 1
-    resources:
-        **batch_resources(level_runs, timing=WORK_PRECISION.get("timing", {})),
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/solve_batch.py"
 
@@ -64,22 +67,23 @@ rule solve_stress:
         cases=lambda w: sorted({run["case_file"] for run in stress_runs(w).values()}),
     output:
         runs=directory("results/stress/{set}/{stress_method}"),
-    params:
-        code=batch_sources(stress_method_of),
-        runs=stress_runs,
-        keep_failed=True,
-        timing=None,
     log:
         "logs/stress/{set}/{stress_method}.log",
     wildcard_constraints:
         set=one_of(STABILITY.get("sets", [])),
         stress_method=one_of([*METHOD_REGISTRY, "reference"]),
-    group: GROUP_SOLVERS
+    group:
+        GROUP_SOLVERS
+    conda:
+        "../envs/rodimpact.yaml"
     threads: 1
     resources:
         **batch_resources(stress_runs),
-    conda:
-        "../envs/rodimpact.yaml"
+    params:
+        code=batch_sources(stress_method_of),
+        runs=stress_runs,
+        keep_failed=True,
+        timing=None,
     script:
         "../scripts/solve_batch.py"
 
@@ -94,18 +98,19 @@ if MAP:
             case=case_file(lambda w: MAP["base_case"]),
         output:
             runs=directory("results/stability_map/{map_method}"),
+        log:
+            "logs/stability_map/{map_method}.log",
+        group:
+            GROUP_SOLVERS
+        conda:
+            "../envs/rodimpact.yaml"
+        threads: 1
+        resources:
+            **batch_resources(map_runs),
         params:
             code=batch_sources(map_method_of),
             runs=map_runs,
             keep_failed=True,
             timing=None,
-        log:
-            "logs/stability_map/{map_method}.log",
-        group: GROUP_SOLVERS
-        threads: 1
-        resources:
-            **batch_resources(map_runs),
-        conda:
-            "../envs/rodimpact.yaml"
         script:
             "../scripts/solve_batch.py"

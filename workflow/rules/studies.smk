@@ -25,6 +25,15 @@ rule work_precision_table:
         orders_md="results/tables/work_precision_orders.md",
         orders_html="results/tables/work_precision_orders.html",
         provenance="results/tables/work_precision.provenance.json",
+    log:
+        "logs/tables/work_precision.log",
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_PRESENT,
         runs=sweep_runs(),
@@ -32,14 +41,6 @@ rule work_precision_table:
         fit_levels=WORK_PRECISION.get("fit_levels", 4),
         arrival_window=WORK_PRECISION.get("arrival_window"),
         per_case=WORK_PRECISION.get("per_case", {}),
-    log:
-        "logs/tables/work_precision.log",
-    group: GROUP_TABLES
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/work_precision.py"
 
@@ -63,6 +64,15 @@ if WORK_PRECISION_SEPARATE:
             orders_md="results/tables/work_precision_separate_orders.md",
             orders_html="results/tables/work_precision_separate_orders.html",
             provenance="results/tables/work_precision_separate.provenance.json",
+        log:
+            "logs/tables/work_precision_separate.log",
+        group:
+            GROUP_TABLES
+        conda:
+            "../envs/rodimpact.yaml"
+        threads: 1
+        resources:
+            **PRESENTATION_RESOURCES,
         params:
             code=SRC_PRESENT,
             runs=sweep_runs(WORK_PRECISION_SEPARATE["cases"], WORK_PRECISION_SEPARATE["methods"]),
@@ -70,14 +80,6 @@ if WORK_PRECISION_SEPARATE:
             fit_levels=WORK_PRECISION.get("fit_levels", 4),
             arrival_window=WORK_PRECISION.get("arrival_window"),
             per_case=WORK_PRECISION.get("per_case", {}),
-        log:
-            "logs/tables/work_precision_separate.log",
-        group: GROUP_TABLES
-        threads: 1
-        resources:
-            **PRESENTATION_RESOURCES,
-        conda:
-            "../envs/rodimpact.yaml"
         script:
             "../scripts/work_precision.py"
 
@@ -103,6 +105,15 @@ rule work_precision_figure:
             labels={"artifact": "Error against wall time, {case}", "format": "PNG"},
         ),
         provenance="results/figures/work_precision_{case}.provenance.json",
+    log:
+        "logs/figures/work_precision_{case}.log",
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_PRESENT,
         runs=lambda w: sweep_runs([w.case]),
@@ -110,14 +121,6 @@ rule work_precision_figure:
         fit_levels=WORK_PRECISION.get("fit_levels", 4),
         arrival_window=WORK_PRECISION.get("arrival_window"),
         per_case=WORK_PRECISION.get("per_case", {}),
-    log:
-        "logs/figures/work_precision_{case}.log",
-    group: GROUP_TABLES
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/work_precision_figure.py"
 
@@ -137,19 +140,20 @@ rule stability_table:
         md="results/tables/stability.md",
         html="results/tables/stability.html",
         provenance="results/tables/stability.provenance.json",
+    log:
+        "logs/tables/stability.log",
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_PRESENT,
         runs=STRESS_RUNS,
         references=STRESS_REFERENCES,
         tolerances=STABILITY.get("tolerances", {}),
-    log:
-        "logs/tables/stability.log",
-    group: GROUP_TABLES
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/stability.py"
 
@@ -181,18 +185,19 @@ rule stability_map:
             labels={"artifact": "Stability map of the SEM schemes", "format": "PNG"},
         ),
         provenance="results/tables/stability_map.provenance.json",
+    log:
+        "logs/figures/stability_map.log",
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_PRESENT,
         runs=[f"results/stability_map/{m}/{p}.h5" for p in MAP_POINTS for m in MAP.get("methods", [])],
         references=[f"results/stability_map/reference/{p}.h5" for p in MAP_POINTS],
         spec=MAP,
-    log:
-        "logs/figures/stability_map.log",
-    group: GROUP_TABLES
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/stability_map.py"

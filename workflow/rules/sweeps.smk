@@ -12,21 +12,22 @@ rule solve_sweep:
         case="results/cases/{case}.yaml",
     output:
         runs=directory("results/sweeps/{case}/{method}"),
+    log:
+        "logs/sweeps/{case}/{method}.log",
+    wildcard_constraints:
+        case=one_of(PROJECT.sweeps),
+    group:
+        GROUP_SOLVERS
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **batch_resources(sweep_batch_runs),
     params:
         code=sweep_sources,
         runs=sweep_batch_runs,
         keep_failed=False,
         timing=None,
-    log:
-        "logs/sweeps/{case}/{method}.log",
-    wildcard_constraints:
-        case=one_of(PROJECT.sweeps),
-    group: GROUP_SOLVERS
-    threads: 1
-    resources:
-        **batch_resources(sweep_batch_runs),
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/solve_batch.py"
 
@@ -46,16 +47,17 @@ rule sweep_table:
         md="results/tables/sweep_{set}.md",
         html="results/tables/sweep_{set}.html",
         provenance="results/tables/sweep_{set}.provenance.json",
-    params:
-        code=SRC_PRESENT,
-        runs=lambda w: sweep_point_runs(PROJECT.sweeps_in(w.set)),
     log:
         "logs/tables/sweep_{set}.log",
-    group: GROUP_TABLES
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
+    params:
+        code=SRC_PRESENT,
+        runs=lambda w: sweep_point_runs(PROJECT.sweeps_in(w.set)),
     script:
         "../scripts/sweep_table.py"

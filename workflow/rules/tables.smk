@@ -18,6 +18,17 @@ rule readings_table:
         html="results/tables/{set}_{variant}.html",
         tex="results/tables/{set}_{variant}.tex",
         provenance="results/tables/{set}_{variant}.provenance.json",
+    log:
+        "logs/tables/{set}_{variant}.log",
+    wildcard_constraints:
+        set=one_of(READING_SETS),
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_PRESENT,
         runs=lambda w: reading_runs(w.variant),
@@ -25,16 +36,6 @@ rule readings_table:
         title=lambda w: set_title(w.set),
         reference=lambda w: PROJECT.compare.get(w.set, {}).get("reference", ""),
         published=lambda w: set_published(w.set),
-    wildcard_constraints:
-        set=one_of(READING_SETS),
-    log:
-        "logs/tables/{set}_{variant}.log",
-    group: GROUP_TABLES
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/readings_table.py"
 
@@ -54,21 +55,22 @@ rule readings_summary:
         md="results/tables/{set}_variants.md",
         html="results/tables/{set}_variants.html",
         provenance="results/tables/{set}_variants.provenance.json",
+    log:
+        "logs/tables/{set}_variants.log",
+    wildcard_constraints:
+        set=one_of(READING_SETS),
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_PRESENT,
         runs=lambda w: set_reading_runs(w.set),
         variants=lambda w: READING_SETS[w.set],
         published=lambda w: set_published(w.set),
-    wildcard_constraints:
-        set=one_of(READING_SETS),
-    log:
-        "logs/tables/{set}_variants.log",
-    group: GROUP_TABLES
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/readings_summary.py"
 
@@ -93,21 +95,22 @@ rule film_table:
         md="results/tables/{set}_film.md",
         html="results/tables/{set}_film.html",
         provenance="results/tables/{set}_film.provenance.json",
+    log:
+        "logs/tables/{set}_film.log",
+    wildcard_constraints:
+        set=one_of(FILM_TABLE_SETS),
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_PRESENT,
         sensor_bands=sensor_band_files([v for v in [FILM_TABLE.get("sensor_calibrated")] if SENSOR_READINGS.get(v)]),
         runs=[run for v in FILM_TABLE.values() for run in reading_runs(v)] if FILM_TABLE_SETS else [],
         variants=FILM_TABLE,
-    wildcard_constraints:
-        set=one_of(FILM_TABLE_SETS),
-    log:
-        "logs/tables/{set}_film.log",
-    group: GROUP_TABLES
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/film_table.py"
 
@@ -128,17 +131,18 @@ rule film_band_table:
         md="results/tables/film_band.md",
         html="results/tables/film_band.html",
         provenance="results/tables/film_band.provenance.json",
-    params:
-        code=SRC_PRESENT,
-        variants=FILM_VARIANTS,
     log:
         "logs/tables/film_band.log",
-    group: GROUP_TABLES
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
     threads: 1
     resources:
         **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
+    params:
+        code=SRC_PRESENT,
+        variants=FILM_VARIANTS,
     script:
         "../scripts/film_band_table.py"
 
@@ -158,17 +162,18 @@ rule film_indentation_table:
         md="results/tables/film_indentation.md",
         html="results/tables/film_indentation.html",
         provenance="results/tables/film_indentation.provenance.json",
+    log:
+        "logs/tables/film_indentation.log",
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_PRESENT,
         curves=[curve_file_of(PROJECT.cases[c]) for c in CALIBRATED_CASES],
         cases=CALIBRATED_CASES,
-    log:
-        "logs/tables/film_indentation.log",
-    group: GROUP_TABLES
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/film_indentation_table.py"

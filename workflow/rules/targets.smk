@@ -13,8 +13,16 @@ def check_targets(targets):
         if target in names or os.path.exists(target) or any(r.is_producer(target) for r in rules):
             continue
         # a file of a batch: its rule writes the directory holding it, as a whole
-        batch = next(((str(parent), r.name) for parent in Path(target).parents if str(parent) not in (".", "")
-                      for r in rules if r.is_producer(str(parent))), None)
+        batch = next(
+            (
+                (str(parent), r.name)
+                for parent in Path(target).parents
+                if str(parent) not in (".", "")
+                for r in rules
+                if r.is_producer(str(parent))
+            ),
+            None,
+        )
         refuse(unknown_target_message(target, [str(p) for r in rules for p in r.output], names, batch=batch))
 
 

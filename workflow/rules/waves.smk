@@ -26,20 +26,21 @@ rule wave_map:
             labels={"artifact": "Strain along the rod against time, {case}", "format": "PNG"},
         ),
         provenance="results/figures/wave_map_{case}.provenance.json",
+    log:
+        "logs/figures/wave_map_{case}.log",
+    wildcard_constraints:
+        case=one_of(WAVE_CASES),
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
     params:
         code=SRC_WAVES,
         runs=lambda w: field_runs(PROJECT.cases[w.case]),
         field_grid=lambda w: PROJECT.cases[w.case]["field_grid"],  # for the caption
         far_end=lambda w: PROJECT.cases[w.case]["rod"]["far_end"],
-    log:
-        "logs/figures/wave_map_{case}.log",
-    wildcard_constraints:
-        case=one_of(WAVE_CASES),
-    group: GROUP_TABLES
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    conda:
-        "../envs/rodimpact.yaml"
     script:
         "../scripts/wave_map.py"

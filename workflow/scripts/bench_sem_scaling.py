@@ -4,6 +4,6 @@ from rodimpact.jobs.logs import script_logging
 from rodimpact.tools.bench import write_benchmark
 from rodimpact.tools.bench_scaling import benchmark_sem_scaling
 
-with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
-    frame = benchmark_sem_scaling(snakemake.params.model, snakemake.params.stress)  # noqa: F821
-    write_benchmark(frame, csv=snakemake.output.csv, provenance=snakemake.output.provenance)  # noqa: F821
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # `snakemake`: injected by snakemake
+    frame = benchmark_sem_scaling(snakemake.params.model, snakemake.params.stress)
+    write_benchmark(frame, csv=snakemake.output.csv, provenance=snakemake.output.provenance)

@@ -3,5 +3,5 @@
 from rodimpact.jobs.cases import write_case_file
 from rodimpact.jobs.logs import script_logging
 
-with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
-    write_case_file(snakemake.params.name, snakemake.params.cases, snakemake.output.yaml)  # noqa: F821
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # `snakemake`: injected by snakemake
+    write_case_file(snakemake.params.name, snakemake.params.cases, snakemake.output.yaml)

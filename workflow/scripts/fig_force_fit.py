@@ -3,7 +3,12 @@
 from rodimpact.jobs.logs import script_logging
 from rodimpact.present.artifacts import make_fig_force_fit
 
-with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
-    out = snakemake.output  # noqa: F821
-    make_fig_force_fit(snakemake.params.runs, snakemake.params.jsons,  # noqa: F821
-                       pdf=out.pdf, png=out.png, provenance=out.provenance)
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # `snakemake`: injected by snakemake
+    out = snakemake.output
+    make_fig_force_fit(
+        snakemake.params.runs,
+        snakemake.params.jsons,
+        pdf=out.pdf,
+        png=out.png,
+        provenance=out.provenance,
+    )

@@ -3,5 +3,5 @@
 from rodimpact.jobs.band import band_to_file
 from rodimpact.jobs.logs import script_logging
 
-with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
-    band_to_file(snakemake.params.cases, snakemake.params.variant, snakemake.output.h5)  # noqa: F821
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # `snakemake`: injected by snakemake
+    band_to_file(snakemake.params.cases, snakemake.params.variant, snakemake.output.h5)

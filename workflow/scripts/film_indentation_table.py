@@ -3,7 +3,12 @@
 from rodimpact.jobs.logs import script_logging
 from rodimpact.present.artifacts import make_film_indentation_table
 
-with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
-    out = snakemake.output  # noqa: F821
-    make_film_indentation_table(snakemake.params.curves,  # noqa: F821
-                                csv=out.csv, md=out.md, html=out.html, provenance=out.provenance)
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # `snakemake`: injected by snakemake
+    out = snakemake.output
+    make_film_indentation_table(
+        snakemake.params.curves,
+        csv=out.csv,
+        md=out.md,
+        html=out.html,
+        provenance=out.provenance,
+    )

@@ -3,8 +3,15 @@
 from rodimpact.jobs.logs import script_logging
 from rodimpact.present.artifacts import make_film_table
 
-with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
-    out = snakemake.output  # noqa: F821
-    make_film_table(snakemake.params.runs, snakemake.params.variants, snakemake.input.band,  # noqa: F821
-                     csv=out.csv, md=out.md, html=out.html, provenance=out.provenance,
-                     sensor_bands=snakemake.params.sensor_bands)  # noqa: F821
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # `snakemake`: injected by snakemake
+    out = snakemake.output
+    make_film_table(
+        snakemake.params.runs,
+        snakemake.params.variants,
+        snakemake.input.band,
+        csv=out.csv,
+        md=out.md,
+        html=out.html,
+        provenance=out.provenance,
+        sensor_bands=snakemake.params.sensor_bands,
+    )

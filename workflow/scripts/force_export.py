@@ -3,6 +3,6 @@
 from rodimpact.jobs.logs import script_logging
 from rodimpact.present.forces import export_forces_into
 
-with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
-    out, params = snakemake.output, snakemake.params  # noqa: F821
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # `snakemake`: injected by snakemake
+    out, params = snakemake.output, snakemake.params
     export_forces_into(params.runs, params.names, out.forces, provenance=out.provenance)

@@ -3,8 +3,8 @@
 from rodimpact.jobs.logs import script_logging
 from rodimpact.present.artifacts import make_comparison, make_fig2, make_fig4
 
-with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
-    out, params = snakemake.output, snakemake.params  # noqa: F821
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # `snakemake`: injected by snakemake
+    out, params = snakemake.output, snakemake.params
     make_fig2(params.runs, pdf=out.fig2_pdf, png=out.fig2_png, provenance=out.fig2_provenance)
     make_comparison(params.runs, csv=out.csv, md=out.md, html=out.html, provenance=out.table_provenance)
     make_fig4(params.runs, params.fraction, pdf=out.fig4_pdf, png=out.fig4_png, provenance=out.fig4_provenance)

@@ -3,7 +3,13 @@
 from rodimpact.jobs.logs import script_logging
 from rodimpact.present.artifacts import make_readings_summary
 
-with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
-    out = snakemake.output  # noqa: F821
-    make_readings_summary(snakemake.params.runs, snakemake.params.variants,  # noqa: F821
-                         csv=out.csv, md=out.md, html=out.html, provenance=out.provenance)
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # `snakemake`: injected by snakemake
+    out = snakemake.output
+    make_readings_summary(
+        snakemake.params.runs,
+        snakemake.params.variants,
+        csv=out.csv,
+        md=out.md,
+        html=out.html,
+        provenance=out.provenance,
+    )

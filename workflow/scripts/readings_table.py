@@ -3,8 +3,16 @@
 from rodimpact.jobs.logs import script_logging
 from rodimpact.present.artifacts import make_readings_table
 
-with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
-    out, params = snakemake.output, snakemake.params  # noqa: F821
-    make_readings_table(snakemake.params.runs, params.variant, title=params.title,  # noqa: F821
-                        reference=params.reference, csv=out.csv, md=out.md, html=out.html, tex=out.tex,
-                        provenance=out.provenance)
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # `snakemake`: injected by snakemake
+    out, params = snakemake.output, snakemake.params
+    make_readings_table(
+        snakemake.params.runs,
+        params.variant,
+        title=params.title,
+        reference=params.reference,
+        csv=out.csv,
+        md=out.md,
+        html=out.html,
+        tex=out.tex,
+        provenance=out.provenance,
+    )

@@ -4,7 +4,14 @@ calibrated SEM (one file per case in the rule's output directory)."""
 from rodimpact.jobs.logs import script_logging
 from rodimpact.jobs.sensor_band import sensor_bands_into
 
-with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
-    params = snakemake.params  # noqa: F821
-    sensor_bands_into(params.cases, params.variant, snakemake.output.bands, params.numerics,  # noqa: F821
-                      grid=params.grid, band=params.band, curve_files=params.curves)
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # `snakemake`: injected by snakemake
+    params = snakemake.params
+    sensor_bands_into(
+        params.cases,
+        params.variant,
+        snakemake.output.bands,
+        params.numerics,
+        grid=params.grid,
+        band=params.band,
+        curve_files=params.curves,
+    )

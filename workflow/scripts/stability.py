@@ -3,8 +3,14 @@
 from rodimpact.jobs.logs import script_logging
 from rodimpact.present.artifacts import make_stability
 
-with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
-    out = snakemake.output  # noqa: F821
-    make_stability(snakemake.params.runs, snakemake.params.references,  # noqa: F821
-                   snakemake.params.tolerances, csv=out.csv, md=out.md, html=out.html,  # noqa: F821
-                   provenance=out.provenance)
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # `snakemake`: injected by snakemake
+    out = snakemake.output
+    make_stability(
+        snakemake.params.runs,
+        snakemake.params.references,
+        snakemake.params.tolerances,
+        csv=out.csv,
+        md=out.md,
+        html=out.html,
+        provenance=out.provenance,
+    )

@@ -3,6 +3,6 @@
 from rodimpact.jobs.logs import script_logging
 from rodimpact.present.wave_figures import make_wave_map
 
-with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
-    out = snakemake.output  # noqa: F821
-    make_wave_map(snakemake.params.runs, pdf=out.pdf, png=out.png, provenance=out.provenance)  # noqa: F821
+with script_logging(snakemake.log[0], outputs=snakemake.output):  # `snakemake`: injected by snakemake
+    out = snakemake.output
+    make_wave_map(snakemake.params.runs, pdf=out.pdf, png=out.png, provenance=out.provenance)

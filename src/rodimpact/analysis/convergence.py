@@ -39,9 +39,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["GCI_SAFETY_FACTOR", "FittedOrder", "GridConvergence", "NumericalUncertainty", "changes_sign",
-           "constant_ratio", "fitted_order", "grid_convergence_index", "is_monotone", "numerical_uncertainty",
-           "oscillatory_uncertainty"]
+__all__ = [
+    "GCI_SAFETY_FACTOR",
+    "FittedOrder",
+    "GridConvergence",
+    "NumericalUncertainty",
+    "changes_sign",
+    "constant_ratio",
+    "fitted_order",
+    "grid_convergence_index",
+    "is_monotone",
+    "numerical_uncertainty",
+    "oscillatory_uncertainty",
+]
 
 #: Roache's safety factor for a study of three (or more) grids.
 GCI_SAFETY_FACTOR = 1.25
@@ -154,8 +164,9 @@ class GridConvergence:
     ratio: float
 
 
-def grid_convergence_index(fine: float, medium: float, coarse: float, ratio: float,
-                           safety_factor: float = GCI_SAFETY_FACTOR) -> GridConvergence:
+def grid_convergence_index(
+    fine: float, medium: float, coarse: float, ratio: float, safety_factor: float = GCI_SAFETY_FACTOR
+) -> GridConvergence:
     """The grid convergence index of ``fine`` from three solutions at the constant ratio ``ratio``.
 
     Parameters
@@ -223,8 +234,9 @@ class NumericalUncertainty:
         return self.index.gci if math.isfinite(self.index.gci) else self.half_range
 
 
-def numerical_uncertainty(fine: float, medium: float, coarse: float, ratio: float,
-                          safety_factor: float = GCI_SAFETY_FACTOR) -> NumericalUncertainty:
+def numerical_uncertainty(
+    fine: float, medium: float, coarse: float, ratio: float, safety_factor: float = GCI_SAFETY_FACTOR
+) -> NumericalUncertainty:
     """The GCI of ``fine`` where its three levels converge monotonically, else U_osc.
 
     Parameters

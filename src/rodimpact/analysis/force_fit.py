@@ -30,9 +30,11 @@ MAX_DEGREE = 60
 #: The default target of the largest error, as a fraction of the largest force.
 DEFAULT_REL_TOL = 0.01
 #: The formula, as the exported file states it.
-FORMULA = ("P(t) = sum_k c[k] T_k(x) with x = (2 t - t0 - t1) / (t1 - t0) on each contact interval "
-           "t0 <= t <= t1 (T_k the Chebyshev polynomials of the first kind: T_0 = 1, T_1 = x, "
-           "T_k+1 = 2 x T_k - T_k-1); P(t) = 0 outside the intervals. SI units: t in s, P in N.")
+FORMULA = (
+    "P(t) = sum_k c[k] T_k(x) with x = (2 t - t0 - t1) / (t1 - t0) on each contact interval "
+    "t0 <= t <= t1 (T_k the Chebyshev polynomials of the first kind: T_0 = 1, T_1 = x, "
+    "T_k+1 = 2 x T_k - T_k-1); P(t) = 0 outside the intervals. SI units: t in s, P in N."
+)
 
 
 @dataclass(frozen=True)
@@ -99,9 +101,16 @@ class ForceFit:
         """Plain JSON types: the formula, each interval's coefficients, the errors."""
         return {
             "formula": FORMULA,
-            "intervals": [{"t0_s": p.t0_s, "t1_s": p.t1_s, "degree": len(p.coefficients) - 1,
-                           "coefficients_N": list(p.coefficients), "max_abs_error_N": p.max_abs_error_N}
-                          for p in self.pieces],
+            "intervals": [
+                {
+                    "t0_s": p.t0_s,
+                    "t1_s": p.t1_s,
+                    "degree": len(p.coefficients) - 1,
+                    "coefficients_N": list(p.coefficients),
+                    "max_abs_error_N": p.max_abs_error_N,
+                }
+                for p in self.pieces
+            ],
             "peak_force_N": self.peak_force_N,
             "max_abs_error_N": self.max_abs_error_N,
             "max_rel_error": self.max_rel_error,
@@ -109,8 +118,9 @@ class ForceFit:
         }
 
 
-def _fit_piece(t: NDArray[np.float64], force: NDArray[np.float64], t0: float, t1: float,
-               target_N: float) -> ContactPiece:
+def _fit_piece(
+    t: NDArray[np.float64], force: NDArray[np.float64], t0: float, t1: float, target_N: float
+) -> ContactPiece:
     """The lowest-degree series on [t0, t1] within ``target_N`` on the samples there."""
     inside = (t >= t0) & (t <= t1)
     ts, ps = t[inside], force[inside]
@@ -126,8 +136,9 @@ def _fit_piece(t: NDArray[np.float64], force: NDArray[np.float64], t0: float, t1
     return ContactPiece(float(t0), float(t1), tuple(float(c) for c in coefficients), error)
 
 
-def fit_force(t: ArrayLike, force: ArrayLike, intervals: Sequence[tuple[float, float]],
-              rel_tol: float = DEFAULT_REL_TOL) -> ForceFit:
+def fit_force(
+    t: ArrayLike, force: ArrayLike, intervals: Sequence[tuple[float, float]], rel_tol: float = DEFAULT_REL_TOL
+) -> ForceFit:
     """Fit a computed force history by a Chebyshev series on each contact interval.
 
     Parameters

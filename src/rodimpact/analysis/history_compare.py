@@ -90,13 +90,20 @@ def threshold_crossings(time_s: ArrayLike, force_N: ArrayLike, threshold: float)
     rises = np.flatnonzero(~above[:-1] & above[1:])
     falls = np.flatnonzero(above[:-1] & ~above[1:])
     if not len(rises) or not len(falls) or falls[-1] < rises[0]:
-        raise ValueError(f"force: the signal must start and end below {threshold:g} of its peak "
-                         f"({level:.4g} N) to read a contact from it")
+        raise ValueError(
+            f"force: the signal must start and end below {threshold:g} of its peak "
+            f"({level:.4g} N) to read a contact from it"
+        )
     return _crossing(t, f, int(rises[0]), level), _crossing(t, f, int(falls[-1]), level)
 
 
-def compare_force_histories(measured_time_s: ArrayLike, measured_N: ArrayLike, model_time_s: ArrayLike,
-                            model_N: ArrayLike, threshold: float = DEFAULT_THRESHOLD) -> HistoryComparison:
+def compare_force_histories(
+    measured_time_s: ArrayLike,
+    measured_N: ArrayLike,
+    model_time_s: ArrayLike,
+    model_N: ArrayLike,
+    threshold: float = DEFAULT_THRESHOLD,
+) -> HistoryComparison:
     """Align a measured force history on a computed one and measure their difference.
 
     Parameters
@@ -132,9 +139,15 @@ def compare_force_histories(measured_time_s: ArrayLike, measured_N: ArrayLike, m
     difference = model - measured
     norm = float(np.sqrt(np.trapezoid(measured**2, t)))
     return HistoryComparison(
-        threshold=threshold, shift_s=shift,
+        threshold=threshold,
+        shift_s=shift,
         l2_error=float(np.sqrt(np.trapezoid(difference**2, t))) / norm,
         max_error=float(np.max(np.abs(difference))) / float(np.max(np.abs(fm))),
-        measured_contact_time_s=m_end - m_start, model_contact_time_s=c_end - c_start,
-        measured_peak_N=float(fm.max()), model_peak_N=float(fc.max()),
-        time_s=t, measured_N=measured, model_N=model)
+        measured_contact_time_s=m_end - m_start,
+        model_contact_time_s=c_end - c_start,
+        measured_peak_N=float(fm.max()),
+        model_peak_N=float(fc.max()),
+        time_s=t,
+        measured_N=measured,
+        model_N=model,
+    )

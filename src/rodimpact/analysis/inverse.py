@@ -34,8 +34,16 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["SCAN_POINTS", "FitInputError", "LeaveOneOut", "ThetaFit", "fit_theta", "inside", "leave_one_out",
-           "predict_at"]
+__all__ = [
+    "SCAN_POINTS",
+    "FitInputError",
+    "LeaveOneOut",
+    "ThetaFit",
+    "fit_theta",
+    "inside",
+    "leave_one_out",
+    "predict_at",
+]
 
 log = logging.getLogger(__name__)
 
@@ -48,14 +56,17 @@ def _pchip():
 
     return PchipInterpolator
 
+
 #: The number of evenly spaced values of theta on which the minimum is bracketed.
 SCAN_POINTS = 2001
 
 
-_MESSAGES = {"converged": "the minimum lies inside the grid",
-             "at_lower_bound": "the minimum lies at the grid's lower edge: widen the grid (not extrapolated)",
-             "at_upper_bound": "the minimum lies at the grid's upper edge: widen the grid (not extrapolated)",
-             "not_converged": "the bounded refinement did not converge"}
+_MESSAGES = {
+    "converged": "the minimum lies inside the grid",
+    "at_lower_bound": "the minimum lies at the grid's lower edge: widen the grid (not extrapolated)",
+    "at_upper_bound": "the minimum lies at the grid's upper edge: widen the grid (not extrapolated)",
+    "not_converged": "the bounded refinement did not converge",
+}
 
 
 class FitInputError(ValueError):
@@ -166,8 +177,9 @@ def _grid(theta_grid: ArrayLike, predicted: ArrayLike) -> tuple[NDArray[np.float
         raise FitInputError("theta_grid", "must be finite and strictly increasing")
     table = np.asarray(predicted, dtype=float)
     if table.ndim != 2 or table.shape[1] != grid.size or table.shape[0] < 1:
-        raise FitInputError("predicted", f"must have shape (n_rows, {grid.size}) to match theta_grid, "
-                            f"got {table.shape}")
+        raise FitInputError(
+            "predicted", f"must have shape (n_rows, {grid.size}) to match theta_grid, got {table.shape}"
+        )
     if not np.all(np.isfinite(table)):
         raise FitInputError("predicted", "must be finite")
     steps = np.diff(table, axis=1)
@@ -178,8 +190,13 @@ def _grid(theta_grid: ArrayLike, predicted: ArrayLike) -> tuple[NDArray[np.float
     return grid, table
 
 
-def _inputs(theta_grid: ArrayLike, predicted: ArrayLike, measured: ArrayLike, weights: ArrayLike | None,
-            source_range: Sequence[float] | None) -> tuple[NDArray[np.float64], ...]:
+def _inputs(
+    theta_grid: ArrayLike,
+    predicted: ArrayLike,
+    measured: ArrayLike,
+    weights: ArrayLike | None,
+    source_range: Sequence[float] | None,
+) -> tuple[NDArray[np.float64], ...]:
     grid, table = _grid(theta_grid, predicted)
     n_rows = table.shape[0]
     times = np.asarray(measured, dtype=float)
@@ -233,9 +250,15 @@ def predict_at(theta_grid: ArrayLike, predicted: ArrayLike, theta: ArrayLike) ->
     return _pchip()(grid, table, axis=1, extrapolate=False)(at)
 
 
-def fit_theta(theta_grid: ArrayLike, predicted: ArrayLike, measured: ArrayLike, *,
-              rows: Sequence[int] | None = None, weights: ArrayLike | None = None,
-              source_range: Sequence[float] | None = None) -> ThetaFit:
+def fit_theta(
+    theta_grid: ArrayLike,
+    predicted: ArrayLike,
+    measured: ArrayLike,
+    *,
+    rows: Sequence[int] | None = None,
+    weights: ArrayLike | None = None,
+    source_range: Sequence[float] | None = None,
+) -> ThetaFit:
     """The least-squares theta of the measured contact times (module docstring for the method).
 
     Parameters
@@ -295,8 +318,9 @@ def fit_theta(theta_grid: ArrayLike, predicted: ArrayLike, measured: ArrayLike, 
         low, high = scan[max(j - 1, 0)], scan[min(j + 1, SCAN_POINTS - 1)]
         from scipy.optimize import minimize_scalar
 
-        result = minimize_scalar(cost, bounds=(low, high), method="bounded",
-                                 options={"xatol": 1e-12 * (grid[-1] - grid[0])})
+        result = minimize_scalar(
+            cost, bounds=(low, high), method="bounded", options={"xatol": 1e-12 * (grid[-1] - grid[0])}
+        )
         converged = bool(result.success)
         theta = float(result.x) if result.fun <= costs[j] else float(scan[j])
         status = "converged" if converged else "not_converged"
@@ -308,11 +332,18 @@ def fit_theta(theta_grid: ArrayLike, predicted: ArrayLike, measured: ArrayLike, 
     n = len(used)
     se = math.sqrt(ssr / (n - 1) / sensitivity) if n > 1 and sensitivity > 0 else math.nan
     fit = ThetaFit(
-        theta=theta, standard_error=se, residual_rms=float(np.sqrt(np.mean(r * r))), rows_used=used,
+        theta=theta,
+        standard_error=se,
+        residual_rms=float(np.sqrt(np.mean(r * r))),
+        rows_used=used,
         predicted=_frozen(_pchip()(grid, table, axis=1, extrapolate=False)(theta)),
-        at_bound=at_bound, success=converged and not at_bound, status=status, message=_MESSAGES[status],
+        at_bound=at_bound,
+        success=converged and not at_bound,
+        status=status,
+        message=_MESSAGES[status],
         evaluations=evaluations,
-        inside_range=None if source_range is None else inside(theta, *(float(x) for x in source_range)))
+        inside_range=None if source_range is None else inside(theta, *(float(x) for x in source_range)),
+    )
     if fit.success:
         log.debug("theta fit on rows %s: %g +/- %g, rms %.3g", used, theta, se, fit.residual_rms)
     else:
@@ -320,8 +351,14 @@ def fit_theta(theta_grid: ArrayLike, predicted: ArrayLike, measured: ArrayLike, 
     return fit
 
 
-def leave_one_out(theta_grid: ArrayLike, predicted: ArrayLike, measured: ArrayLike, *,
-                  weights: ArrayLike | None = None, source_range: Sequence[float] | None = None) -> LeaveOneOut:
+def leave_one_out(
+    theta_grid: ArrayLike,
+    predicted: ArrayLike,
+    measured: ArrayLike,
+    *,
+    weights: ArrayLike | None = None,
+    source_range: Sequence[float] | None = None,
+) -> LeaveOneOut:
     """Hold out each row in turn, fit theta on the others, predict the held-out row.
 
     Parameters
@@ -344,11 +381,19 @@ def leave_one_out(theta_grid: ArrayLike, predicted: ArrayLike, measured: ArrayLi
     n_rows = table.shape[0]
     if n_rows < 2:
         raise FitInputError("predicted", "leave-one-out needs at least 2 rows")
-    folds = tuple(fit_theta(grid, table, times, rows=[i for i in range(n_rows) if i != held],
-                            weights=w, source_range=source_range) for held in range(n_rows))
+    folds = tuple(
+        fit_theta(
+            grid, table, times, rows=[i for i in range(n_rows) if i != held], weights=w, source_range=source_range
+        )
+        for held in range(n_rows)
+    )
     held_out = np.array([fold.predicted[held] for held, fold in enumerate(folds)])
     signed = 100.0 * (held_out - times) / times
-    return LeaveOneOut(theta=_frozen(np.array([fold.theta for fold in folds])),
-                       held_out_predicted=_frozen(held_out), signed_error_pct=_frozen(signed),
-                       abs_error_pct=_frozen(np.abs(signed)), mean_abs_error_pct=float(np.mean(np.abs(signed))),
-                       folds=folds)
+    return LeaveOneOut(
+        theta=_frozen(np.array([fold.theta for fold in folds])),
+        held_out_predicted=_frozen(held_out),
+        signed_error_pct=_frozen(signed),
+        abs_error_pct=_frozen(np.abs(signed)),
+        mean_abs_error_pct=float(np.mean(np.abs(signed))),
+        folds=folds,
+    )

@@ -24,8 +24,17 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["FORCE_UNITS", "HistoryError", "MAX_ROWS", "MEASURED_KEYS", "MIN_ROWS", "MeasuredHistory", "TIME_UNITS",
-           "measured_cases", "read_force_history"]
+__all__ = [
+    "FORCE_UNITS",
+    "HistoryError",
+    "MAX_ROWS",
+    "MEASURED_KEYS",
+    "MIN_ROWS",
+    "MeasuredHistory",
+    "TIME_UNITS",
+    "measured_cases",
+    "read_force_history",
+]
 
 #: What a case's ``measured`` block may give to compare with (``source`` and ``note`` describe it).
 MEASURED_KEYS = ("contact_time_us", "peak_force_n", "rebound_velocity_m_s", "force_history")
@@ -81,14 +90,20 @@ def _unit(name: str, quantity: str, declared: str | None, units: Mapping[str, fl
     """The scale of a column from its header name (``time_ms``) or the declared unit."""
     base, _, suffix = name.strip().partition("_")
     if base != quantity:
-        raise HistoryError("file", f"the header must name a {quantity} column first as '{quantity}' or "
-                                   f"'{quantity}_<unit>', got {name.strip()!r}")
+        raise HistoryError(
+            "file",
+            f"the header must name a {quantity} column first as '{quantity}' or "
+            f"'{quantity}_<unit>', got {name.strip()!r}",
+        )
     if suffix and declared and suffix != declared:
         raise HistoryError(f"{quantity}_unit", f"{declared!r} contradicts the header's {name.strip()!r}")
     unit = suffix or declared
     if unit is None:
-        raise HistoryError(f"{quantity}_unit", f"the header names no unit of {quantity} ({name.strip()!r}); "
-                                               f"declare {quantity}_unit: one of {', '.join(units)}")
+        raise HistoryError(
+            f"{quantity}_unit",
+            f"the header names no unit of {quantity} ({name.strip()!r}); "
+            f"declare {quantity}_unit: one of {', '.join(units)}",
+        )
     if unit not in units:
         raise HistoryError(f"{quantity}_unit", f"unknown unit {unit!r}; known: {', '.join(units)}")
     return units[unit]
@@ -127,14 +142,20 @@ def read_force_history(path: str | Path, spec: Mapping[str, Any]) -> MeasuredHis
         raise HistoryError("every", f"must be an integer >= 1, got {every}")
     rows = _rows_in(path) - 1
     if rows > MAX_ROWS * every:
-        raise HistoryError("every", f"{path.name} has {rows} rows, more than {MAX_ROWS} to keep: declare "
-                                    f"every: {math.ceil(rows / MAX_ROWS)} (or more) to thin it")
+        raise HistoryError(
+            "every",
+            f"{path.name} has {rows} rows, more than {MAX_ROWS} to keep: declare "
+            f"every: {math.ceil(rows / MAX_ROWS)} (or more) to thin it",
+        )
     with open(path, newline="", encoding="utf-8") as handle:
         reader = csv.reader(handle)
         header = next(reader, None)
         if not header or len(header) != 2 or any(_is_number(cell) for cell in header):
-            raise HistoryError("file", f"{path.name} must start with a header of two columns, time and force "
-                                       f"(e.g. 'time_s,force_N'), got {header!r}")
+            raise HistoryError(
+                "file",
+                f"{path.name} must start with a header of two columns, time and force "
+                f"(e.g. 'time_s,force_N'), got {header!r}",
+            )
         time_scale = _unit(header[0], "time", spec.get("time_unit"), TIME_UNITS)
         force_scale = _unit(header[1], "force", spec.get("force_unit"), FORCE_UNITS)
         values = []
@@ -157,8 +178,11 @@ def read_force_history(path: str | Path, spec: Mapping[str, Any]) -> MeasuredHis
     steps = np.diff(time)
     if np.any(steps <= 0):
         bad = int(np.argmax(steps <= 0))
-        raise HistoryError("file", f"{path.name} line {2 + (bad + 1) * every}: the time must increase, "
-                                   f"{time[bad + 1]:.6g} s follows {time[bad]:.6g} s")
+        raise HistoryError(
+            "file",
+            f"{path.name} line {2 + (bad + 1) * every}: the time must increase, "
+            f"{time[bad + 1]:.6g} s follows {time[bad]:.6g} s",
+        )
     return MeasuredHistory(time_s=time, force_N=data[:, 1] * force_scale, path=path, note=str(spec.get("note", "")))
 
 

@@ -8,11 +8,19 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["ZIGZAG_UNSTABLE", "first_contact_maxima", "local_maxima", "peak_prominences", "sawtooth_amplitude", "zigzag_steps"]
+__all__ = [
+    "ZIGZAG_UNSTABLE",
+    "first_contact_maxima",
+    "local_maxima",
+    "peak_prominences",
+    "sawtooth_amplitude",
+    "zigzag_steps",
+]
 
 #: A force alternating up and down at every step over this many steps (:func:`zigzag_steps`)
 #: marks an unstable step.
 ZIGZAG_UNSTABLE = 10
+
 
 def first_contact_maxima(peak_time_s: Any, peak_force_N: Any, contact_end_s: Any) -> NDArray[np.float64]:
     """The force maxima (N) that fall within the first contact (all of them if none ended)."""
@@ -78,10 +86,10 @@ def peak_prominences(values: NDArray[np.float64], peaks: NDArray[np.intp]) -> ND
     out = np.empty(len(peaks))
     for j, k in enumerate(peaks):
         higher_left = np.flatnonzero(x[:k] > x[k])
-        higher_right = np.flatnonzero(x[k + 1:] > x[k])
+        higher_right = np.flatnonzero(x[k + 1 :] > x[k])
         start = higher_left[-1] + 1 if len(higher_left) else 0
         stop = k + 1 + higher_right[0] if len(higher_right) else len(x)
-        out[j] = x[k] - max(x[start:k + 1].min(), x[k:stop].min())
+        out[j] = x[k] - max(x[start : k + 1].min(), x[k:stop].min())
     return out
 
 

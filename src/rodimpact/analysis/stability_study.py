@@ -34,8 +34,9 @@ def _intervals(rec: RunRecord) -> str:
     return "; ".join(f"{1e6 * a:.6g}-{1e6 * b:.6g}" for a, b in zip(starts, ends))
 
 
-def stability_frame(records: Sequence[RunRecord], references: Mapping[str, RunRecord],
-                    tolerances: Mapping[str, Mapping[str, float]]) -> pd.DataFrame:
+def stability_frame(
+    records: Sequence[RunRecord], references: Mapping[str, RunRecord], tolerances: Mapping[str, Mapping[str, float]]
+) -> pd.DataFrame:
     """One row per stress run: what it gave, the checks, and a verdict.
 
     Parameters
@@ -62,15 +63,24 @@ def stability_frame(records: Sequence[RunRecord], references: Mapping[str, RunRe
         ref_ok = bool(ref.summary["success"])
         tc, tc_ref = float(rec.summary["contact_time_s"]), float(ref.summary["contact_time_s"])
         force = rec.series.get("contact_force", np.zeros(1))
-        row = {"case_id": rec.case_id, "method": rec.method, "status": rec.summary["status"],
-               "success": bool(rec.summary["success"]), "finite": _finite(rec),
-               "min_force_N": float(np.min(force)), "energy_error": float(rec.summary["energy_error"]),
-               "energy_tolerance": tol["energy"], "contact_time_s": tc,
-               "reference_contact_time_s": tc_ref if ref_ok else math.nan,
-               "contact_time_error": abs(tc / tc_ref - 1.0) if ref_ok else math.nan,
-               "contact_time_tolerance": tol["contact_time"],
-               "n_contacts": int(rec.summary["n_contacts"]), "contact_intervals_us": _intervals(rec),
-               "wall_time_s": rec.wall_time_s, "message": str(rec.summary["message"])}
+        row = {
+            "case_id": rec.case_id,
+            "method": rec.method,
+            "status": rec.summary["status"],
+            "success": bool(rec.summary["success"]),
+            "finite": _finite(rec),
+            "min_force_N": float(np.min(force)),
+            "energy_error": float(rec.summary["energy_error"]),
+            "energy_tolerance": tol["energy"],
+            "contact_time_s": tc,
+            "reference_contact_time_s": tc_ref if ref_ok else math.nan,
+            "contact_time_error": abs(tc / tc_ref - 1.0) if ref_ok else math.nan,
+            "contact_time_tolerance": tol["contact_time"],
+            "n_contacts": int(rec.summary["n_contacts"]),
+            "contact_intervals_us": _intervals(rec),
+            "wall_time_s": rec.wall_time_s,
+            "message": str(rec.summary["message"]),
+        }
         row["verdict"] = _verdict(row, ref_ok)
         rows.append(row)
     return pd.DataFrame(rows)
@@ -129,13 +139,24 @@ def map_frame(records: Sequence[RunRecord], references: Mapping[str, RunRecord],
         if success and not ref.summary["success"]:
             cls = MAP_CLASSES[3]
         velocity = float(rec.config["impactor"]["velocity_m_s"])
-        rows.append({"point": rec.config["row"], "method": rec.method,
-                     "mass_kg": float(rec.config["impactor"]["mass_kg"]), "impedance_kg_s": impedance,
-                     "rigidity": float(summary["rigid_contact_force_N"]) / (impedance * velocity),
-                     "dt_s": dt, "h_over_limit": dt / float(summary["paper_step_limit_s"]),
-                     "h_over_sharp_limit": dt / sharp, "contact_time_error": error,
-                     "energy_error": float(summary["energy_error"]), "zigzag_steps": int(summary.get("zigzag_steps", 0)),
-                     "status": summary["status"], "class": cls, "message": str(summary["message"])})
+        rows.append(
+            {
+                "point": rec.config["row"],
+                "method": rec.method,
+                "mass_kg": float(rec.config["impactor"]["mass_kg"]),
+                "impedance_kg_s": impedance,
+                "rigidity": float(summary["rigid_contact_force_N"]) / (impedance * velocity),
+                "dt_s": dt,
+                "h_over_limit": dt / float(summary["paper_step_limit_s"]),
+                "h_over_sharp_limit": dt / sharp,
+                "contact_time_error": error,
+                "energy_error": float(summary["energy_error"]),
+                "zigzag_steps": int(summary.get("zigzag_steps", 0)),
+                "status": summary["status"],
+                "class": cls,
+                "message": str(summary["message"]),
+            }
+        )
     return pd.DataFrame(rows)
 
 

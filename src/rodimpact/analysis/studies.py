@@ -24,8 +24,9 @@ MAP_REFERENCE_TOLERANCE = 1e-5
 MAP_MAX_STEPS = 200_000
 
 
-def level_case(case: Mapping[str, Any], method: str, global_numerics: Mapping[str, Any],
-               overrides: Mapping[str, Any]) -> dict[str, Any]:
+def level_case(
+    case: Mapping[str, Any], method: str, global_numerics: Mapping[str, Any], overrides: Mapping[str, Any]
+) -> dict[str, Any]:
     """The case run by ``method`` with its numerics overridden by one sweep level.
 
     The method need not be among the case's own methods; its numerics then come from the
@@ -40,8 +41,12 @@ def level_case(case: Mapping[str, Any], method: str, global_numerics: Mapping[st
 
 def reference_case(case: Mapping[str, Any], global_numerics: Mapping[str, Any], tolerance: float) -> dict[str, Any]:
     """The case run by ``sem`` with the automatic step at ``tolerance`` (a stress reference)."""
-    return level_case(case, _REFERENCE_METHOD, global_numerics,
-                      {"dt_s": None, "steps_per_contact": None, "tolerance": float(tolerance)})
+    return level_case(
+        case,
+        _REFERENCE_METHOD,
+        global_numerics,
+        {"dt_s": None, "steps_per_contact": None, "tolerance": float(tolerance)},
+    )
 
 
 def map_point_names(spec: Mapping[str, Any]) -> list[str]:
@@ -49,8 +54,9 @@ def map_point_names(spec: Mapping[str, Any]) -> list[str]:
     return [f"m{i}_z{j}" for i in range(len(spec["mass_kg"])) for j in range(len(spec["impedance_kg_s"]))]
 
 
-def map_point_case(base: Mapping[str, Any], spec: Mapping[str, Any], name: str, method: str,
-                   global_numerics: Mapping[str, Any]) -> dict[str, Any]:
+def map_point_case(
+    base: Mapping[str, Any], spec: Mapping[str, Any], name: str, method: str, global_numerics: Mapping[str, Any]
+) -> dict[str, Any]:
     """One point of the stability map run by ``method`` at the map's step.
 
     The base case with the impactor mass ``mass_kg[i]`` and the rod's cross-section set so
@@ -65,18 +71,34 @@ def map_point_case(base: Mapping[str, Any], spec: Mapping[str, Any], name: str, 
     rod_material = Material.from_mapping(base["rod"]["material"])
     area = impedance / math.sqrt(rod_material.youngs_modulus_pa * rod_material.density_kg_m3)
     case = copy.deepcopy(dict(base))
-    case.update(id=f"{base['id']}.map.{name}", set="stability_map", variant=None, row=name,
-                description=f"{base['id']} with impactor mass {mass:g} kg on a rod of impedance {impedance:g} kg/s",
-                stations=[], outputs=["contact_force", "energy"], measured={}, published={})
+    case.update(
+        id=f"{base['id']}.map.{name}",
+        set="stability_map",
+        variant=None,
+        row=name,
+        description=f"{base['id']} with impactor mass {mass:g} kg on a rod of impedance {impedance:g} kg/s",
+        stations=[],
+        outputs=["contact_force", "energy"],
+        measured={},
+        published={},
+    )
     case["impactor"] = {**case["impactor"], "mass_kg": mass}
     case["rod"] = {**case["rod"], "area_m2": area, "radius_m": math.sqrt(area / math.pi)}
     if method == "reference":
-        return level_case(case, _REFERENCE_METHOD, global_numerics, {
-            "dt_s": None, "steps_per_contact": None, "tolerance": MAP_REFERENCE_TOLERANCE, "max_steps": MAP_MAX_STEPS})
+        return level_case(
+            case,
+            _REFERENCE_METHOD,
+            global_numerics,
+            {"dt_s": None, "steps_per_contact": None, "tolerance": MAP_REFERENCE_TOLERANCE, "max_steps": MAP_MAX_STEPS},
+        )
     # the energy balance is classified by the map (accurate or not), so runs fail only
     # on a gross energy gain (half the impact energy), the mark of an unstable step
-    overrides = {"dt_s": None, "steps_per_contact": int(spec["steps_per_contact"]), "max_steps": MAP_MAX_STEPS,
-                 "energy_tolerance": 0.5}
+    overrides = {
+        "dt_s": None,
+        "steps_per_contact": int(spec["steps_per_contact"]),
+        "max_steps": MAP_MAX_STEPS,
+        "energy_tolerance": 0.5,
+    }
     if method == "sem_paper":
         overrides["allow_unstable"] = True
     return level_case(case, method, global_numerics, overrides)

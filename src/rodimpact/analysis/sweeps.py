@@ -22,8 +22,15 @@ if TYPE_CHECKING:  # the annotation only; pandas is imported where the frame is 
 
 logger = logging.getLogger(__name__)
 
-__all__ = ["SWEEP_PARAMETERS", "SIGNIFICANT_DIGITS", "SweepError", "sweep_frame", "sweep_point_case", "sweep_points",
-           "sweep_values"]
+__all__ = [
+    "SWEEP_PARAMETERS",
+    "SIGNIFICANT_DIGITS",
+    "SweepError",
+    "sweep_frame",
+    "sweep_point_case",
+    "sweep_points",
+    "sweep_values",
+]
 
 
 class SweepError(ValueError):
@@ -36,6 +43,7 @@ class SweepError(ValueError):
 
     def __reduce__(self):
         return SweepError, (self.field, self.reason)
+
 
 #: Digits the swept values are rounded to: they name the point's files, and a value read back
 #: from a file name is then the very float of the grid.
@@ -61,6 +69,7 @@ def _film(setter: Callable[[dict, float], None]) -> Callable[[dict, float], None
         if film is None:
             raise ValueError("the case has no film (contact.film) to sweep")
         setter(film, value)
+
     return set_film
 
 
@@ -69,6 +78,7 @@ def _film_material(field: str) -> Callable[[dict, float], None]:
         if field == "poisson_ratio" and not value < 0.5:
             raise ValueError(f"the film's Poisson's ratio must be < 0.5, got {value!r}")
         film["material"] = {**film["material"], field: value}
+
     return _film(set_material)
 
 
@@ -78,8 +88,7 @@ def _film_thickness(film: dict, value: float) -> None:
 
 #: swept parameter -> (what it sets, how it changes a resolved case in place)
 SWEEP_PARAMETERS: dict[str, tuple[str, Callable[[dict, float], None]]] = {
-    "ball_diameter_m": ("a solid ball of the impactor's material: radius d/2, mass rho pi d^3/6, m",
-                        _ball_diameter),
+    "ball_diameter_m": ("a solid ball of the impactor's material: radius d/2, mass rho pi d^3/6, m", _ball_diameter),
     "mass_kg": ("the impactor's mass, kg", _impactor("mass_kg")),
     "radius_m": ("the radius of the impactor's spherical nose, m", _impactor("radius_m")),
     "velocity_m_s": ("the impact velocity, m/s", _impactor("velocity_m_s")),
@@ -206,8 +215,13 @@ def sweep_point_case(case: Mapping[str, Any], point: Mapping[str, Any], name: st
         if not (math.isfinite(value) and value > 0):
             raise ValueError(f"point.{key}: must be finite and > 0, got {value!r}")
         SWEEP_PARAMETERS[key][1](resolved, value)
-    resolved.update(id=f"{case['id']}.sweep.{name}", methods=list(sweep["methods"]), sweep_point=values,
-                    sweep_of=case["id"],
-                    description=f"{case['id']} at " + ", ".join(f"{k} = {v:g}" for k, v in values.items()),
-                    measured={}, published={})
+    resolved.update(
+        id=f"{case['id']}.sweep.{name}",
+        methods=list(sweep["methods"]),
+        sweep_point=values,
+        sweep_of=case["id"],
+        description=f"{case['id']} at " + ", ".join(f"{k} = {v:g}" for k, v in values.items()),
+        measured={},
+        published={},
+    )
     return resolved

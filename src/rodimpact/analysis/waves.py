@@ -16,8 +16,9 @@ from numpy.typing import NDArray
 __all__ = ["characteristic"]
 
 
-def characteristic(t0: float, length_m: float, wave_speed_m_s: float, t_end: float
-                   ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def characteristic(
+    t0: float, length_m: float, wave_speed_m_s: float, t_end: float
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The path of the wave front that leaves the struck end at ``t0``, reflected at both ends.
 
     Parameters
@@ -38,8 +39,10 @@ def characteristic(t0: float, length_m: float, wave_speed_m_s: float, t_end: flo
         ``t_end``, then its point at ``t_end``; empty when ``t_end <= t0``.
     """
     if not (math.isfinite(length_m) and length_m > 0 and wave_speed_m_s > 0):
-        raise ValueError(f"a characteristic needs a finite length and a positive wave speed, got "
-                         f"l = {length_m!r} m, a = {wave_speed_m_s!r} m/s")
+        raise ValueError(
+            f"a characteristic needs a finite length and a positive wave speed, got "
+            f"l = {length_m!r} m, a = {wave_speed_m_s!r} m/s"
+        )
     if t_end <= t0:
         return np.empty(0), np.empty(0)
     transit = length_m / wave_speed_m_s

@@ -49,8 +49,18 @@ from rodimpact.analysis.records import StoredRun as RunRecord
 from rodimpact.analysis.signals import first_contact_maxima
 from rodimpact.model.materials import Material, wave_speed
 
-__all__ = ["HISTORY_SAMPLES", "ORDER_TOLERANCE", "case_spec", "expected_order", "fit_indices", "levels_in",
-           "observed_orders", "quantities", "quantity_rank", "work_precision_frame"]
+__all__ = [
+    "HISTORY_SAMPLES",
+    "ORDER_TOLERANCE",
+    "case_spec",
+    "expected_order",
+    "fit_indices",
+    "levels_in",
+    "observed_orders",
+    "quantities",
+    "quantity_rank",
+    "work_precision_frame",
+]
 
 #: Points of the common grid on which force histories are compared.
 HISTORY_SAMPLES = 20_001
@@ -101,8 +111,10 @@ def _history(rec: RunRecord, grid: np.ndarray) -> np.ndarray:
 
 def _norms(force: np.ndarray, reference: np.ndarray) -> tuple[float, float]:
     diff = force - reference
-    return (float(np.sqrt(np.mean(diff**2)) / np.sqrt(np.mean(reference**2))),
-            float(np.max(np.abs(diff)) / np.max(np.abs(reference))))
+    return (
+        float(np.sqrt(np.mean(diff**2)) / np.sqrt(np.mean(reference**2))),
+        float(np.max(np.abs(diff)) / np.max(np.abs(reference))),
+    )
 
 
 def _resolution(rec: RunRecord, resolution: str) -> float:
@@ -116,8 +128,10 @@ class _Reference:
         runs = sorted(runs, key=lambda r: _resolution(r, spec["resolution"]))
         finest = spec.get("as_reference", "richardson") == "finest"
         if len(runs) < (3 if finest else 2):
-            raise ValueError(f"a reference ({'finest level' if finest else 'Richardson'}) needs "
-                             f"{3 if finest else 2} levels, got {len(runs)} of {runs[0].method if runs else '?'}")
+            raise ValueError(
+                f"a reference ({'finest level' if finest else 'Richardson'}) needs "
+                f"{3 if finest else 2} levels, got {len(runs)} of {runs[0].method if runs else '?'}"
+            )
         fine = runs[-1]
         self.method, self.offsets = fine.method, _arrival_offsets(fine)
         self.grid = _grid(fine)
@@ -127,8 +141,10 @@ class _Reference:
             f1, f2, f3 = (_scalars(r) for r in runs[:-4:-1])
             ratio = constant_ratio([_resolution(r, spec["resolution"]) for r in runs[-3:]])
             self.values, self.label = f1, f"{self.method} (finest level)"
-            self.errors = {k: numerical_uncertainty(f1[k], f2[k], f3[k], ratio).value
-                           if k in f2 and k in f3 else math.nan for k in f1}
+            self.errors = {
+                k: numerical_uncertainty(f1[k], f2[k], f3[k], ratio).value if k in f2 and k in f3 else math.nan
+                for k in f1
+            }
             self.errors.update(history_l2=l2, history_max=mx)
             return
         ratio = _resolution(fine, spec["resolution"]) / _resolution(runs[-2], spec["resolution"])
@@ -142,9 +158,13 @@ class _Reference:
     def errors_of(self, rec: RunRecord) -> tuple[dict[str, float], dict[str, float]]:
         """The relative errors of ``rec`` (history norms included) and the scalars' signed ones."""
         q = _scalars(rec)
-        same_maxima = len([k for k in q if k.startswith("max_")]) == len([k for k in self.values if k.startswith("max_")])
-        signed = {key: q[key] / ref - 1.0 if (key == "contact_time" or same_maxima) and key in q else math.nan
-                  for key, ref in self.values.items()}
+        same_maxima = len([k for k in q if k.startswith("max_")]) == len(
+            [k for k in self.values if k.startswith("max_")]
+        )
+        signed = {
+            key: q[key] / ref - 1.0 if (key == "contact_time" or same_maxima) and key in q else math.nan
+            for key, ref in self.values.items()
+        }
         out = {key: abs(value) for key, value in signed.items()}
         out["history_l2"], out["history_max"] = _norms(_history(rec, self.grid), self.force)
         return out, signed
@@ -176,20 +196,28 @@ def work_precision_frame(records: Sequence[RunRecord], methods: Mapping[str, Map
     for case_id in dict.fromkeys(r.case_id for r in records):
         runs = [r for r in records if r.case_id == case_id]
         swept = dict.fromkeys(r.method for r in runs)  # a case need not run every method
-        references = {name: _Reference([r for r in runs if r.method == name], methods[name])
-                      for name in dict.fromkeys(methods[m]["reference"] for m in swept)}
+        references = {
+            name: _Reference([r for r in runs if r.method == name], methods[name])
+            for name in dict.fromkeys(methods[m]["reference"] for m in swept)
+        }
         for rec in sorted(runs, key=lambda r: (list(methods).index(r.method), r.config["run"]["level"])):
             spec = methods[rec.method]
             reference = references[spec["reference"]]
             numerics = rec.config["run"]["numerics"]
-            row = {"case_id": case_id, "method": rec.method, "level": rec.config["run"]["level"],
-                   "resolution": f"{spec['resolution']}={numerics[spec['resolution']]}",
-                   "resolution_value": float(numerics[spec["resolution"]]),
-                   "n_steps": rec.summary.get("n_steps"), "dt_s": rec.summary.get("dt_s"),
-                   "wall_time_s": rec.wall_time_s,
-                   "wall_time_min_s": rec.summary.get("wall_time_min_s", rec.wall_time_s),
-                   "wall_time_max_s": rec.summary.get("wall_time_max_s", rec.wall_time_s),
-                   "repeats": rec.summary.get("wall_time_repeats", 1), "reference": reference.label}
+            row = {
+                "case_id": case_id,
+                "method": rec.method,
+                "level": rec.config["run"]["level"],
+                "resolution": f"{spec['resolution']}={numerics[spec['resolution']]}",
+                "resolution_value": float(numerics[spec["resolution"]]),
+                "n_steps": rec.summary.get("n_steps"),
+                "dt_s": rec.summary.get("dt_s"),
+                "wall_time_s": rec.wall_time_s,
+                "wall_time_min_s": rec.summary.get("wall_time_min_s", rec.wall_time_s),
+                "wall_time_max_s": rec.summary.get("wall_time_max_s", rec.wall_time_s),
+                "repeats": rec.summary.get("wall_time_repeats", 1),
+                "reference": reference.label,
+            }
             errors, signed = reference.errors_of(rec)
             row.update({f"err_{k}": v for k, v in errors.items()})
             row.update({f"ref_err_{k}": v for k, v in reference.errors.items()})
@@ -273,33 +301,52 @@ def _uncertainty_columns(group: pd.DataFrame, quantity: str) -> dict[str, Any]:
         return dict(_NO_INDEX)
     f1, f2, f3 = 1.0 + signed.to_numpy(float)[:-4:-1]
     found = numerical_uncertainty(f1, f2, f3, constant_ratio(group["resolution_value"].to_numpy(float)[-3:]))
-    return {"gci_order": found.index.order, "gci_pct": 100.0 * found.index.gci, "oscillatory": found.oscillatory,
-            "u_osc_pct": 100.0 * found.half_range if not math.isfinite(found.index.gci) else math.nan}
+    return {
+        "gci_order": found.index.order,
+        "gci_pct": 100.0 * found.index.gci,
+        "oscillatory": found.oscillatory,
+        "u_osc_pct": 100.0 * found.half_range if not math.isfinite(found.index.gci) else math.nan,
+    }
 
 
-def _order_columns(group: pd.DataFrame, quantity: str, spec: Mapping[str, Any], fit_levels: int,
-                   arrival_window: float) -> dict[str, Any]:
+def _order_columns(
+    group: pd.DataFrame, quantity: str, spec: Mapping[str, Any], fit_levels: int, arrival_window: float
+) -> dict[str, Any]:
     """The expected and the fitted order of one quantity of one method's levels (coarse to fine)."""
     err = group[f"err_{quantity}"].to_numpy(float)
     index = fit_indices(err, group[f"ref_err_{quantity}"].to_numpy(float), fit_levels)
     fitted = len(index) >= 3  # two points give a ratio, not a range
-    fit = (fitted_order(1.0 / group["resolution_value"].to_numpy(float)[index], err[index]) if fitted
-           else FittedOrder(math.nan, math.nan, len(index)))
+    fit = (
+        fitted_order(1.0 / group["resolution_value"].to_numpy(float)[index], err[index])
+        if fitted
+        else FittedOrder(math.nan, math.nan, len(index))
+    )
     signed, offset = group.get(f"signed_err_{quantity}"), group.get(f"arrival_offset_{quantity}")
     offset = float(offset.iloc[-1]) if offset is not None else math.nan
     expected = expected_order(spec, quantity, at_arrival=abs(offset) <= arrival_window)
     within = abs(fit.order - expected) <= ORDER_TOLERANCE if fitted and math.isfinite(expected) else None
     monotone = is_monotone(err[index]) if fitted else None
-    return {"expected_order": expected, "observed_order": fit.order, "order_stderr": fit.stderr,
-            "fitted_levels": _levels_text(group["level"].to_numpy(int)[index]) if fitted else "",
-            "monotone": monotone,
-            "sign_change": changes_sign(signed.to_numpy(float)[index]) if fitted and signed is not None else None,
-            "within_expected": within, "asymptotic": bool(monotone and within) if within is not None else None,
-            "arrival_offset": offset}
+    return {
+        "expected_order": expected,
+        "observed_order": fit.order,
+        "order_stderr": fit.stderr,
+        "fitted_levels": _levels_text(group["level"].to_numpy(int)[index]) if fitted else "",
+        "monotone": monotone,
+        "sign_change": changes_sign(signed.to_numpy(float)[index]) if fitted and signed is not None else None,
+        "within_expected": within,
+        "asymptotic": bool(monotone and within) if within is not None else None,
+        "arrival_offset": offset,
+    }
 
 
-def observed_orders(frame: pd.DataFrame, methods: Mapping[str, Mapping[str, Any]], fit_levels: int, *,
-                    arrival_window: float, per_case: Mapping[str, Mapping[str, Any]] | None = None) -> pd.DataFrame:
+def observed_orders(
+    frame: pd.DataFrame,
+    methods: Mapping[str, Mapping[str, Any]],
+    fit_levels: int,
+    *,
+    arrival_window: float,
+    per_case: Mapping[str, Mapping[str, Any]] | None = None,
+) -> pd.DataFrame:
     """The order of each method and quantity, fitted on the asymptotic range, against the expected.
 
     The fit (:func:`rodimpact.analysis.convergence.fitted_order`: log error against log h,
@@ -342,7 +389,13 @@ def observed_orders(frame: pd.DataFrame, methods: Mapping[str, Mapping[str, Any]
         for quantity in quantities(frame):
             if not np.isfinite(group[f"err_{quantity}"].to_numpy(float)).any():
                 continue  # the method finds no such maximum on this case
-            rows.append({"case_id": case_id, "method": method, "quantity": quantity,
-                         **_order_columns(group, quantity, spec, fit_levels, arrival_window),
-                         **(_uncertainty_columns(group, quantity) if own_finest else _NO_INDEX)})
+            rows.append(
+                {
+                    "case_id": case_id,
+                    "method": method,
+                    "quantity": quantity,
+                    **_order_columns(group, quantity, spec, fit_levels, arrival_window),
+                    **(_uncertainty_columns(group, quantity) if own_finest else _NO_INDEX),
+                }
+            )
     return pd.DataFrame(rows)

@@ -32,15 +32,19 @@ def check_material_ranges(materials: Mapping[str, Mapping[str, Any]], error: Err
     for name, material in materials.items():
         for key, (low, high) in material.get("ranges", {}).items():
             if not low < high:
-                raise error(f"range [{low:g}, {high:g}] is empty (low must be < high)",
-                            field=f"materials.{name}.ranges.{key}")
+                raise error(
+                    f"range [{low:g}, {high:g}] is empty (low must be < high)", field=f"materials.{name}.ranges.{key}"
+                )
             if not low <= material[key] <= high:
-                raise error(f"nominal {material[key]:g} lies outside its range [{low:g}, {high:g}]",
-                            field=f"materials.{name}.ranges.{key}")
+                raise error(
+                    f"nominal {material[key]:g} lies outside its range [{low:g}, {high:g}]",
+                    field=f"materials.{name}.ranges.{key}",
+                )
 
 
-def resolve_material(value: str | Mapping[str, Any], materials: Mapping[str, Mapping[str, Any]],
-                     error: ErrorFactory, field: str) -> dict[str, Any]:
+def resolve_material(
+    value: str | Mapping[str, Any], materials: Mapping[str, Mapping[str, Any]], error: ErrorFactory, field: str
+) -> dict[str, Any]:
     """A material name or inline mapping as ``{"name", constants..., ["ranges"]}``."""
     if isinstance(value, str):
         if value not in materials:
@@ -54,8 +58,9 @@ def resolve_material(value: str | Mapping[str, Any], materials: Mapping[str, Map
     return resolved
 
 
-def resolve_contact(contact: Mapping[str, Any] | None, materials: Mapping[str, Mapping[str, Any]],
-                    error: ErrorFactory) -> dict[str, Any]:
+def resolve_contact(
+    contact: Mapping[str, Any] | None, materials: Mapping[str, Mapping[str, Any]], error: ErrorFactory
+) -> dict[str, Any]:
     """``{"contact": resolved}``, or ``{}`` for the default law with no settings.
 
     The law's declared settings (``settings`` of its class in
@@ -77,8 +82,11 @@ def resolve_contact(contact: Mapping[str, Any] | None, materials: Mapping[str, M
     for key in contact:
         if key != "law" and key not in declared:
             takers = [name for name, other in LAWS.items() if key in other.settings.settings()]
-            hint = (f"laws that take it: {', '.join(takers)}" if takers else
-                    f"its settings: {', '.join(declared) or 'none'}")
+            hint = (
+                f"laws that take it: {', '.join(takers)}"
+                if takers
+                else f"its settings: {', '.join(declared) or 'none'}"
+            )
             raise error(f"the {law.name} law takes no {key!r}; {hint}", field=f"contact.{key}")
 
     def material(value: Any, path: str) -> dict[str, Any]:
@@ -115,6 +123,8 @@ def check_law(case: Mapping[str, Any], error: ErrorFactory) -> None:
         if not runs_law(case, name):
             kind = METHODS[name].contact
             can = [other for other, other_law in LAWS.items() if kind in other_law.method_contact]
-            raise error(f"method {name!r} {CONTACT_KINDS[kind]} and cannot take the {law.name} law; "
-                        f"laws it can take: {', '.join(can)}",
-                        field=f"methods[{index}]" if index < len(own) else "sweep.methods")
+            raise error(
+                f"method {name!r} {CONTACT_KINDS[kind]} and cannot take the {law.name} law; "
+                f"laws it can take: {', '.join(can)}",
+                field=f"methods[{index}]" if index < len(own) else "sweep.methods",
+            )

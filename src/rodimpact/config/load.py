@@ -44,8 +44,16 @@ from rodimpact.solvers.field import FIELD_OUTPUT, FieldGrid
 from rodimpact.solvers.options import OptionError
 from rodimpact.solvers.registry import METHODS as METHOD_REGISTRY
 
-__all__ = ["ConfigError", "METHODS", "OUTPUTS", "Project", "load_case_file", "load_global_config", "load_project",
-           "registry_schema"]
+__all__ = [
+    "ConfigError",
+    "METHODS",
+    "OUTPUTS",
+    "Project",
+    "load_case_file",
+    "load_global_config",
+    "load_project",
+    "registry_schema",
+]
 
 logger = logging.getLogger(__name__)
 
@@ -86,9 +94,14 @@ def registry_schema() -> dict[str, Any]:
     laws' declarations (``$defs/contact``; ``$defs/resolved_contact``, with complete materials:
     :func:`~rodimpact.contact.laws.contact_schema`).
     """
-    defs: dict[str, Any] = {"method": {
-        "title": "method", "type": "string", "enum": list(METHOD_REGISTRY),
-        "description": "A computation method of the registry (rodimpact.solvers.registry.METHODS)."}}
+    defs: dict[str, Any] = {
+        "method": {
+            "title": "method",
+            "type": "string",
+            "enum": list(METHOD_REGISTRY),
+            "description": "A computation method of the registry (rodimpact.solvers.registry.METHODS).",
+        }
+    }
     union: dict[str, Any] = {}
     for name, spec in METHOD_REGISTRY.items():
         schema = spec.options.json_schema()
@@ -98,11 +111,21 @@ def registry_schema() -> dict[str, Any]:
             union[field] = loose if field not in union else {**union[field], **loose}
     defs["method_numerics_fields"] = {
         "description": "Numerical settings of any method, all optional (each method's own are checked by the loader).",
-        "type": "object", "additionalProperties": False, "properties": union}
+        "type": "object",
+        "additionalProperties": False,
+        "properties": union,
+    }
     numerics = {name: {"$ref": f"#/$defs/numerics_{name}", "default": {}} for name in METHOD_REGISTRY}
-    return {CONFIG_SCHEMA: {"$defs": defs, "properties": {"numerics": {"properties": numerics}}},
-            CASES_SCHEMA: {"$defs": {"field_grid": FieldGrid.json_schema(), "contact": contact_schema(),
-                                     "resolved_contact": contact_schema(COMPLETE_MATERIAL)}}}
+    return {
+        CONFIG_SCHEMA: {"$defs": defs, "properties": {"numerics": {"properties": numerics}}},
+        CASES_SCHEMA: {
+            "$defs": {
+                "field_grid": FieldGrid.json_schema(),
+                "contact": contact_schema(),
+                "resolved_contact": contact_schema(COMPLETE_MATERIAL),
+            }
+        },
+    }
 
 
 def _load_schemas(schema_dir: Path, root: Path) -> Schemas:
@@ -234,8 +257,9 @@ def _case_files(config: dict, root: Path, config_source: _File) -> list[_File]:
         raise config_source.error(f"directory not found: {directory.label}", field="cases_dir")
     for other in sorted(directory.path.glob("*.yml")):
         if not other.name.startswith("."):
-            raise _File.under(other, root).error(f"a case file ends in .yaml; rename it {other.stem}.yaml "
-                                                 "(only *.yaml files are read)")
+            raise _File.under(other, root).error(
+                f"a case file ends in .yaml; rename it {other.stem}.yaml (only *.yaml files are read)"
+            )
     paths = sorted(p for p in directory.path.glob("*.yaml") if not p.name.startswith("."))
     if not paths:
         raise config_source.error(f"no *.yaml case files in {directory.label}", field="cases_dir")
@@ -262,8 +286,7 @@ class _ProjectBuilder:
             document.setdefault("set", source.path.stem)  # checked by the schema like the rest
         source.check(document, schemas, CASES_SCHEMA)
         set_name, variants = document["set"], document.get("variants", {})
-        check_set_declarations(set_name, variants, document.get("compare"), self.variants, self.compare,
-                               source.error)
+        check_set_declarations(set_name, variants, document.get("compare"), self.variants, self.compare, source.error)
         self._add_variants(source, set_name, variants)
         if document.get("compare") is not None:
             self.compare[set_name] = document["compare"]
@@ -272,8 +295,11 @@ class _ProjectBuilder:
             base = deep_merge(document.get("defaults", {}), entry)
             names = self._variant_names(source, base, variants)
             for name in sorted(set(base.get("variant_outputs", {})) - set(names)):
-                raise source.error(f"not a variant the case is expanded over (its variants: {names})",
-                                   case=base["id"], field=f"variant_outputs.{name}")
+                raise source.error(
+                    f"not a variant the case is expanded over (its variants: {names})",
+                    case=base["id"],
+                    field=f"variant_outputs.{name}",
+                )
             for variant in names:
                 given = variants.get(variant, {})
                 changes = {key: given[key] for key in _VARIANT_FIELDS if key in given}
@@ -300,16 +326,12 @@ class _ProjectBuilder:
                 raise source.error(message, case=case["id"], field=f"variants[{index}]")
         return list(case["variants"])
 
-    def _add_case(
-        self, source: _File, schemas: Schemas, set_name: str, variant: str | None, case: dict
-    ) -> None:
+    def _add_case(self, source: _File, schemas: Schemas, set_name: str, variant: str | None, case: dict) -> None:
         case.pop("variants", None)  # already expanded
         row = case["id"]
         case_id = f"{row}-{variant}" if variant else row
         error = functools.partial(source.error, case=case_id)
-        problem = schemas.first_problem(
-            case, CASES_SCHEMA, "/$defs/resolved_case", fill_defaults=True
-        )
+        problem = schemas.first_problem(case, CASES_SCHEMA, "/$defs/resolved_case", fill_defaults=True)
         if problem:
             if problem.path[:1] == ("id",):  # the id itself is wrong: no case to name
                 raise source.error(problem.message, field="id")
@@ -335,11 +357,15 @@ class _ProjectBuilder:
             "methods": list(case["methods"]),
             "outputs": list(case["outputs"]),
             "stations": [float(x) for x in case["stations"]],
-            **({"field_grid": FieldGrid.from_settings(case.get("field_grid", {})).as_settings()}
-               if FIELD_OUTPUT in case["outputs"] else {}),
+            **(
+                {"field_grid": FieldGrid.from_settings(case.get("field_grid", {})).as_settings()}
+                if FIELD_OUTPUT in case["outputs"]
+                else {}
+            ),
             "numerics": self._numerics(case, case_id, source),
-            "measured": resolve_measured(with_floats(case["measured"]), source.path, source.label, error,
-                                         self.histories),
+            "measured": resolve_measured(
+                with_floats(case["measured"]), source.path, source.label, error, self.histories
+            ),
             "published": with_floats(case["published"]),
         }
         check_law(resolved if sweep is None else {**resolved, "sweep": sweep}, error)
@@ -357,8 +383,10 @@ class _ProjectBuilder:
         except SweepError as error:
             raise source.error(error.reason, case=case["id"], field=f"sweep.{error.field}") from None
         parameters = {name: sorted({point[name] for point in points}) for name in points[0]}
-        case = {**case, "sweep": {"description": sweep["description"], "methods": list(sweep["methods"]),
-                                  "parameters": parameters}}
+        case = {
+            **case,
+            "sweep": {"description": sweep["description"], "methods": list(sweep["methods"]), "parameters": parameters},
+        }
         for row in points:
             where = ", ".join(f"{name} = {value:g}" for name, value in row.items())
             try:
@@ -416,8 +444,9 @@ class _ProjectBuilder:
                 options = spec.options_of({name: fields[name] for name in allowed if name in fields})
             except OptionError as error:
                 where = source if error.field in overrides else self.config_source
-                raise where.error(error.reason, case=case_id if where is source else None,
-                                  field=f"numerics.{method}.{error.field}") from None
+                raise where.error(
+                    error.reason, case=case_id if where is source else None, field=f"numerics.{method}.{error.field}"
+                ) from None
             resolved[method] = options.as_settings()
         return resolved
 
@@ -443,9 +472,16 @@ class _ProjectBuilder:
             if name not in self.sets:
                 message = f"unknown case set {name!r}; known: {', '.join(self.sets)}"
                 raise self.config_source.error(message, field=f"targets.sets[{index}]")
-        check_work_precision(self.config.get("work_precision"), self.cases, self.config["numerics"],
-                             self.config_source.error)
+        check_work_precision(
+            self.config.get("work_precision"), self.cases, self.config["numerics"], self.config_source.error
+        )
         check_stability(self.config.get("stability"), self.cases, self.sets, self.config_source.error)
         check_sensor(self.config.get("sensor"), self.cases, self.config_source.error)
-        return Project(cases=self.cases, sets=self.sets, variants=self.variants, compare=self.compare,
-                       sweeps=self.sweeps, config=self.config)
+        return Project(
+            cases=self.cases,
+            sets=self.sets,
+            variants=self.variants,
+            compare=self.compare,
+            sweeps=self.sweeps,
+            config=self.config,
+        )

@@ -19,8 +19,13 @@ from rodimpact.config.project import ConfigError
 __all__ = ["resolve_measured"]
 
 
-def resolve_measured(measured: Mapping[str, Any] | None, case_file: Path, case_label: str,
-                     error: Callable[..., ConfigError], checked: dict[tuple, str] | None = None) -> dict | None:
+def resolve_measured(
+    measured: Mapping[str, Any] | None,
+    case_file: Path,
+    case_label: str,
+    error: Callable[..., ConfigError],
+    checked: dict[tuple, str] | None = None,
+) -> dict | None:
     """The case's ``measured`` block with its force history (if any) checked and located.
 
     Parameters
@@ -49,9 +54,11 @@ def resolve_measured(measured: Mapping[str, Any] | None, case_file: Path, case_l
     directory = case_file.parent.resolve()
     path = (case_file.parent / history["file"]).resolve()
     if not path.is_relative_to(directory):
-        raise error(f"{history['file']!r} lies outside the directory of its case file; keep a history "
-                    "beside its case file or below it, so that a change to it reaches the plan",
-                    field="measured.force_history.file")
+        raise error(
+            f"{history['file']!r} lies outside the directory of its case file; keep a history "
+            "beside its case file or below it, so that a change to it reaches the plan",
+            field="measured.force_history.file",
+        )
     key = (str(path), tuple(sorted((k, str(v)) for k, v in history.items())))
     if checked is not None and key in checked:
         label = checked[key]

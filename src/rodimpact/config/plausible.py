@@ -32,20 +32,43 @@ from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.options import OptionError
 from rodimpact.solvers.registry import METHODS
 
-__all__ = ["Budget", "Finding", "REFERENCE", "REPRESENTABLE", "case_scales", "check_plausible", "culprit",
-           "machine_memory_mib"]
+__all__ = [
+    "Budget",
+    "Finding",
+    "REFERENCE",
+    "REPRESENTABLE",
+    "case_scales",
+    "check_plausible",
+    "culprit",
+    "machine_memory_mib",
+]
 
 #: Every scale of a case lies within [1 / REPRESENTABLE, REPRESENTABLE] (its SI value).
 REPRESENTABLE = 1e150
 #: The reference of each input of the bodies: the paper's Table 1 model (steel on steel).
 REFERENCE: dict[str, float] = {
-    "impactor.mass_kg": 0.5, "impactor.radius_m": 0.01, "impactor.velocity_m_s": 1.0,
-    "rod.length_m": 0.5, "rod.area_m2": 5.0e-5, "rod.radius_m": math.sqrt(5.0e-5 / math.pi),
-    **{f"{body}.material.{key}": value for body in ("impactor", "rod")
-       for key, value in (("youngs_modulus_pa", 2.1e11), ("poisson_ratio", 0.3), ("density_kg_m3", 7800.0))},
+    "impactor.mass_kg": 0.5,
+    "impactor.radius_m": 0.01,
+    "impactor.velocity_m_s": 1.0,
+    "rod.length_m": 0.5,
+    "rod.area_m2": 5.0e-5,
+    "rod.radius_m": math.sqrt(5.0e-5 / math.pi),
+    **{
+        f"{body}.material.{key}": value
+        for body in ("impactor", "rod")
+        for key, value in (("youngs_modulus_pa", 2.1e11), ("poisson_ratio", 0.3), ("density_kg_m3", 7800.0))
+    },
 }
-_UNITS = {"mass_kg": "kg", "radius_m": "m", "velocity_m_s": "m/s", "length_m": "m", "area_m2": "m^2",
-          "youngs_modulus_pa": "Pa", "density_kg_m3": "kg/m^3", "poisson_ratio": ""}
+_UNITS = {
+    "mass_kg": "kg",
+    "radius_m": "m",
+    "velocity_m_s": "m/s",
+    "length_m": "m",
+    "area_m2": "m^2",
+    "youngs_modulus_pa": "Pa",
+    "density_kg_m3": "kg/m^3",
+    "poisson_ratio": "",
+}
 
 
 def machine_memory_mib() -> float:
@@ -111,8 +134,10 @@ def case_scales(case: Mapping[str, Any]) -> tuple[dict[str, tuple[float, str]], 
     rigid, rod = problem.rigid_contact, problem.rod
     imp = case["impactor"]
     scales = {
-        "impactor mass m": (problem.mass_kg, "kg"), "impact velocity v0": (problem.velocity_m_s, "m/s"),
-        "nose radius R": (float(imp["radius_m"]), "m"), "rod length l": (rod.length_m, "m"),
+        "impactor mass m": (problem.mass_kg, "kg"),
+        "impact velocity v0": (problem.velocity_m_s, "m/s"),
+        "nose radius R": (float(imp["radius_m"]), "m"),
+        "rod length l": (rod.length_m, "m"),
         "rod cross-section S": (rod.area_m2, "m^2"),
         "impactor's Young's modulus": (float(imp["material"]["youngs_modulus_pa"]), "Pa"),
         "impactor's density": (float(imp["material"]["density_kg_m3"]), "kg/m^3"),
@@ -121,7 +146,8 @@ def case_scales(case: Mapping[str, Any]) -> tuple[dict[str, tuple[float, str]], 
         "rigid-rod contact time t_H": (rigid.contact_time_s, "s"),
         "rigid-rod peak force P_H": (rigid.peak_force_N, "N"),
         "rigid-rod largest approach alpha_H": (rigid.max_approach_m, "m"),
-        "rod wave speed a": (rod.wave_speed, "m/s"), "rod impedance Z": (rod.impedance, "kg/s"),
+        "rod wave speed a": (rod.wave_speed, "m/s"),
+        "rod impedance Z": (rod.impedance, "kg/s"),
         "wave round trip 2T": (rod.reflection_period, "s"),
         "contact time estimate": (problem.contact_time_estimate(), "s"),
     }
@@ -140,16 +166,20 @@ def _scales_finding(case: Mapping[str, Any]) -> tuple[float, str] | None:
         excess = abs(math.log10(abs(value))) - math.log10(REPRESENTABLE) if finite else math.inf
         if excess > worst:
             worst = excess
-            reason = (f"its {name} = {value:.3g} {unit} lies outside [{1 / REPRESENTABLE:g}, {REPRESENTABLE:g}] "
-                      f"{unit}, beyond what double precision carries through the solvers' products")
+            reason = (
+                f"its {name} = {value:.3g} {unit} lies outside [{1 / REPRESENTABLE:g}, {REPRESENTABLE:g}] "
+                f"{unit}, beyond what double precision carries through the solvers' products"
+            )
     if worst > 0.0:
         return worst, reason
     approach, radius = problem.rigid_contact.max_approach_m, float(case["impactor"]["radius_m"])
     if approach >= radius:
-        return (math.log10(approach / radius) + 1e-12,
-                f"its largest approach on a rigid rod, alpha_H = {approach:.3g} m, reaches the nose radius "
-                f"R = {radius:.3g} m (the contact radius sqrt(R alpha) would reach R): no spherical contact "
-                "of that size")
+        return (
+            math.log10(approach / radius) + 1e-12,
+            f"its largest approach on a rigid rod, alpha_H = {approach:.3g} m, reaches the nose radius "
+            f"R = {radius:.3g} m (the contact radius sqrt(R alpha) would reach R): no spherical contact "
+            "of that size",
+        )
     return None
 
 
@@ -163,17 +193,23 @@ def _cost_finding(case: Mapping[str, Any], method: str, budget: Budget) -> tuple
     except (ArithmeticError, ValueError) as exc:
         return math.inf, f"{method}'s cost cannot be estimated in double precision ({exc})"
     if cost.exceeds_step_limit:
-        return (math.log10(cost.steps_needed / cost.step_limit),
-                f"{method} would need about {cost.steps_needed:.3g} steps of {cost.time_step_s:.3g} s for the "
-                f"estimated contact, beyond its step budget max_steps = {cost.step_limit:.0f}")
+        return (
+            math.log10(cost.steps_needed / cost.step_limit),
+            f"{method} would need about {cost.steps_needed:.3g} steps of {cost.time_step_s:.3g} s for the "
+            f"estimated contact, beyond its step budget max_steps = {cost.step_limit:.0f}",
+        )
     if not cost.solve_s <= budget.run_time_s:
-        return (math.log10(cost.solve_s / budget.run_time_s),
-                f"{method} would take about {cost.solve_s:.3g} s ({cost.steps:.3g} steps of {cost.time_step_s:.3g} s), "
-                f"beyond the budget limits.run_time_s = {budget.run_time_s:g} s of config.yaml")
+        return (
+            math.log10(cost.solve_s / budget.run_time_s),
+            f"{method} would take about {cost.solve_s:.3g} s ({cost.steps:.3g} steps of {cost.time_step_s:.3g} s), "
+            f"beyond the budget limits.run_time_s = {budget.run_time_s:g} s of config.yaml",
+        )
     if not cost.mem_mib <= budget.memory_mib:
-        return (math.log10(cost.mem_mib / budget.memory_mib),
-                f"{method} would need about {cost.mem_mib:.3g} MiB, beyond the budget limits.memory_mib = "
-                f"{budget.memory_mib:.0f} MiB")
+        return (
+            math.log10(cost.mem_mib / budget.memory_mib),
+            f"{method} would need about {cost.mem_mib:.3g} MiB, beyond the budget limits.memory_mib = "
+            f"{budget.memory_mib:.0f} MiB",
+        )
     return None
 
 
@@ -208,8 +244,9 @@ def _candidates(case: Mapping[str, Any], method: str | None) -> list[tuple[str, 
     return out
 
 
-def culprit(case: Mapping[str, Any], badness: Callable[[Mapping[str, Any]], float],
-            method: str | None = None) -> tuple[str, bool] | None:
+def culprit(
+    case: Mapping[str, Any], badness: Callable[[Mapping[str, Any]], float], method: str | None = None
+) -> tuple[str, bool] | None:
     """The input whose return to its reference lowers ``badness(case)`` the most: (field, is
     a setting); ties go to the first in the order of :data:`REFERENCE`, then the settings.
     None when no single input lowers it."""
@@ -226,6 +263,7 @@ def culprit(case: Mapping[str, Any], badness: Callable[[Mapping[str, Any]], floa
 
 def _furthest(case: Mapping[str, Any]) -> str:
     """The input of the bodies furthest (in decades) from its reference."""
+
     def distance(field: str) -> float:
         node: Any = case
         for key in field.split("."):
@@ -234,6 +272,7 @@ def _furthest(case: Mapping[str, Any]) -> str:
             return abs(math.log10(abs(float(node)) / REFERENCE[field]))
         except (TypeError, ValueError, ArithmeticError):
             return math.inf
+
     return max((field for field, _, _ in _candidates(case, None)), key=distance)
 
 
@@ -241,6 +280,7 @@ def _badness(finding: Callable[[Mapping[str, Any]], tuple[float, str] | None]) -
     def measure(case: Mapping[str, Any]) -> float:
         result = finding(case)
         return 0.0 if result is None else result[0]
+
     return measure
 
 

@@ -26,9 +26,7 @@ class ConfigError(ValueError):
     `file`, `case`, `field` and `reason` (the message alone).
     """
 
-    def __init__(
-        self, message: str, *, file: str, case: str | None = None, field: str | None = None
-    ):
+    def __init__(self, message: str, *, file: str, case: str | None = None, field: str | None = None):
         self.reason, self.file, self.case, self.field = message, str(file), case, field
         parts = [self.file]
         if case is not None:
@@ -97,7 +95,6 @@ class _File:
         return self.error(problem.message, field=format_path(path) or None)
 
 
-
 @dataclass(frozen=True)
 class Project:
     """All resolved cases of the project.
@@ -129,8 +126,11 @@ class Project:
 
     def sweeps_in(self, set_name: str, variant: str | None = None) -> list[dict]:
         """The sweep cases of a set (none if it has none), optionally of one variant."""
-        return [case for case in self.sweeps.values()
-                if case["set"] == set_name and (variant is None or case["variant"] == variant)]
+        return [
+            case
+            for case in self.sweeps.values()
+            if case["set"] == set_name and (variant is None or case["variant"] == variant)
+        ]
 
     def cases_in(self, set_name: str, variant: str | None = None) -> list[dict]:
         """The resolved cases of a set, optionally only those of one variant.

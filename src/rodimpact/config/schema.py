@@ -23,8 +23,16 @@ from referencing.jsonschema import DRAFT202012
 
 from rodimpact.config.yamlfile import YamlError, read_yaml
 
-__all__ = ["Problem", "Schemas", "YamlError", "deep_merge", "first_non_finite", "format_path", "read_yaml",
-           "with_floats"]
+__all__ = [
+    "Problem",
+    "Schemas",
+    "YamlError",
+    "deep_merge",
+    "first_non_finite",
+    "format_path",
+    "read_yaml",
+    "with_floats",
+]
 
 SCHEMA_FILES = ("config.schema.yaml", "cases.schema.yaml", "materials.schema.yaml")
 

@@ -45,9 +45,7 @@ class _Loader(getattr(yaml, "CSafeLoader", yaml.SafeLoader)):  # libyaml's parse
             if not isinstance(key, Hashable):
                 continue  # the base class reports unhashable keys
             if key in seen:
-                raise yaml.constructor.ConstructorError(
-                    None, None, f"duplicate key {key!r}", key_node.start_mark
-                )
+                raise yaml.constructor.ConstructorError(None, None, f"duplicate key {key!r}", key_node.start_mark)
             seen.add(key)
         return super().construct_mapping(node, deep)
 
@@ -78,8 +76,11 @@ def read_yaml(path: Path) -> Any:
                 return None
             expanded = _expanded_size(node)
             if expanded > MAX_EXPANDED_NODES:
-                raise YamlError(f"invalid YAML: its aliases expand it to {expanded:.3g} nodes, more than the "
-                                f"{MAX_EXPANDED_NODES} allowed (an alias bomb?)", path)
+                raise YamlError(
+                    f"invalid YAML: its aliases expand it to {expanded:.3g} nodes, more than the "
+                    f"{MAX_EXPANDED_NODES} allowed (an alias bomb?)",
+                    path,
+                )
             return loader.construct_document(node)
         finally:
             loader.dispose()
@@ -112,5 +113,3 @@ def _expanded_size(root: yaml.Node) -> float:
         stack.append((node, True))
         stack.extend((child, False) for child in children if id(child) not in sizes)
     return sizes[id(root)]
-
-

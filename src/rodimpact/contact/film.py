@@ -71,13 +71,24 @@ class FilmSettings(Settings):
 
     thickness_m: float = setting(REQUIRED, "Thickness h of the film.", unit="m", exclusive_minimum=0)
     thickness_range_m: list[float] | None = setting(
-        None, "[low, high] of the thickness, from the film's source or tolerance (null: +/- 10 % of "
-        "thickness_m); the prediction band reads it.", unit="m", exclusive_minimum=0, items=(2, 2), nullable=True)
+        None,
+        "[low, high] of the thickness, from the film's source or tolerance (null: +/- 10 % of "
+        "thickness_m); the prediction band reads it.",
+        unit="m",
+        exclusive_minimum=0,
+        items=(2, 2),
+        nullable=True,
+    )
     area_m2: float | None = setting(
-        None, "Area of the film patch (null: the whole end face); fem_axi meshes a disc of this area.",
-        unit="m^2", exclusive_minimum=0, nullable=True)
+        None,
+        "Area of the film patch (null: the whole end face); fem_axi meshes a disc of this area.",
+        unit="m^2",
+        exclusive_minimum=0,
+        nullable=True,
+    )
     material: Mapping[str, Any] = setting(
-        REQUIRED, "The film's material: a name from the materials file, or an inline material.", kind=Material)
+        REQUIRED, "The film's material: a name from the materials file, or an inline material.", kind=Material
+    )
     source: str = setting("", "Where the film's thickness and size come from.", kind=str)
 
     def __post_init__(self) -> None:
@@ -88,8 +99,10 @@ class FilmSettings(Settings):
             object.__setattr__(self, "thickness_range_m", [(1 - tolerance) * thickness, (1 + tolerance) * thickness])
         low, high = (float(x) for x in self.thickness_range_m)
         if not (low < high and low <= thickness <= high):
-            raise OptionError("thickness_range_m", f"the thickness {thickness:g} m must lie inside a non-empty "
-                              f"range, got [{low:g}, {high:g}]")
+            raise OptionError(
+                "thickness_range_m",
+                f"the thickness {thickness:g} m must lie inside a non-empty range, got [{low:g}, {high:g}]",
+            )
         object.__setattr__(self, "thickness_range_m", [low, high])
 
 
@@ -135,8 +148,7 @@ def film_constant(sphere_radius_m: float, thickness_m: float, modulus_pa: float)
     float
         c = pi M R / h.
     """
-    for name, value in (("sphere_radius_m", sphere_radius_m), ("thickness_m", thickness_m),
-                        ("modulus_pa", modulus_pa)):
+    for name, value in (("sphere_radius_m", sphere_radius_m), ("thickness_m", thickness_m), ("modulus_pa", modulus_pa)):
         if not (math.isfinite(value) and value > 0):
             raise ValueError(f"{name} must be > 0, got {value!r}")
     return math.pi * modulus_pa * sphere_radius_m / thickness_m
@@ -181,11 +193,14 @@ class FilmLayer:
         """From a resolved ``contact.film`` mapping (its material resolved to its constants)."""
         material = film["material"]
         area = film.get("area_m2")
-        return cls(thickness_m=float(film["thickness_m"]),
-                   youngs_modulus_pa=float(material["youngs_modulus_pa"]),
-                   poisson_ratio=float(material["poisson_ratio"]),
-                   density_kg_m3=float(material["density_kg_m3"]),
-                   area_m2=None if area is None else float(area), name=str(material.get("name") or ""))
+        return cls(
+            thickness_m=float(film["thickness_m"]),
+            youngs_modulus_pa=float(material["youngs_modulus_pa"]),
+            poisson_ratio=float(material["poisson_ratio"]),
+            density_kg_m3=float(material["density_kg_m3"]),
+            area_m2=None if area is None else float(area),
+            name=str(material.get("name") or ""),
+        )
 
     @property
     def constrained_modulus_pa(self) -> float:
@@ -259,13 +274,17 @@ class HertzFilmLaw(ContactLaw):
                 raise ValueError(f"{name} must be > 0 or None, got {value!r}")
 
     @classmethod
-    def from_bodies(cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial,
-                    rod: ElasticMaterial) -> HertzFilmLaw:
+    def from_bodies(
+        cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial, rod: ElasticMaterial
+    ) -> HertzFilmLaw:
         """The law of a case: ``spec["film"]`` is the resolved film (see :class:`FilmLayer`)."""
         film = FilmLayer.from_mapping(spec["film"])
-        return cls(k=hertz_constant(sphere_radius_m, impactor, rod),
-                   c=film_constant(sphere_radius_m, film.thickness_m, film.constrained_modulus_pa),
-                   sphere_radius_m=sphere_radius_m, thickness_m=film.thickness_m)
+        return cls(
+            k=hertz_constant(sphere_radius_m, impactor, rod),
+            c=film_constant(sphere_radius_m, film.thickness_m, film.constrained_modulus_pa),
+            sphere_radius_m=sphere_radius_m,
+            thickness_m=film.thickness_m,
+        )
 
     # -- the law in s = P^(1/6) ---------------------------------------------------------
     # (computed once per law: every force and every step asks for them)
@@ -275,7 +294,7 @@ class HertzFilmLaw(ContactLaw):
 
     @functools.cached_property
     def _b(self) -> float:
-        return 0.0 if math.isinf(self.c) else self.c ** -0.5
+        return 0.0 if math.isinf(self.c) else self.c**-0.5
 
     def _s(self, approach_m: float) -> float:
         if approach_m <= 0.0:
@@ -360,8 +379,12 @@ class HertzFilmLaw(ContactLaw):
             return {}
         ratio = float(self.contact_radius(max_approach_m)) / self.thickness_m
         if ratio < FILM_VALIDITY_RATIO:
-            log.warning("hertz_film: the contact radius is %.3g film thicknesses at the largest approach, below "
-                        "the thin-layer law's range (>= %g; docs/contact-laws.md)", ratio, FILM_VALIDITY_RATIO)
+            log.warning(
+                "hertz_film: the contact radius is %.3g film thicknesses at the largest approach, below "
+                "the thin-layer law's range (>= %g; docs/contact-laws.md)",
+                ratio,
+                FILM_VALIDITY_RATIO,
+            )
         return {"film_radius_to_thickness": ratio}
 
     def solve_step(self, a: float, b: float, guess: float) -> tuple[float, int]:

@@ -62,9 +62,7 @@ def effective_modulus(first: ElasticMaterial, second: ElasticMaterial | None = N
         E* with 1/E* = (1 - mu1^2)/E1 + (1 - mu2^2)/E2.
     """
     second = first if second is None else second
-    compliance = sum(
-        (1.0 - m.poisson_ratio**2) / m.youngs_modulus_pa for m in (first, second)
-    )
+    compliance = sum((1.0 - m.poisson_ratio**2) / m.youngs_modulus_pa for m in (first, second))
     return 1.0 / compliance
 
 
@@ -169,8 +167,9 @@ class HertzLaw(ContactLaw):
             raise ValueError(f"sphere_radius_m must be > 0 or None, got {self.sphere_radius_m!r}")
 
     @classmethod
-    def from_bodies(cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial,
-                    rod: ElasticMaterial) -> HertzLaw:
+    def from_bodies(
+        cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial, rod: ElasticMaterial
+    ) -> HertzLaw:
         """The law of a case (``spec`` is its ``contact`` block; Hertz has no parameters)."""
         return cls(hertz_constant(sphere_radius_m, impactor, rod), sphere_radius_m)
 

@@ -202,8 +202,9 @@ class ContactLaw(abc.ABC):
             if abs(alpha_new - alpha) <= 1e-15 * alpha_new or alpha_new == alpha:
                 return alpha_new, iteration
             alpha = alpha_new
-        raise StepNotConverged(f"the step of the {self.name or type(self).__name__} law did not converge "
-                               f"(a={a!r}, b={b!r})")
+        raise StepNotConverged(
+            f"the step of the {self.name or type(self).__name__} law did not converge (a={a!r}, b={b!r})"
+        )
 
     def solve_step_force(self, a: float, b: float, guess: float) -> tuple[float, float, int]:
         """:meth:`solve_step` and the force there: (alpha, P(alpha), iterations).
@@ -267,8 +268,7 @@ class ContactLaw(abc.ABC):
             return 2.0 / math.sqrt(2.0 * self.force(alpha_max) / mass_kg)  # the limit u -> 0
 
         half = quad(integrand, 0.0, math.sqrt(alpha_max), epsabs=0.0, epsrel=1e-12, limit=200)[0]
-        return RigidImpact(max_approach_m=alpha_max, contact_time_s=2.0 * half,
-                           peak_force_N=self.force(alpha_max))
+        return RigidImpact(max_approach_m=alpha_max, contact_time_s=2.0 * half, peak_force_N=self.force(alpha_max))
 
 
 @functools.lru_cache(maxsize=1024)

@@ -28,8 +28,9 @@ from rodimpact.settings.declare import Setting
 __all__ = ["DEFAULT_LAW", "LAWS", "UnknownLaw", "bodies_contact", "build_law", "contact_schema", "law_of"]
 
 #: Law name -> law class, in the order messages and the schema list them.
-LAWS: dict[str, type[ContactLaw]] = {law.name: law for law in (HertzLaw, HertzFilmLaw, HertzStackLaw, TabulatedLaw,
-                                                           SpringLaw)}
+LAWS: dict[str, type[ContactLaw]] = {
+    law.name: law for law in (HertzLaw, HertzFilmLaw, HertzStackLaw, TabulatedLaw, SpringLaw)
+}
 #: The law of a case that names none.
 DEFAULT_LAW = HertzLaw.name
 
@@ -80,16 +81,22 @@ def contact_schema(material_ref: str = "#/$defs/material") -> dict[str, Any]:
     ValueError
         Two laws declare one key differently.
     """
-    properties: dict[str, Any] = {"law": {
-        "title": "contact law", "type": "string", "enum": list(LAWS),
-        "description": "The law's name (rodimpact.contact.laws.LAWS)."}}
+    properties: dict[str, Any] = {
+        "law": {
+            "title": "contact law",
+            "type": "string",
+            "enum": list(LAWS),
+            "description": "The law's name (rodimpact.contact.laws.LAWS).",
+        }
+    }
     owners: dict[str, tuple[str, Setting]] = {}
     for name, law in LAWS.items():
         for key, meta in law.settings.settings().items():
             if key in owners:
                 if _value_kind(owners[key][1]) != _value_kind(meta):
-                    raise ValueError(f"contact laws {owners[key][0]!r} and {name!r} declare the setting {key!r} "
-                                     "differently")
+                    raise ValueError(
+                        f"contact laws {owners[key][0]!r} and {name!r} declare the setting {key!r} differently"
+                    )
                 continue
             owners[key] = (name, meta)
             declared = [other.settings.settings()[key] for other in LAWS.values() if key in other.settings.settings()]
@@ -99,14 +106,27 @@ def contact_schema(material_ref: str = "#/$defs/material") -> dict[str, Any]:
             sub["description"] = f"{sub['description']} Laws: {', '.join(takers)}."
             properties[key] = sub
     laws = " ".join(f"`{name}`: {(law.__doc__ or '').strip().splitlines()[0]}" for name, law in LAWS.items())
-    return {"description": f"The contact between impactor and rod (default {{law: {DEFAULT_LAW}}}). {laws}",
-            "type": "object", "additionalProperties": False, "required": ["law"], "properties": properties}
+    return {
+        "description": f"The contact between impactor and rod (default {{law: {DEFAULT_LAW}}}). {laws}",
+        "type": "object",
+        "additionalProperties": False,
+        "required": ["law"],
+        "properties": properties,
+    }
 
 
 def _value_kind(meta: Setting) -> tuple[Any, ...]:
     """What a setting's values are, whatever its doc and whether it may be null."""
-    return (meta.kind, meta.unit, meta.items, meta.choices, meta.minimum, meta.exclusive_minimum, meta.maximum,
-            meta.exclusive_maximum)
+    return (
+        meta.kind,
+        meta.unit,
+        meta.items,
+        meta.choices,
+        meta.minimum,
+        meta.exclusive_minimum,
+        meta.maximum,
+        meta.exclusive_maximum,
+    )
 
 
 def bodies_contact(contact: Mapping[str, Any] | None) -> dict[str, Any] | None:
@@ -120,8 +140,14 @@ def bodies_contact(contact: Mapping[str, Any] | None) -> dict[str, Any] | None:
     return None if film is None else {"law": HertzFilmLaw.name, "film": film}
 
 
-def build_law(spec: Mapping[str, Any] | None, sphere_radius_m: float, impactor: ElasticMaterial,
-              rod: ElasticMaterial, *, estimate: bool = False) -> ContactLaw:
+def build_law(
+    spec: Mapping[str, Any] | None,
+    sphere_radius_m: float,
+    impactor: ElasticMaterial,
+    rod: ElasticMaterial,
+    *,
+    estimate: bool = False,
+) -> ContactLaw:
     """The contact law of a case.
 
     Parameters

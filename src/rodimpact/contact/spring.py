@@ -36,7 +36,8 @@ class SpringSettings(LawSettings):
     """The ``spring`` law's settings: its stiffness."""
 
     stiffness_n_per_m: float = setting(
-        REQUIRED, "Stiffness c of the linear contact spring, P = c alpha.", unit="N/m", exclusive_minimum=0)
+        REQUIRED, "Stiffness c of the linear contact spring, P = c alpha.", unit="N/m", exclusive_minimum=0
+    )
 
 
 @dataclass(frozen=True)
@@ -61,8 +62,9 @@ class SpringLaw(ContactLaw):
         _check_positive(c=self.c)
 
     @classmethod
-    def from_bodies(cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial,
-                    rod: ElasticMaterial) -> SpringLaw:
+    def from_bodies(
+        cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial, rod: ElasticMaterial
+    ) -> SpringLaw:
         """The law of a case (``spec`` is its ``contact`` block); the bodies play no part."""
         return cls(float(spec["stiffness_n_per_m"]))
 
@@ -94,8 +96,11 @@ class SpringLaw(ContactLaw):
         alpha_max = v0 sqrt(m / c), P_max = v0 sqrt(m c)."""
         _check_positive(mass_kg=mass_kg, velocity_m_s=velocity_m_s)
         root = math.sqrt(mass_kg / self.c)
-        return RigidImpact(max_approach_m=velocity_m_s * root, contact_time_s=math.pi * root,
-                           peak_force_N=velocity_m_s * math.sqrt(mass_kg * self.c))
+        return RigidImpact(
+            max_approach_m=velocity_m_s * root,
+            contact_time_s=math.pi * root,
+            peak_force_N=velocity_m_s * math.sqrt(mass_kg * self.c),
+        )
 
 
 @dataclass(frozen=True)
@@ -121,8 +126,9 @@ class SemiInfiniteContact:
     peak_time_s: float
 
 
-def semi_infinite_rod_contact(stiffness_n_per_m: float, mass_kg: float, velocity_m_s: float,
-                              impedance_kg_s: float) -> SemiInfiniteContact:
+def semi_infinite_rod_contact(
+    stiffness_n_per_m: float, mass_kg: float, velocity_m_s: float, impedance_kg_s: float
+) -> SemiInfiniteContact:
     """The closed form of a rigid mass striking, through a linear spring, a rod whose far end
     the struck end's wave does not reach back from during the contact.
 
@@ -150,8 +156,9 @@ def semi_infinite_rod_contact(stiffness_n_per_m: float, mass_kg: float, velocity
     ValueError
         A value that is not > 0, or a damping ratio >= 1 (the spring never separates).
     """
-    _check_positive(stiffness_n_per_m=stiffness_n_per_m, mass_kg=mass_kg, velocity_m_s=velocity_m_s,
-                    impedance_kg_s=impedance_kg_s)
+    _check_positive(
+        stiffness_n_per_m=stiffness_n_per_m, mass_kg=mass_kg, velocity_m_s=velocity_m_s, impedance_kg_s=impedance_kg_s
+    )
     omega0 = math.sqrt(stiffness_n_per_m / mass_kg)
     zeta = math.sqrt(mass_kg * stiffness_n_per_m) / (2.0 * impedance_kg_s)
     if zeta >= 1.0:
@@ -160,5 +167,9 @@ def semi_infinite_rod_contact(stiffness_n_per_m: float, mass_kg: float, velocity
     # alpha = (v0 / omega_d) exp(-zeta omega0 t) sin(omega_d t); alpha' = 0 at tan(omega_d t) = omega_d / (zeta omega0)
     t_peak = math.atan2(omega_d, zeta * omega0) / omega_d
     alpha_peak = velocity_m_s / omega_d * math.exp(-zeta * omega0 * t_peak) * math.sin(omega_d * t_peak)
-    return SemiInfiniteContact(damping_ratio=zeta, contact_time_s=math.pi / omega_d,
-                               peak_force_N=stiffness_n_per_m * alpha_peak, peak_time_s=t_peak)
+    return SemiInfiniteContact(
+        damping_ratio=zeta,
+        contact_time_s=math.pi / omega_d,
+        peak_force_N=stiffness_n_per_m * alpha_peak,
+        peak_time_s=t_peak,
+    )

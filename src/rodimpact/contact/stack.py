@@ -40,23 +40,31 @@ __all__ = ["HertzStackLaw", "HertzStackSettings", "LayerSettings", "Stack", "Sta
 class LayerSettings(Settings):
     """One layer of a stack bonded on the rod's struck end."""
 
-    name: str = setting(REQUIRED, "What the layer is, in words (e.g. top electrode, piezo film, bond line).",
-                        kind=str)
+    name: str = setting(REQUIRED, "What the layer is, in words (e.g. top electrode, piezo film, bond line).", kind=str)
     thickness_m: float = setting(REQUIRED, "Thickness of the layer.", unit="m", exclusive_minimum=0)
     thickness_range_m: list[float] = setting(
-        REQUIRED, "[low, high] of the thickness, from the layer's source (or a bracket the source explains); "
-        "the prediction band reads it.", unit="m", exclusive_minimum=0, items=(2, 2))
+        REQUIRED,
+        "[low, high] of the thickness, from the layer's source (or a bracket the source explains); "
+        "the prediction band reads it.",
+        unit="m",
+        exclusive_minimum=0,
+        items=(2, 2),
+    )
     material: Mapping[str, Any] = setting(
-        REQUIRED, "The layer's material: a name from the materials file, or an inline material; its ranges "
-        "are the band's.", kind=Material)
+        REQUIRED,
+        "The layer's material: a name from the materials file, or an inline material; its ranges are the band's.",
+        kind=Material,
+    )
     source: str = setting(REQUIRED, "Where the layer's thickness and material come from.", kind=str)
 
     def __post_init__(self) -> None:
         super().__post_init__()
         low, high = (float(x) for x in self.thickness_range_m)
         if not (low < high and low <= self.thickness_m <= high):
-            raise OptionError("thickness_range_m", f"the thickness {self.thickness_m:g} m must lie inside a "
-                              f"non-empty range, got [{low:g}, {high:g}]")
+            raise OptionError(
+                "thickness_range_m",
+                f"the thickness {self.thickness_m:g} m must lie inside a non-empty range, got [{low:g}, {high:g}]",
+            )
         object.__setattr__(self, "thickness_range_m", [low, high])
 
 
@@ -65,10 +73,15 @@ class StackSettings(Settings):
     """Layers bonded on the rod's struck end, from the struck face to the rod."""
 
     layers: list[LayerSettings] = setting(
-        REQUIRED, "The layers, from the struck face to the rod.", kind=LayerSettings, items=(1, None))
+        REQUIRED, "The layers, from the struck face to the rod.", kind=LayerSettings, items=(1, None)
+    )
     area_m2: float | None = setting(
-        None, "Area of the stack's patch (null: the whole end face); fem_axi meshes a disc of this area.",
-        unit="m^2", exclusive_minimum=0, nullable=True)
+        None,
+        "Area of the stack's patch (null: the whole end face); fem_axi meshes a disc of this area.",
+        unit="m^2",
+        exclusive_minimum=0,
+        nullable=True,
+    )
     source: str = setting("", "Where the stack's make-up and size come from.", kind=str)
 
 
@@ -117,8 +130,11 @@ class Stack:
             stack = contact["stack"]
             area = stack.get("area_m2")
             layers = tuple(FilmLayer.from_mapping(layer) for layer in stack["layers"])
-            return cls(layers, None if area is None else float(area),
-                       tuple(str(layer.get("name", "")) for layer in stack["layers"]))
+            return cls(
+                layers,
+                None if area is None else float(area),
+                tuple(str(layer.get("name", "")) for layer in stack["layers"]),
+            )
         if contact.get("film") is not None:
             film = FilmLayer.from_mapping(contact["film"])
             return cls((film,), film.area_m2, ("film",))
@@ -147,9 +163,12 @@ class Stack:
 
     def thin_layer_law(self, sphere_radius_m: float, impactor: ElasticMaterial, rod: ElasticMaterial) -> HertzFilmLaw:
         """Hertz's law in series with the stack as beds of springs (the thin-layer approximation)."""
-        return HertzFilmLaw(k=hertz_constant(sphere_radius_m, impactor, rod),
-                            c=film_constant(sphere_radius_m, self.thickness_m, self.constrained_modulus_pa),
-                            sphere_radius_m=sphere_radius_m, thickness_m=self.thickness_m)
+        return HertzFilmLaw(
+            k=hertz_constant(sphere_radius_m, impactor, rod),
+            c=film_constant(sphere_radius_m, self.thickness_m, self.constrained_modulus_pa),
+            sphere_radius_m=sphere_radius_m,
+            thickness_m=self.thickness_m,
+        )
 
 
 @dataclass(frozen=True)
@@ -164,10 +183,10 @@ class HertzStackLaw(HertzFilmLaw):
     needs = Needs()
 
     @classmethod
-    def from_bodies(cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial,
-                    rod: ElasticMaterial) -> HertzStackLaw:
+    def from_bodies(
+        cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial, rod: ElasticMaterial
+    ) -> HertzStackLaw:
         """The law of a case: ``spec["stack"]`` is the resolved stack (see :class:`Stack`)."""
         stack = Stack.of({"stack": spec["stack"]})
         law = stack.thin_layer_law(sphere_radius_m, impactor, rod)
         return cls(k=law.k, c=law.c, sphere_radius_m=law.sphere_radius_m, thickness_m=law.thickness_m)
-

@@ -64,14 +64,25 @@ class TabulatedSettings(LawSettings):
     """The ``tabulated`` law's settings: where its curve comes from, and the case's film or stack."""
 
     curve_from: str = setting(
-        REQUIRED, "Where the curve comes from: fem_axi_indentation, the continuum's static indentation of the "
-        "case's ball, film and rod.", kind=str, choices=tuple(CURVE_SOURCES), key="from")
+        REQUIRED,
+        "Where the curve comes from: fem_axi_indentation, the continuum's static indentation of the "
+        "case's ball, film and rod.",
+        kind=str,
+        choices=tuple(CURVE_SOURCES),
+        key="from",
+    )
     film: FilmSettings | None = setting(
-        None, "The film bonded on the rod's struck end, when the case has one (the continuum indents it).",
-        kind=FilmSettings, nullable=True)
+        None,
+        "The film bonded on the rod's struck end, when the case has one (the continuum indents it).",
+        kind=FilmSettings,
+        nullable=True,
+    )
     stack: StackSettings | None = setting(
-        None, "The layers bonded on the rod's struck end, when the case has them (the continuum indents them).",
-        kind=StackSettings, nullable=True)
+        None,
+        "The layers bonded on the rod's struck end, when the case has them (the continuum indents them).",
+        kind=StackSettings,
+        nullable=True,
+    )
 
     def __post_init__(self) -> None:
         super().__post_init__()
@@ -182,8 +193,9 @@ class TabulatedLaw(ContactLaw):
         object.__setattr__(self, "_e", energy)
 
     @classmethod
-    def from_bodies(cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial,
-                    rod: ElasticMaterial) -> TabulatedLaw:
+    def from_bodies(
+        cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial, rod: ElasticMaterial
+    ) -> TabulatedLaw:
         """The law of a case: ``spec["curve"]`` holds ``approach_m``, ``force_N`` and
         optionally ``contact_radius_m`` (put there by the runner from the indentation file).
 
@@ -194,11 +206,17 @@ class TabulatedLaw(ContactLaw):
         """
         curve = spec.get("curve")
         if curve is None:
-            raise CurveMissing(f"contact: the tabulated law needs its curve (from {spec.get('from')!r}); "
-                               "the workflow's indentation rule computes it")
+            raise CurveMissing(
+                f"contact: the tabulated law needs its curve (from {spec.get('from')!r}); "
+                "the workflow's indentation rule computes it"
+            )
         radius = curve.get("contact_radius_m")
-        return cls(tuple(map(float, curve["approach_m"])), tuple(map(float, curve["force_N"])),
-                   None if radius is None else tuple(map(float, radius)), str(spec.get("from", "")))
+        return cls(
+            tuple(map(float, curve["approach_m"])),
+            tuple(map(float, curve["force_N"])),
+            None if radius is None else tuple(map(float, radius)),
+            str(spec.get("from", "")),
+        )
 
     # -- interpolation in (ln alpha, ln P) --------------------------------------------------
     def _log_force(self, x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -294,14 +312,22 @@ class TabulatedLaw(ContactLaw):
         return radius if alpha.ndim else float(radius)
 
     def summary(self) -> dict[str, float | str]:
-        return {"contact_law": self.name, "table_source": self.source, "table_points": len(self.approach_m),
-                "table_max_force_N": float(self.force_N[-1]), "table_max_approach_m": float(self.approach_m[-1])}
+        return {
+            "contact_law": self.name,
+            "table_source": self.source,
+            "table_points": len(self.approach_m),
+            "table_max_force_N": float(self.force_N[-1]),
+            "table_max_approach_m": float(self.approach_m[-1]),
+        }
 
     def run_summary(self, max_approach_m: float) -> dict[str, float]:
         """The run's largest approach over the table's (``table_reach``); above 1 the law was
         extrapolated by its last power law, and a warning is logged."""
         reach = max_approach_m / self.approach_m[-1]
         if reach > 1.0:
-            log.warning("tabulated law: the run's largest approach is %.3g times the table's; the law was "
-                        "extrapolated as a power law beyond it", reach)
+            log.warning(
+                "tabulated law: the run's largest approach is %.3g times the table's; the law was "
+                "extrapolated as a power law beyond it",
+                reach,
+            )
         return {"table_reach": float(reach)}

@@ -47,16 +47,20 @@ def film_ranges(case: Mapping[str, Any]) -> dict[str, tuple[float, float]]:
 
 
 def _contact_time_us(case: Mapping[str, Any], point: Mapping[str, float], method: str) -> float:
-    return 1e6 * run_case(sweep_point_case({**case, "sweep": {"methods": [method]}}, point, "band"),
-                          method).contact_time_s
+    return (
+        1e6 * run_case(sweep_point_case({**case, "sweep": {"methods": [method]}}, point, "band"), method).contact_time_s
+    )
 
 
 def case_band(case: Mapping[str, Any], method: str = "sem") -> CaseBand:
     """The band of one case (see the module docstring)."""
     ranges = film_ranges(case)
     film = case["contact"]["film"]
-    nominal = {"film_modulus_pa": film["material"]["youngs_modulus_pa"],
-               "film_poisson_ratio": film["material"]["poisson_ratio"], "film_thickness_m": film["thickness_m"]}
+    nominal = {
+        "film_modulus_pa": film["material"]["youngs_modulus_pa"],
+        "film_poisson_ratio": film["material"]["poisson_ratio"],
+        "film_thickness_m": film["thickness_m"],
+    }
     corners = np.array(list(itertools.product(*(ranges[n] for n in BAND_PARAMETERS))), float)
     corner_us = np.array([_contact_time_us(case, dict(zip(BAND_PARAMETERS, c)), method) for c in corners])
     axis_values, axis_us = {}, {}
@@ -66,18 +70,37 @@ def case_band(case: Mapping[str, Any], method: str = "sem") -> CaseBand:
         axis_values[name] = values
         axis_us[name] = np.array([_contact_time_us(case, {**nominal, name: float(v)}, method) for v in values])
     measured = (case.get("measured") or {}).get("contact_time_us")
-    band = CaseBand(case_id=str(case["id"]), measured_us=math.nan if measured is None else float(measured),
-                    nominal_us=_contact_time_us(case, nominal, method), corner_parameters=corners,
-                    corner_us=corner_us, axis_values=axis_values, axis_us=axis_us)
-    log.info("case %s: nominal %.2f us, band %.2f-%.2f us, monotone along every axis: %s", band.case_id,
-             band.nominal_us, band.band_min_us, band.band_max_us, band.monotone)
+    band = CaseBand(
+        case_id=str(case["id"]),
+        measured_us=math.nan if measured is None else float(measured),
+        nominal_us=_contact_time_us(case, nominal, method),
+        corner_parameters=corners,
+        corner_us=corner_us,
+        axis_values=axis_values,
+        axis_us=axis_us,
+    )
+    log.info(
+        "case %s: nominal %.2f us, band %.2f-%.2f us, monotone along every axis: %s",
+        band.case_id,
+        band.nominal_us,
+        band.band_min_us,
+        band.band_max_us,
+        band.monotone,
+    )
     if not band.monotone:
-        log.warning("case %s: the contact time is not monotone along some constant's range; the corners may "
-                    "not bound it", band.case_id)
+        log.warning(
+            "case %s: the contact time is not monotone along some constant's range; the corners may not bound it",
+            band.case_id,
+        )
     return band
 
 
 def band_to_file(cases: Sequence[Mapping[str, Any]], variant: str, path: str, method: str = "sem") -> None:
     """The bands of ``cases`` (one reading), written atomically to ``path``."""
-    write_band(path, [case_band(case, method) for case in cases], variant=variant, method=method,
-               config=[dict(case) for case in cases])
+    write_band(
+        path,
+        [case_band(case, method) for case in cases],
+        variant=variant,
+        method=method,
+        config=[dict(case) for case in cases],
+    )

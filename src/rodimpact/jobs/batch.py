@@ -35,9 +35,14 @@ log = logging.getLogger(__name__)
 CURVE_BUILDERS = {"indentation": ("rodimpact.jobs.indentation", "indentation_curve")}
 
 
-def run_batch(runs: Mapping[str, Mapping[str, Any]], paths: Mapping[str, str | Path], *,
-              case_file: str | Path | None = None, keep_failed: bool = False,
-              timing: Mapping[str, Any] | None = None) -> list[Path]:
+def run_batch(
+    runs: Mapping[str, Mapping[str, Any]],
+    paths: Mapping[str, str | Path],
+    *,
+    case_file: str | Path | None = None,
+    keep_failed: bool = False,
+    timing: Mapping[str, Any] | None = None,
+) -> list[Path]:
     """Solve every run of a batch and write each to its own file, one after another.
 
     Parameters
@@ -87,10 +92,20 @@ def run_batch(runs: Mapping[str, Mapping[str, Any]], paths: Mapping[str, str | P
         key = (str(source), str(run["case"]["id"]))
         if source is not None and key not in references:
             references[key] = case_file_reference(source, run["case"]["id"])
-        written.append(run_to_file(run["case"], run["method"], paths[name], level=run.get("level"),
-                                   keep_failed=keep_failed, timing=timed, study=run.get("study"),
-                                   case_file=None if source is None else references[key],
-                                   contact_curve=curve, code_version=version))
+        written.append(
+            run_to_file(
+                run["case"],
+                run["method"],
+                paths[name],
+                level=run.get("level"),
+                keep_failed=keep_failed,
+                timing=timed,
+                study=run.get("study"),
+                case_file=None if source is None else references[key],
+                contact_curve=curve,
+                code_version=version,
+            )
+        )
     log.info("batch of %d runs written", len(written))
     return written
 

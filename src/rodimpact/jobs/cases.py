@@ -35,6 +35,7 @@ __all__ = ["case_file_record", "case_scales", "write_case_file"]
 
 log = logging.getLogger(__name__)
 
+
 def _plain(value: float) -> float | None:
     """A float YAML writes and reads back exactly (None for NaN or infinity)."""
     value = float(value)
@@ -62,17 +63,30 @@ def case_scales(case: Mapping[str, Any]) -> dict[str, Any]:
         spec = METHODS[name]
         cost = spec.estimate(case, case["numerics"][name])
         job = estimate_resources(case, name)
-        methods[name] = {"label": spec.label, "time_step_s": _plain(cost.time_step_s), "steps": _plain(cost.steps),
-                         "solve_time_s": _plain(cost.solve_s), "memory_MiB": _plain(cost.mem_mib),
-                         "job": {"threads": job.threads, "mem_mb": job.mem_mb, "runtime_min": job.runtime_min}}
+        methods[name] = {
+            "label": spec.label,
+            "time_step_s": _plain(cost.time_step_s),
+            "steps": _plain(cost.steps),
+            "solve_time_s": _plain(cost.solve_s),
+            "memory_MiB": _plain(cost.mem_mib),
+            "job": {"threads": job.threads, "mem_mb": job.mem_mb, "runtime_min": job.runtime_min},
+        }
     return {
-        "contact": {key: value if isinstance(value, str) else _plain(value)
-                    for key, value in problem.contact.summary().items()},
-        "rod": {"impedance_kg_s": _plain(rod.impedance), "wave_speed_m_s": _plain(rod.wave_speed),
-                "round_trip_s": _plain(rod.reflection_period), "static_compliance_m_N": _plain(rod.static_compliance)},
-        "rigid_rod": {"max_approach_m": _plain(rigid.max_approach_m), "contact_time_s": _plain(rigid.contact_time_s),
-                      "peak_force_N": _plain(rigid.peak_force_N),
-                      "contact_radius_m": None if radius is None else _plain(radius)},
+        "contact": {
+            key: value if isinstance(value, str) else _plain(value) for key, value in problem.contact.summary().items()
+        },
+        "rod": {
+            "impedance_kg_s": _plain(rod.impedance),
+            "wave_speed_m_s": _plain(rod.wave_speed),
+            "round_trip_s": _plain(rod.reflection_period),
+            "static_compliance_m_N": _plain(rod.static_compliance),
+        },
+        "rigid_rod": {
+            "max_approach_m": _plain(rigid.max_approach_m),
+            "contact_time_s": _plain(rigid.contact_time_s),
+            "peak_force_N": _plain(rigid.peak_force_N),
+            "contact_radius_m": None if radius is None else _plain(radius),
+        },
         "contact_time_estimate_s": _plain(problem.contact_time_estimate()),
         "methods": methods,
     }
@@ -92,8 +106,10 @@ def case_file_record(case: Mapping[str, Any]) -> dict[str, Any]:
         record["points"] = {}
         for point in sweep_points(case["sweep"]):
             name = "_".join(f"{key}~{value}" for key, value in point.items())
-            record["points"][name] = {"values": {k: float(v) for k, v in point.items()},
-                                      "derived": case_scales(sweep_point_case(case, point, name))}
+            record["points"][name] = {
+                "values": {k: float(v) for k, v in point.items()},
+                "derived": case_scales(sweep_point_case(case, point, name)),
+            }
     else:
         record["derived"] = case_scales(case)
     return record

@@ -50,8 +50,7 @@ SMALLEST = 0.03
 def _bodies_case(case: Mapping[str, Any]) -> dict[str, Any]:
     """The case with the analytic law of its bodies (:func:`~rodimpact.contact.laws.bodies_contact`)."""
     contact = bodies_contact(case.get("contact"))
-    bodies = {**case, "impactor": {**case["impactor"], "body": "cap"},
-              "rod": {**case["rod"], "far_end": "fixed"}}
+    bodies = {**case, "impactor": {**case["impactor"], "body": "cap"}, "rod": {**case["rod"], "far_end": "fixed"}}
     if contact is not None:
         bodies["contact"] = contact
     else:
@@ -80,8 +79,12 @@ def indentation_curve(case: Mapping[str, Any], settings: Mapping[str, Any] | Non
     options = FEMAxiOptions.from_settings(settings or {})
     problem = dataclasses.replace(AxiImpact.from_case(bodies, estimate=True), body="cap")
     imp = case["impactor"]
-    law = build_law(bodies.get("contact"), float(imp["radius_m"]), Material.from_mapping(imp["material"]),
-                    Material.from_mapping(case["rod"]["material"]))
+    law = build_law(
+        bodies.get("contact"),
+        float(imp["radius_m"]),
+        Material.from_mapping(imp["material"]),
+        Material.from_mapping(case["rod"]["material"]),
+    )
     peak = LOAD_MARGIN * law.rigid_impact(float(imp["mass_kg"]), float(imp["velocity_m_s"])).peak_force_N
     rod = case["rod"]
     compliance = float(rod["length_m"]) / (float(rod["material"]["youngs_modulus_pa"]) * float(rod["area_m2"]))
@@ -99,24 +102,45 @@ def indentation_curve(case: Mapping[str, Any], settings: Mapping[str, Any] | Non
     keep = force > 0
     if keep.sum() < 4 or np.any(np.diff(approach[keep]) <= 0) or np.any(np.diff(force[keep]) <= 0):
         raise RuntimeError(f"case {case['id']!r}: the indentation curve is not monotone")
-    approach, force, radius, displacements = (approach[keep], force[keep], np.asarray(result.contact_radius_m)[keep],
-                                              displacements[keep])
+    approach, force, radius, displacements = (
+        approach[keep],
+        force[keep],
+        np.asarray(result.contact_radius_m)[keep],
+        displacements[keep],
+    )
     law_approach = np.array([law.approach(p) for p in force])
     # interpolation error: the law from every other point, at the points left out
     half = TabulatedLaw(tuple(approach[::2]), tuple(force[::2]))
     left_out = np.arange(1, len(force) - 1, 2)
     interpolation_error = float(np.max(np.abs([half.force(approach[i]) / force[i] - 1.0 for i in left_out])))
     summary = {
-        "analytic_law": law.name, "rod_compliance_m_per_N": compliance, "load_margin": LOAD_MARGIN,
-        "rigid_peak_force_N": peak / LOAD_MARGIN, "max_force_N": float(force[-1]),
-        "interpolation_error_half": interpolation_error, "node_spacing_m": float(result.node_spacing_m),
-        "elements_across": options.elements_across, "max_law_error": float(np.max(np.abs(law_approach / approach - 1))),
+        "analytic_law": law.name,
+        "rod_compliance_m_per_N": compliance,
+        "load_margin": LOAD_MARGIN,
+        "rigid_peak_force_N": peak / LOAD_MARGIN,
+        "max_force_N": float(force[-1]),
+        "interpolation_error_half": interpolation_error,
+        "node_spacing_m": float(result.node_spacing_m),
+        "elements_across": options.elements_across,
+        "max_law_error": float(np.max(np.abs(law_approach / approach - 1))),
     }
-    log.info("case %s: %d points up to %.4g N; the %s law's approach differs by up to %.2f %%; interpolation "
-             "error (every other point) %.2e", case["id"], len(force), force[-1], law.name,
-             100 * summary["max_law_error"], interpolation_error)
-    data = {"approach_m": approach, "force_N": force, "contact_radius_m": radius, "displacement_m": displacements,
-            "law_approach_m": law_approach}
+    log.info(
+        "case %s: %d points up to %.4g N; the %s law's approach differs by up to %.2f %%; interpolation "
+        "error (every other point) %.2e",
+        case["id"],
+        len(force),
+        force[-1],
+        law.name,
+        100 * summary["max_law_error"],
+        interpolation_error,
+    )
+    data = {
+        "approach_m": approach,
+        "force_N": force,
+        "contact_radius_m": radius,
+        "displacement_m": displacements,
+        "law_approach_m": law_approach,
+    }
     return ContactCurve(case_id=str(case["id"]), data=data, summary=summary, config=dict(case))
 
 
@@ -127,8 +151,9 @@ def indentation_to_file(case: Mapping[str, Any], path: str, settings: Mapping[st
     write_contact_curve(path, indentation_curve(case, settings))
 
 
-def indentations_into(cases: Sequence[Mapping[str, Any]], directory: str | Path,
-                      settings: Mapping[str, Any] | None = None) -> list[Path]:
+def indentations_into(
+    cases: Sequence[Mapping[str, Any]], directory: str | Path, settings: Mapping[str, Any] | None = None
+) -> list[Path]:
     """:func:`indentation_to_file` of every case, to ``directory/{case}.h5``: the curves of one group's
     cases, the directory appearing whole or not at all
     (:func:`~rodimpact.storage.atomic.atomic_directory`); the files written."""

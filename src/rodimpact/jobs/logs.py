@@ -30,8 +30,9 @@ def one_line(error: BaseException, outputs: Sequence[str] = ()) -> str:
 
 
 @contextlib.contextmanager
-def script_logging(log_path: str | Path, level: int = logging.INFO,
-                   outputs: Sequence[str] = ()) -> Iterator[logging.Logger]:
+def script_logging(
+    log_path: str | Path, level: int = logging.INFO, outputs: Sequence[str] = ()
+) -> Iterator[logging.Logger]:
     """Send log records to ``log_path`` and stderr; log any exception before re-raising it.
 
     An error of :data:`ONE_LINE_ERRORS` is logged as one line (naming ``outputs``, the job's
@@ -39,18 +40,29 @@ def script_logging(log_path: str | Path, level: int = logging.INFO,
     traceback; any other exception is logged with its traceback and raised.
     """
     Path(log_path).parent.mkdir(parents=True, exist_ok=True)
-    handlers: list[logging.Handler] = [logging.FileHandler(log_path, mode="w", encoding="utf-8"),
-                                       logging.StreamHandler(sys.stderr)]
-    logging.basicConfig(level=level, handlers=handlers, force=True,
-                        format="%(asctime)s %(levelname)s %(name)s: %(message)s")
+    handlers: list[logging.Handler] = [
+        logging.FileHandler(log_path, mode="w", encoding="utf-8"),
+        logging.StreamHandler(sys.stderr),
+    ]
+    logging.basicConfig(
+        level=level, handlers=handlers, force=True, format="%(asctime)s %(levelname)s %(name)s: %(message)s"
+    )
     logging.getLogger("skfem").setLevel(logging.WARNING)  # per-assembly chatter
     logger = logging.getLogger(f"{__package__}.script")  # loggers are named after their module
     # errors raised while objects are freed (h5py's handles of a file whose write failed) go
     # to the log file only: the failure itself is reported once, below
     previous_hook = sys.unraisablehook
-    sys.unraisablehook = lambda raised: handlers[0].handle(logger.makeRecord(
-        logger.name, logging.DEBUG, __file__, 0, "ignored while freeing %r: %s",
-        (raised.object, raised.exc_value), None))
+    sys.unraisablehook = lambda raised: handlers[0].handle(
+        logger.makeRecord(
+            logger.name,
+            logging.DEBUG,
+            __file__,
+            0,
+            "ignored while freeing %r: %s",
+            (raised.object, raised.exc_value),
+            None,
+        )
+    )
     try:
         yield logger
     except ONE_LINE_ERRORS as error:

@@ -23,13 +23,17 @@ def _processor() -> str:
 def machine_info() -> dict[str, Any]:
     """Host name, processor model, logical CPUs, CPUs this process may use, system and Python."""
     usable = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
-    return {"machine": platform.node(), "processor": _processor(), "cpu_count": os.cpu_count(),
-            "usable_cpus": usable, "system": f"{platform.system()} {platform.release()}",
-            "python": platform.python_version()}
+    return {
+        "machine": platform.node(),
+        "processor": _processor(),
+        "cpu_count": os.cpu_count(),
+        "usable_cpus": usable,
+        "system": f"{platform.system()} {platform.release()}",
+        "python": platform.python_version(),
+    }
 
 
 def machine_description() -> str:
     """The machine in one line: processor; logical CPUs, usable; system."""
     info = machine_info()
-    return (f"{info['processor']}; {info['cpu_count']} logical CPUs, {info['usable_cpus']} usable; "
-            f"{info['system']}")
+    return f"{info['processor']}; {info['cpu_count']} logical CPUs, {info['usable_cpus']} usable; {info['system']}"

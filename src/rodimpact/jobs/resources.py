@@ -82,8 +82,9 @@ def _job(costs: Iterable[tuple[Cost, float]], threads: int = 1) -> JobResources:
     seconds = STARTUP_S + sum(cost.solve_s * repeats for cost, repeats in costs)
     mib = SNAKEMAKE_MIB + PYTHON_MIB + max(cost.mem_mib for cost, _ in costs)
     mem_mb = max(MIN_MEM_MB, 50 * math.ceil(SAFETY * mib * _MIB / 1e6 / 50))
-    return JobResources(threads=threads, mem_mb=mem_mb,
-                        runtime_min=max(MIN_RUNTIME_MIN, math.ceil(SAFETY * seconds / 60.0)))
+    return JobResources(
+        threads=threads, mem_mb=mem_mb, runtime_min=max(MIN_RUNTIME_MIN, math.ceil(SAFETY * seconds / 60.0))
+    )
 
 
 def _timed_repeats(timing: Mapping[str, Any] | None, solve_s: float) -> float:
@@ -115,8 +116,9 @@ def _cost(case: Mapping[str, Any], method: str) -> Cost:
         raise ValueError(f"case: case {case.get('id')!r} cannot be estimated for {method!r}: {error}") from None
 
 
-def estimate_resources(case: Mapping[str, Any], method: str, *,
-                       timing: Mapping[str, Any] | None = None) -> JobResources:
+def estimate_resources(
+    case: Mapping[str, Any], method: str, *, timing: Mapping[str, Any] | None = None
+) -> JobResources:
     """Threads, memory and run time of the job that runs ``method`` on ``case``.
 
     Parameters
@@ -147,8 +149,12 @@ def estimate_resources(case: Mapping[str, Any], method: str, *,
     return _job([(cost, _timed_repeats(timing, cost.solve_s))])
 
 
-def estimate_sequence(runs: Iterable[tuple[Mapping[str, Any], str, int]], *,
-                      timing: Mapping[str, Any] | None = None, extra: Iterable[Cost] = ()) -> JobResources:
+def estimate_sequence(
+    runs: Iterable[tuple[Mapping[str, Any], str, int]],
+    *,
+    timing: Mapping[str, Any] | None = None,
+    extra: Iterable[Cost] = (),
+) -> JobResources:
     """Resources of one job that solves several runs one after another (a benchmark, a batch).
 
     Parameters

@@ -67,10 +67,19 @@ _STUDY_ERRORS = (ValueError, RuntimeError, ArithmeticError, MemoryError)
 
 def _failure_record(error: BaseException) -> tuple[dict, dict]:
     """Series and summary of a run that raised: the error's type and message, no numbers."""
-    summary = {"contact_time_s": math.nan, "peak_force_N": np.empty(0), "peak_time_s": np.empty(0),
-               "rebound_velocity_m_s": math.nan, "energy_error": math.nan, "n_contacts": 0,
-               "contact_start_s": np.empty(0), "contact_end_s": np.empty(0), "success": False,
-               "status": "error", "message": f"{type(error).__name__}: {error}"}
+    summary = {
+        "contact_time_s": math.nan,
+        "peak_force_N": np.empty(0),
+        "peak_time_s": np.empty(0),
+        "rebound_velocity_m_s": math.nan,
+        "energy_error": math.nan,
+        "n_contacts": 0,
+        "contact_start_s": np.empty(0),
+        "contact_end_s": np.empty(0),
+        "success": False,
+        "status": "error",
+        "message": f"{type(error).__name__}: {error}",
+    }
     return {"time": (np.zeros(1), "s", "time since first contact")}, summary
 
 
@@ -84,8 +93,10 @@ def _with_curve(case: Mapping[str, Any], curve: str | Path | ContactCurve | None
             raise ValueError(f"contact_curve: case {case['id']!r} has the {law.name} law, which takes no curve")
         return case
     if curve is None:
-        raise ValueError(f"contact_curve: case {case['id']!r} has the {law.name} law and needs its curve file "
-                         f"(rule {law.needs.curve_rule})")
+        raise ValueError(
+            f"contact_curve: case {case['id']!r} has the {law.name} law and needs its curve file "
+            f"(rule {law.needs.curve_rule})"
+        )
     where = "the curve computed in this job" if isinstance(curve, ContactCurve) else str(curve)
     if not isinstance(curve, ContactCurve):
         curve = read_contact_curve(curve)
@@ -94,10 +105,19 @@ def _with_curve(case: Mapping[str, Any], curve: str | Path | ContactCurve | None
     return {**case, "contact": {**contact, "curve": curve.law_curve()}}
 
 
-def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: int | None = None, *,
-                keep_failed: bool = False, timing: Timing | None = None,
-                study: Mapping[str, Any] | None = None, case_file: str | Path | Mapping[str, str] | None = None,
-                contact_curve: str | Path | ContactCurve | None = None, code_version: str | None = None) -> Path:
+def run_to_file(
+    case: Mapping[str, Any],
+    method: str,
+    path: str | Path,
+    level: int | None = None,
+    *,
+    keep_failed: bool = False,
+    timing: Timing | None = None,
+    study: Mapping[str, Any] | None = None,
+    case_file: str | Path | Mapping[str, str] | None = None,
+    contact_curve: str | Path | ContactCurve | None = None,
+    code_version: str | None = None,
+) -> Path:
     """Solve and write ``path`` (HDF5, atomically); returns the path.
 
     Only the outputs the case lists are stored (the strain field, ``strain_field``, by the
@@ -139,8 +159,9 @@ def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: i
     if study is not None:
         config["run"]["study"] = dict(study)
     if case_file is not None:
-        config["run"]["case_file"] = dict(case_file) if isinstance(case_file, Mapping) else \
-            case_file_reference(case_file, case["id"])
+        config["run"]["case_file"] = (
+            dict(case_file) if isinstance(case_file, Mapping) else case_file_reference(case_file, case["id"])
+        )
     case = _with_curve(case, contact_curve)
     if isinstance(contact_curve, ContactCurve):
         config["run"]["contact_curve"] = {"computed_in_job": True, "summary": dict(contact_curve.summary)}
@@ -157,8 +178,11 @@ def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: i
                 raise
             error = caught
         walls.append(time.perf_counter() - started)
-        if error is not None or (len(walls) >= timing.min_repeats and sum(walls) >= timing.min_total_s) \
-                or sum(walls) >= timing.max_total_s:
+        if (
+            error is not None
+            or (len(walls) >= timing.min_repeats and sum(walls) >= timing.min_total_s)
+            or sum(walls) >= timing.max_total_s
+        ):
             break
     wall = float(np.median(walls))
     if error is not None:
@@ -170,7 +194,20 @@ def run_to_file(case: Mapping[str, Any], method: str, path: str | Path, level: i
     if timed:
         from rodimpact.jobs.machine import machine_description  # only a timed run names its machine
 
-        summary.update(wall_time_repeats=len(walls), wall_time_min_s=min(walls), wall_time_median_s=wall,
-                       wall_time_max_s=max(walls), machine=machine_description())
-    return write_run(path, config=config, method=method, series=series, summary=summary, wall_time_s=wall,
-                     code_version=code_version, field=field)
+        summary.update(
+            wall_time_repeats=len(walls),
+            wall_time_min_s=min(walls),
+            wall_time_median_s=wall,
+            wall_time_max_s=max(walls),
+            machine=machine_description(),
+        )
+    return write_run(
+        path,
+        config=config,
+        method=method,
+        series=series,
+        summary=summary,
+        wall_time_s=wall,
+        code_version=code_version,
+        field=field,
+    )

@@ -35,8 +35,15 @@ from rodimpact.storage.atomic import atomic_directory
 from rodimpact.storage.bands import CaseBand, write_band
 from rodimpact.storage.curves import read_contact_curve
 
-__all__ = ["StackParameter", "calibrated_time_us", "sensor_band", "sensor_band_to_file", "sensor_bands_into",
-           "stack_parameters", "with_values"]
+__all__ = [
+    "StackParameter",
+    "calibrated_time_us",
+    "sensor_band",
+    "sensor_band_to_file",
+    "sensor_bands_into",
+    "stack_parameters",
+    "with_values",
+]
 
 log = logging.getLogger(__name__)
 
@@ -80,8 +87,9 @@ def stack_parameters(case: Mapping[str, Any]) -> list[StackParameter]:
     layers = _stack(case)["layers"]
     parameters: list[StackParameter] = []
     for layer in layers:
-        parameter = StackParameter(f"{layer['name']}: thickness_m", float(layer["thickness_m"]),
-                                   *map(float, layer["thickness_range_m"]))
+        parameter = StackParameter(
+            f"{layer['name']}: thickness_m", float(layer["thickness_m"]), *map(float, layer["thickness_range_m"])
+        )
         same = [p for p in parameters if p.name == parameter.name]
         if same and same[0] != parameter:
             raise ValueError(f"case {case['id']!r}: the layers named {layer['name']!r} differ in thickness or range")
@@ -94,8 +102,9 @@ def stack_parameters(case: Mapping[str, Any]) -> list[StackParameter]:
             continue
         seen.add(material["name"])
         for constant, (low, high) in sorted((material.get("ranges") or {}).items()):
-            parameters.append(StackParameter(f"{material['name']}: {constant}", float(material[constant]),
-                                             float(low), float(high)))
+            parameters.append(
+                StackParameter(f"{material['name']}: {constant}", float(material[constant]), float(low), float(high))
+            )
     return parameters
 
 
@@ -124,8 +133,12 @@ def with_values(case: Mapping[str, Any], values: Mapping[str, float]) -> dict[st
     return changed
 
 
-def calibrated_time_us(case: Mapping[str, Any], settings: Mapping[str, Any] | None = None,
-                       method: str = "sem", curve: Mapping[str, Any] | None = None) -> float:
+def calibrated_time_us(
+    case: Mapping[str, Any],
+    settings: Mapping[str, Any] | None = None,
+    method: str = "sem",
+    curve: Mapping[str, Any] | None = None,
+) -> float:
     """Contact time, us, of ``method`` with the law the continuum's indentation of the case gives
     (``curve``: that law's curve, already computed, as ``ContactCurve.law_curve`` gives it)."""
     law_curve = indentation_curve(case, settings).law_curve() if curve is None else curve
@@ -133,9 +146,15 @@ def calibrated_time_us(case: Mapping[str, Any], settings: Mapping[str, Any] | No
     return 1e6 * run_case(with_curve, method).contact_time_s
 
 
-def sensor_band(case: Mapping[str, Any], settings: Mapping[str, Any] | None = None, method: str = "sem",
-                grid: Mapping[str, Sequence[float]] | None = None, *, band: bool = True,
-                nominal_curve: Mapping[str, Any] | None = None) -> CaseBand:
+def sensor_band(
+    case: Mapping[str, Any],
+    settings: Mapping[str, Any] | None = None,
+    method: str = "sem",
+    grid: Mapping[str, Sequence[float]] | None = None,
+    *,
+    band: bool = True,
+    nominal_curve: Mapping[str, Any] | None = None,
+) -> CaseBand:
     """The band of one case (see the module docstring).
 
     Parameters
@@ -166,8 +185,10 @@ def sensor_band(case: Mapping[str, Any], settings: Mapping[str, Any] | None = No
     axis_values, axis_us = {}, {}
     for p in parameters:
         values = sorted({p.low, p.nominal, p.high, *map(float, (grid or {}).get(p.name, ()))})
-        times = [nominal_us if v == p.nominal else calibrated_time_us(with_values(case, {p.name: v}), settings, method)
-                 for v in values]
+        times = [
+            nominal_us if v == p.nominal else calibrated_time_us(with_values(case, {p.name: v}), settings, method)
+            for v in values
+        ]
         axis_values[p.name], axis_us[p.name] = np.asarray(values), np.asarray(times)
     # each parameter's end that lengthens the contact, from its own axis
     longer = {}
@@ -175,24 +196,51 @@ def sensor_band(case: Mapping[str, Any], settings: Mapping[str, Any] | None = No
         values, times = axis_values[p.name], axis_us[p.name]
         at_low, at_high = times[values == p.low][0], times[values == p.high][0]
         longer[p.name] = (p.high, p.low) if at_high >= at_low else (p.low, p.high)
-    corners = np.array([[longer[n][0] for n in names], [longer[n][1] for n in names]] if band else np.empty((0, len(names))))
-    corner_us = np.array([calibrated_time_us(with_values(case, dict(zip(names, c))), settings, method)
-                          for c in corners])
+    corners = np.array(
+        [[longer[n][0] for n in names], [longer[n][1] for n in names]] if band else np.empty((0, len(names)))
+    )
+    corner_us = np.array(
+        [calibrated_time_us(with_values(case, dict(zip(names, c))), settings, method) for c in corners]
+    )
     measured = (case.get("measured") or {}).get("contact_time_us")
-    band = CaseBand(case_id=str(case["id"]), measured_us=math.nan if measured is None else float(measured),
-                    nominal_us=nominal_us, corner_parameters=corners, corner_us=corner_us,
-                    axis_values=axis_values, axis_us=axis_us, parameters=names)
-    log.info("case %s: nominal %.2f us, band %.2f-%.2f us over %d constants, monotone along every axis: %s",
-             band.case_id, band.nominal_us, band.band_min_us, band.band_max_us, len(names), band.monotone)
+    band = CaseBand(
+        case_id=str(case["id"]),
+        measured_us=math.nan if measured is None else float(measured),
+        nominal_us=nominal_us,
+        corner_parameters=corners,
+        corner_us=corner_us,
+        axis_values=axis_values,
+        axis_us=axis_us,
+        parameters=names,
+    )
+    log.info(
+        "case %s: nominal %.2f us, band %.2f-%.2f us over %d constants, monotone along every axis: %s",
+        band.case_id,
+        band.nominal_us,
+        band.band_min_us,
+        band.band_max_us,
+        len(names),
+        band.monotone,
+    )
     if not band.monotone:
-        log.warning("case %s: the contact time is not monotone along some constant's range; the corners may not "
-                    "bound it", band.case_id)
+        log.warning(
+            "case %s: the contact time is not monotone along some constant's range; the corners may not bound it",
+            band.case_id,
+        )
     return band
 
 
-def sensor_band_to_file(case: Mapping[str, Any], variant: str, path: str, settings: Mapping[str, Any] | None = None,
-                        method: str = "sem", grid: Mapping[str, Sequence[float]] | None = None, *,
-                        band: bool = True, curve_file: str | None = None) -> None:
+def sensor_band_to_file(
+    case: Mapping[str, Any],
+    variant: str,
+    path: str,
+    settings: Mapping[str, Any] | None = None,
+    method: str = "sem",
+    grid: Mapping[str, Sequence[float]] | None = None,
+    *,
+    band: bool = True,
+    curve_file: str | None = None,
+) -> None:
     """:func:`sensor_band` of ``case``, written atomically to ``path``; the nominal stack's law
     from ``curve_file`` (the case's ``indentation`` output) when given.
 
@@ -207,20 +255,40 @@ def sensor_band_to_file(case: Mapping[str, Any], variant: str, path: str, settin
         if curve.case_id != case["id"]:
             raise ValueError(f"curve_file: {curve_file} is the curve of case {curve.case_id!r}, not {case['id']!r}")
         nominal = curve.law_curve()
-    write_band(path, [sensor_band(case, settings, method, grid, band=band, nominal_curve=nominal)], variant=variant,
-               method=method, config=dict(case))
+    write_band(
+        path,
+        [sensor_band(case, settings, method, grid, band=band, nominal_curve=nominal)],
+        variant=variant,
+        method=method,
+        config=dict(case),
+    )
 
 
-def sensor_bands_into(cases: Sequence[Mapping[str, Any]], variant: str, directory: str | Path,
-                      settings: Mapping[str, Any] | None = None, method: str = "sem",
-                      grid: Mapping[str, Sequence[float]] | None = None, *, band: bool = True,
-                      curve_files: Mapping[str, str] | None = None) -> list[Path]:
+def sensor_bands_into(
+    cases: Sequence[Mapping[str, Any]],
+    variant: str,
+    directory: str | Path,
+    settings: Mapping[str, Any] | None = None,
+    method: str = "sem",
+    grid: Mapping[str, Sequence[float]] | None = None,
+    *,
+    band: bool = True,
+    curve_files: Mapping[str, str] | None = None,
+) -> list[Path]:
     """:func:`sensor_band_to_file` of every case of one reading, to ``directory/{case}.h5`` (the
     nominal stack's law from ``curve_files[case id]`` where given), the directory appearing whole
     or not at all (:func:`~rodimpact.storage.atomic.atomic_directory`); the files written."""
     directory = Path(directory)
     with atomic_directory(directory) as tmp:
         for case in cases:
-            sensor_band_to_file(case, variant, str(tmp / f"{case['id']}.h5"), settings, method, grid, band=band,
-                                curve_file=(curve_files or {}).get(case["id"]))
+            sensor_band_to_file(
+                case,
+                variant,
+                str(tmp / f"{case['id']}.h5"),
+                settings,
+                method,
+                grid,
+                band=band,
+                curve_file=(curve_files or {}).get(case["id"]),
+            )
     return [directory / f"{case['id']}.h5" for case in cases]

@@ -20,4 +20,6 @@ class Timing:
         if int(self.min_repeats) != self.min_repeats or self.min_repeats < 1:
             raise ValueError(f"min_repeats must be an integer >= 1, got {self.min_repeats!r}")
         if not (self.min_total_s >= 0 and self.max_total_s >= 0):
-            raise ValueError(f"min_total_s and max_total_s must be >= 0, got {self.min_total_s!r}, {self.max_total_s!r}")
+            raise ValueError(
+                f"min_total_s and max_total_s must be >= 0, got {self.min_total_s!r}, {self.max_total_s!r}"
+            )

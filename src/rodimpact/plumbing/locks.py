@@ -85,8 +85,9 @@ def runs_snakemake(command: list[str]) -> bool:
         if argument in _PYTHON_OPTIONS_WITH_VALUE:
             next(arguments, None)
         elif not argument.startswith("-"):  # the script
-            return (os.path.basename(argument) == "snakemake"
-                    or argument.endswith(os.path.join("snakemake", "__main__.py")))
+            return os.path.basename(argument) == "snakemake" or argument.endswith(
+                os.path.join("snakemake", "__main__.py")
+            )
     return False
 
 
@@ -164,5 +165,7 @@ def release_stale_lock(root: str | Path, proc: Path = _PROC) -> str | None:
     for lock in locks:
         with contextlib.suppress(FileNotFoundError):
             lock.unlink()
-    return (f"rodimpact: released snakemake's lock of {root.resolve()}: no run holds it (one was killed); "
-            "its unfinished outputs are remade")
+    return (
+        f"rodimpact: released snakemake's lock of {root.resolve()}: no run holds it (one was killed); "
+        "its unfinished outputs are remade"
+    )

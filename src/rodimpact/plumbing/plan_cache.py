@@ -158,15 +158,20 @@ class PlanCache:
         except Exception as error:  # noqa: BLE001 (a damaged or foreign file is only a miss)
             log.warning("ignoring the plan cache %s: %s", self.path, error)
             return {}, {}
-        if isinstance(stored, dict) and stored.get("format") == _FORMAT and stored.get("fingerprint") == self.fingerprint:
+        if (
+            isinstance(stored, dict)
+            and stored.get("format") == _FORMAT
+            and stored.get("fingerprint") == self.fingerprint
+        ):
             return dict(stored["projects"]), dict(stored["estimates"])
         return {}, {}
 
     def _read(self) -> None:
         self._projects, self._estimates = self._stored()
 
-    def project(self, config: Mapping[str, Any], root: str | Path, load: Callable[[], T],
-                schema_dir: str | Path | None = None) -> T:
+    def project(
+        self, config: Mapping[str, Any], root: str | Path, load: Callable[[], T], schema_dir: str | Path | None = None
+    ) -> T:
         """The checked project of ``config`` under ``root`` (schemas in ``schema_dir``, default
         ``<root>/workflow/schemas``): cached, or ``load()`` (which raises for a bad input; nothing
         is cached then)."""
@@ -208,8 +213,12 @@ class PlanCache:
                     del self._projects[next(iter(self._projects))]
                 while len(self._estimates) > MAX_ESTIMATES:
                     del self._estimates[next(iter(self._estimates))]
-                stored = {"format": _FORMAT, "fingerprint": self.fingerprint, "projects": self._projects,
-                          "estimates": self._estimates}
+                stored = {
+                    "format": _FORMAT,
+                    "fingerprint": self.fingerprint,
+                    "projects": self._projects,
+                    "estimates": self._estimates,
+                }
                 with atomic_output(self.path) as tmp:
                     tmp.write_bytes(pickle.dumps(stored, protocol=pickle.HIGHEST_PROTOCOL))
         except OSError as error:

@@ -100,8 +100,9 @@ def _literal_prefix(pattern: str) -> str:
     return pattern.split("{", 1)[0]
 
 
-def unknown_target_message(target: str, patterns: Iterable[str], rule_names: Sequence[str],
-                           batch: tuple[str, str] | None = None) -> str:
+def unknown_target_message(
+    target: str, patterns: Iterable[str], rule_names: Sequence[str], batch: tuple[str, str] | None = None
+) -> str:
     """One line saying that no rule makes ``target``, with what the nearest folder offers.
 
     Parameters
@@ -123,8 +124,10 @@ def unknown_target_message(target: str, patterns: Iterable[str], rule_names: Seq
         folder of the target holds any output).
     """
     if batch is not None:
-        return (f"no rule makes {target!r} alone: it would be a file of {batch[0]}, which rule {batch[1]} writes "
-                f"as a whole (one job for all its runs); ask for {batch[0]}")
+        return (
+            f"no rule makes {target!r} alone: it would be a file of {batch[0]}, which rule {batch[1]} writes "
+            f"as a whole (one job for all its runs); ask for {batch[0]}"
+        )
     patterns = sorted({plain_pattern(p) for p in patterns})
     parts = target.split("/")[:-1]
     for depth in range(len(parts), 0, -1):

@@ -48,15 +48,31 @@ from rodimpact.storage.curves import read_contact_curve
 from rodimpact.storage.runs import read_run
 from rodimpact.storage.sidecar import provenance_record, write_provenance
 
-__all__ = ["make_comparison", "make_fig2", "make_fig4", "make_fig_film_force", "make_fig_readings",
-           "make_film_band_table", "make_film_indentation_table", "make_stability", "make_stability_map",
-           "make_sweep_table", "make_readings_table", "make_film_table", "make_readings_summary", "make_work_precision",
-           "make_work_precision_figure", "make_fig_force_fit", "case_in_words"]
+__all__ = [
+    "make_comparison",
+    "make_fig2",
+    "make_fig4",
+    "make_fig_film_force",
+    "make_fig_readings",
+    "make_film_band_table",
+    "make_film_indentation_table",
+    "make_stability",
+    "make_stability_map",
+    "make_sweep_table",
+    "make_readings_table",
+    "make_film_table",
+    "make_readings_summary",
+    "make_work_precision",
+    "make_work_precision_figure",
+    "make_fig_force_fit",
+    "case_in_words",
+]
 
 log = logging.getLogger(__name__)
 
-READING_CAPTION = ("{title}, rod reading {variant}: {reading}. Contact times in µs; errors "
-                   "|model − measured| / measured in %.")
+READING_CAPTION = (
+    "{title}, rod reading {variant}: {reading}. Contact times in µs; errors |model − measured| / measured in %."
+)
 
 
 def _by_variant(runs: Sequence[str | Path], variants: Sequence[str]):
@@ -69,9 +85,18 @@ def _outputs(*paths: str | Path | None) -> list[str | Path]:
     return [p for p in paths if p is not None]
 
 
-def make_readings_table(runs: Sequence[str | Path], variant: str, *, title: str, csv: str | Path, md: str | Path,
-                        tex: str | Path, provenance: str | Path, html: str | Path | None = None,
-                        reference: str = "") -> None:
+def make_readings_table(
+    runs: Sequence[str | Path],
+    variant: str,
+    *,
+    title: str,
+    csv: str | Path,
+    md: str | Path,
+    tex: str | Path,
+    provenance: str | Path,
+    html: str | Path | None = None,
+    reference: str = "",
+) -> None:
     """One reading of a set with variants (for the paper's set, ``title`` "Table 2": Table 2 for
     one reading of the rod), the LaTeX and HTML in two panels: the contact times, the errors; with
     its provenance sidecar. ``reference``: the work the set comes from, in the LaTeX caption."""
@@ -80,23 +105,46 @@ def make_readings_table(runs: Sequence[str | Path], variant: str, *, title: str,
     if wrong:
         raise ValueError(f"runs: cases {wrong} do not belong to variant {variant!r}")
     frame = table2_frame(records)
-    caption = READING_CAPTION.format(title=title, variant=variant,
-                                     reading=reading_words(records[0].config) if records else "")
-    write_table(frame, csv=csv, md=md, html=html, tex=tex, caption=caption,
-                views=reading_views(frame, variant, records, title, reference))
+    caption = READING_CAPTION.format(
+        title=title, variant=variant, reading=reading_words(records[0].config) if records else ""
+    )
+    write_table(
+        frame,
+        csv=csv,
+        md=md,
+        html=html,
+        tex=tex,
+        caption=caption,
+        views=reading_views(frame, variant, records, title, reference),
+    )
     write_provenance(provenance, records, _outputs(csv, md, html, tex))
     log.info("%s (%s): %d rows from %d runs", title, variant, len(frame), len(records))
 
 
-def make_readings_summary(runs: Sequence[str | Path], variants: Sequence[str], *, csv: str | Path,
-                         md: str | Path, provenance: str | Path, html: str | Path | None = None) -> None:
+def make_readings_summary(
+    runs: Sequence[str | Path],
+    variants: Sequence[str],
+    *,
+    csv: str | Path,
+    md: str | Path,
+    provenance: str | Path,
+    html: str | Path | None = None,
+) -> None:
     """Per variant and method, the mean and max error against the measurements."""
     records, frames = _by_variant(runs, variants)
     readings = readings_frame(records).set_index("variant").to_dict("index")
     summary = variants_summary(frames, readings)
-    write_table(summary, csv=csv, md=md, html=html, views=variants_views(summary), caption=(
-        "Error against the measured contact times, per rod geometry reading (with or without the sensor "
-        "film, and its contact law) and method, next to the paper's own errors (%)."))
+    write_table(
+        summary,
+        csv=csv,
+        md=md,
+        html=html,
+        views=variants_views(summary),
+        caption=(
+            "Error against the measured contact times, per rod geometry reading (with or without the sensor "
+            "film, and its contact law) and method, next to the paper's own errors (%)."
+        ),
+    )
     write_provenance(provenance, records, _outputs(csv, md, html))
 
 
@@ -108,8 +156,9 @@ def _one_case(records: Sequence, what: str) -> str:
     return cases[0]
 
 
-def _save_figure(fig, records: Sequence, *, pdf: str | Path, png: str | Path, provenance: str | Path,
-                 title: str) -> None:
+def _save_figure(
+    fig, records: Sequence, *, pdf: str | Path, png: str | Path, provenance: str | Path, title: str
+) -> None:
     """Save a figure (its provenance in the PDF/PNG metadata) and its provenance sidecar."""
     from rodimpact.present.figures import save_figure
 
@@ -117,8 +166,17 @@ def _save_figure(fig, records: Sequence, *, pdf: str | Path, png: str | Path, pr
     write_provenance(provenance, records, [pdf, png])
 
 
-def _table_artifact(runs: Sequence[str | Path], build, views, *, csv: str | Path, md: str | Path,
-                    html: str | Path | None, provenance: str | Path, caption: str) -> None:
+def _table_artifact(
+    runs: Sequence[str | Path],
+    build,
+    views,
+    *,
+    csv: str | Path,
+    md: str | Path,
+    html: str | Path | None,
+    provenance: str | Path,
+    caption: str,
+) -> None:
     """Read the runs, build a frame from them, write it as CSV, Markdown and HTML (its panels
     ``views(frame)``) with provenance."""
     records = load_records(runs)
@@ -134,8 +192,9 @@ def case_in_words(config: Mapping[str, Any]) -> str:
     if rod.get("radius_m") is not None:
         words = f"rod radius {1000 * float(rod['radius_m']):.3g} mm, length {1000 * float(rod['length_m']):.3g} mm"
     else:
-        words = (f"rod length {1000 * float(rod['length_m']):.3g} mm, "
-                 f"cross-section {1e6 * float(rod['area_m2']):.3g} mm²")
+        words = (
+            f"rod length {1000 * float(rod['length_m']):.3g} mm, cross-section {1e6 * float(rod['area_m2']):.3g} mm²"
+        )
     description = str(config.get("description") or "").strip()
     return f"{description}; {words}" if description else words[0].upper() + words[1:]
 
@@ -147,12 +206,12 @@ def make_fig2(runs: Sequence[str | Path], *, pdf: str | Path, png: str | Path, p
     records = [read_run(p) for p in runs]
     case = _one_case(records, "Fig. 2")
     fig = plot_contact_force(records, title=f"Contact force, case {case!r} (Fig. 2 of the paper)")
-    _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance,
-                 title="Fig. 2: contact force against time")
+    _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance, title="Fig. 2: contact force against time")
 
 
-def make_fig4(runs: Sequence[str | Path], fraction: float, *, pdf: str | Path, png: str | Path,
-              provenance: str | Path) -> None:
+def make_fig4(
+    runs: Sequence[str | Path], fraction: float, *, pdf: str | Path, png: str | Path, provenance: str | Path
+) -> None:
     """Fig. 4: displacement of the cross-section at ``fraction`` of the rod length, every
     stored run of one case that recorded stations."""
     from rodimpact.present.figures import plot_station_displacement
@@ -160,17 +219,36 @@ def make_fig4(runs: Sequence[str | Path], fraction: float, *, pdf: str | Path, p
     records = [read_run(p) for p in runs]
     records = [r for r in records if "station_displacement" in r.series]
     case = _one_case(records, "Fig. 4 (runs with station histories)")
-    fig = plot_station_displacement(records, fraction, title=(
-        f"Displacement at {fraction:g} of the rod length, case {case!r} (Fig. 4 of the paper)"))
-    _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance,
-                 title="Fig. 4: displacement of a cross-section of the rod against time")
+    fig = plot_station_displacement(
+        records,
+        fraction,
+        title=(f"Displacement at {fraction:g} of the rod length, case {case!r} (Fig. 4 of the paper)"),
+    )
+    _save_figure(
+        fig,
+        records,
+        pdf=pdf,
+        png=png,
+        provenance=provenance,
+        title="Fig. 4: displacement of a cross-section of the rod against time",
+    )
 
 
-def make_fig_readings(runs: Sequence[str | Path], variants: Sequence[str], *, pdf: str | Path,
-                    png: str | Path, provenance: str | Path, sweep_runs: Sequence[str | Path] = (),
-                    film_variants: Sequence[str] = (), band_files: Sequence[str | Path] = (),
-                    descriptions: Mapping[str, str] | None = None, sensors: Mapping[str, bool] | None = None,
-                    sensor_band_files: Sequence[str | Path] = (), title: str) -> None:
+def make_fig_readings(
+    runs: Sequence[str | Path],
+    variants: Sequence[str],
+    *,
+    pdf: str | Path,
+    png: str | Path,
+    provenance: str | Path,
+    sweep_runs: Sequence[str | Path] = (),
+    film_variants: Sequence[str] = (),
+    band_files: Sequence[str | Path] = (),
+    descriptions: Mapping[str, str] | None = None,
+    sensors: Mapping[str, bool] | None = None,
+    sensor_band_files: Sequence[str | Path] = (),
+    title: str,
+) -> None:
     """Contact time against ball mass, one panel per rod, with the sweeps' curves; the readings
     with the film (``film_variants``) on the panel of their rod, with their bands (``band_files``).
 
@@ -189,17 +267,34 @@ def make_fig_readings(runs: Sequence[str | Path], variants: Sequence[str], *, pd
     sources = {r.case_id: str((r.config.get("measured") or {}).get("source", "")) for r in records}
     contacts = {(r.case_id, r.method): int(r.summary.get("n_contacts", 1)) for r in records}
     sensors = dict(sensors or {})
-    sensor_bands = sensor_band_frame([(v, b) for p in sensor_band_files for v, group in [read_band(p)] for b in group],
-                                     {r.case_id: r.config for r in records})
-    fig = plot_table2_contact_time(frames, sweep_results_frame(sweeps),
-                                   panels=table2_panels(readings, [*film_variants, *sensors]),
-                                   readings=readings, bands=bands, descriptions=descriptions, sources=sources,
-                                   contacts=contacts, sensors=sensors, sensor_bands=sensor_bands, set_title=title)
+    sensor_bands = sensor_band_frame(
+        [(v, b) for p in sensor_band_files for v, group in [read_band(p)] for b in group],
+        {r.case_id: r.config for r in records},
+    )
+    fig = plot_table2_contact_time(
+        frames,
+        sweep_results_frame(sweeps),
+        panels=table2_panels(readings, [*film_variants, *sensors]),
+        readings=readings,
+        bands=bands,
+        descriptions=descriptions,
+        sources=sources,
+        contacts=contacts,
+        sensors=sensors,
+        sensor_bands=sensor_bands,
+        set_title=title,
+    )
     artifacts = [pdf, png]
-    save_figure(fig, pdf=pdf, png=png, provenance=provenance_record([*records, *sweeps], artifacts),
-                title=f"{title}: contact time against ball mass")
-    write_provenance_with_files(provenance, [*records, *sweeps], artifacts,
-                                {"band": band_files, "sensor band": sensor_band_files})
+    save_figure(
+        fig,
+        pdf=pdf,
+        png=png,
+        provenance=provenance_record([*records, *sweeps], artifacts),
+        title=f"{title}: contact time against ball mass",
+    )
+    write_provenance_with_files(
+        provenance, [*records, *sweeps], artifacts, {"band": band_files, "sensor band": sensor_band_files}
+    )
 
 
 FILM_TABLE_CAPTION = (
@@ -210,12 +305,21 @@ FILM_TABLE_CAPTION = (
     "the sensor's prediction band from the continuum (calibrated SEM over the stack's sourced ranges), the "
     "film's band with the thin-layer law (approximation), each model's |model - measured| / measured, the "
     "contact radius over the film thickness (thin-layer law, SEM), and the model-form error of the "
-    "quasi-static contact: (calibrated SEM - continuum) / continuum, with the film and with the sensor.")
+    "quasi-static contact: (calibrated SEM - continuum) / continuum, with the film and with the sensor."
+)
 
 
-def make_film_table(runs: Sequence[str | Path], variants: Mapping[str, str], band: str | Path, *,
-                     csv: str | Path, md: str | Path, provenance: str | Path, html: str | Path | None = None,
-                     sensor_bands: Sequence[str | Path] = ()) -> None:
+def make_film_table(
+    runs: Sequence[str | Path],
+    variants: Mapping[str, str],
+    band: str | Path,
+    *,
+    csv: str | Path,
+    md: str | Path,
+    provenance: str | Path,
+    html: str | Path | None = None,
+    sensor_bands: Sequence[str | Path] = (),
+) -> None:
     """Table 2 on one rod without and with the film and the sensor as built
     (:func:`film_table_frame`), and its sidecar."""
     records = load_records(runs)
@@ -225,77 +329,158 @@ def make_film_table(runs: Sequence[str | Path], variants: Mapping[str, str], ban
     sensor = [b for p in sensor_bands for b in read_band(p)[1]]
     frame = film_table_frame(records, variants, bands, sensor_bands=sensor)
     write_table(frame, csv=csv, md=md, html=html, caption=FILM_TABLE_CAPTION, views=film_table_views(frame))
-    write_provenance_with_files(provenance, records, _outputs(csv, md, html),
-                                {"band": [band], "sensor band": sensor_bands})
+    write_provenance_with_files(
+        provenance, records, _outputs(csv, md, html), {"band": [band], "sensor band": sensor_bands}
+    )
     log.info("table 2 with the film: %d rows from %d runs", len(frame), len(records))
 
 
-def make_film_band_table(bands: Sequence[str | Path], case_files: Sequence[str | Path], *, csv: str | Path,
-                         md: str | Path, provenance: str | Path, html: str | Path | None = None) -> None:
+def make_film_band_table(
+    bands: Sequence[str | Path],
+    case_files: Sequence[str | Path],
+    *,
+    csv: str | Path,
+    md: str | Path,
+    provenance: str | Path,
+    html: str | Path | None = None,
+) -> None:
     """Every case of every band file (:func:`film_band_frame`); rows and masses from the case files."""
     cases = {record["case_id"]: record["case"] for path in case_files for record in read_case_file(path)["cases"]}
     frame = film_band_frame(dict(read_band(p) for p in bands), cases)
-    write_table(frame, csv=csv, md=md, html=html, views=film_band_views(frame), caption=(
-        "The sensor film's prediction band per Table 2 row and film reading: the SEM's contact time at the "
-        "film's nominal constants and its min and max over the box of their ranges (µs), whether the "
-        "measurement lies inside, and whether the time is monotone along each range (the corners bound it)."))
+    write_table(
+        frame,
+        csv=csv,
+        md=md,
+        html=html,
+        views=film_band_views(frame),
+        caption=(
+            "The sensor film's prediction band per Table 2 row and film reading: the SEM's contact time at the "
+            "film's nominal constants and its min and max over the box of their ranges (µs), whether the "
+            "measurement lies inside, and whether the time is monotone along each range (the corners bound it)."
+        ),
+    )
     write_provenance_with_files(provenance, [], _outputs(csv, md, html), {"band": bands, "case file": case_files})
-    log.info("film bands: %d cases of %d readings, %d measurements inside", len(frame), len(bands),
-             int(frame["measured_in_band"].sum()))
+    log.info(
+        "film bands: %d cases of %d readings, %d measurements inside",
+        len(frame),
+        len(bands),
+        int(frame["measured_in_band"].sum()),
+    )
 
 
-def make_film_indentation_table(curves: Sequence[str | Path], *, csv: str | Path, md: str | Path,
-                                provenance: str | Path, html: str | Path | None = None) -> None:
+def make_film_indentation_table(
+    curves: Sequence[str | Path],
+    *,
+    csv: str | Path,
+    md: str | Path,
+    provenance: str | Path,
+    html: str | Path | None = None,
+) -> None:
     """Every point of every indentation curve against its analytic law (:func:`film_indentation_frame`)."""
     frame = film_indentation_frame([read_contact_curve(p) for p in curves])
-    write_table(frame, csv=csv, md=md, html=html, views=film_indentation_views(frame), caption=(
-        "The continuum's static indentation (the calibrated contact laws) against the analytic law at the "
-        "same force (hertz_film with the film, hertz without): approaches (µm), the law's error "
-        "(law − continuum) / continuum (%), the contact radius (µm) and its ratio to the film thickness, and "
-        "the tabulated law's interpolation error (every other point)."))
+    write_table(
+        frame,
+        csv=csv,
+        md=md,
+        html=html,
+        views=film_indentation_views(frame),
+        caption=(
+            "The continuum's static indentation (the calibrated contact laws) against the analytic law at the "
+            "same force (hertz_film with the film, hertz without): approaches (µm), the law's error "
+            "(law − continuum) / continuum (%), the contact radius (µm) and its ratio to the film thickness, and "
+            "the tabulated law's interpolation error (every other point)."
+        ),
+    )
     write_provenance_with_files(provenance, [], _outputs(csv, md, html), {"contact curve": curves})
 
 
-def make_fig_film_force(runs: Sequence[str | Path], rows: Sequence[str], *, pdf: str | Path, png: str | Path,
-                        provenance: str | Path) -> None:
+def make_fig_film_force(
+    runs: Sequence[str | Path], rows: Sequence[str], *, pdf: str | Path, png: str | Path, provenance: str | Path
+) -> None:
     """The contact force with and without the film, one panel per row of ``rows``."""
     from rodimpact.present.film_figures import plot_film_force
 
     records = [read_run(p) for p in runs]
     rod = records[0].config["rod"]
-    fig = plot_film_force(records, rows, title=(
-        f"Contact force with and without the sensor film, rod radius {1000 * rod['radius_m']:g} mm, "
-        f"length {1000 * rod['length_m']:g} mm"))
-    _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance,
-                 title="Contact force with and without the sensor film")
+    fig = plot_film_force(
+        records,
+        rows,
+        title=(
+            f"Contact force with and without the sensor film, rod radius {1000 * rod['radius_m']:g} mm, "
+            f"length {1000 * rod['length_m']:g} mm"
+        ),
+    )
+    _save_figure(
+        fig, records, pdf=pdf, png=png, provenance=provenance, title="Contact force with and without the sensor film"
+    )
 
 
-def make_sweep_table(runs: Sequence[str | Path], *, csv: str | Path, md: str | Path,
-                     provenance: str | Path, html: str | Path | None = None) -> None:
+def make_sweep_table(
+    runs: Sequence[str | Path],
+    *,
+    csv: str | Path,
+    md: str | Path,
+    provenance: str | Path,
+    html: str | Path | None = None,
+) -> None:
     """Every sweep point's contact time and force, one row per point and method."""
-    _table_artifact(runs, sweep_results_frame, sweep_views, csv=csv, md=md, html=html, provenance=provenance,
-                    caption="Parameter sweeps: contact time (first contact, µs) and force maxima (N) at every point.")
+    _table_artifact(
+        runs,
+        sweep_results_frame,
+        sweep_views,
+        csv=csv,
+        md=md,
+        html=html,
+        provenance=provenance,
+        caption="Parameter sweeps: contact time (first contact, µs) and force maxima (N) at every point.",
+    )
 
 
-def make_comparison(runs: Sequence[str | Path], *, csv: str | Path, md: str | Path,
-                    provenance: str | Path, html: str | Path | None = None) -> None:
+def make_comparison(
+    runs: Sequence[str | Path],
+    *,
+    csv: str | Path,
+    md: str | Path,
+    provenance: str | Path,
+    html: str | Path | None = None,
+) -> None:
     """Fig. 2's numbers: contact time and each maximum per method, differences from the SEM,
     and the paper's 11 % and 9 % beside them."""
-    _table_artifact(runs, comparison_frame, comparison_views, csv=csv, md=md, html=html, provenance=provenance,
-                    caption=("Fig. 2, case 'model': contact time (µs) and force maxima (kN) of the first contact "
-                             "per method; differences from our SEM (%), next to the paper's FEM-SEM differences (%)."))
+    _table_artifact(
+        runs,
+        comparison_frame,
+        comparison_views,
+        csv=csv,
+        md=md,
+        html=html,
+        provenance=provenance,
+        caption=(
+            "Fig. 2, case 'model': contact time (µs) and force maxima (kN) of the first contact "
+            "per method; differences from our SEM (%), next to the paper's FEM-SEM differences (%)."
+        ),
+    )
 
 
 WORK_PRECISION_CAPTION = (
     "Error against run time: relative errors of each method's levels against the reference (the "
     "Richardson extrapolation of the reference method's finest two levels; ref_err_* is its own "
-    "error estimate), wall time of one solve (median of the repeats) on the machine named.")
+    "error estimate), wall time of one solve (median of the repeats) on the machine named."
+)
 
 
-def make_work_precision(runs: Sequence[str | Path], methods: Mapping[str, Any], fit_levels: int, *,
-                        arrival_window: float, csv: str | Path, orders_csv: str | Path, orders_md: str | Path,
-                        provenance: str | Path, orders_html: str | Path | None = None,
-                        per_case: Mapping[str, Any] | None = None) -> None:
+def make_work_precision(
+    runs: Sequence[str | Path],
+    methods: Mapping[str, Any],
+    fit_levels: int,
+    *,
+    arrival_window: float,
+    csv: str | Path,
+    orders_csv: str | Path,
+    orders_md: str | Path,
+    provenance: str | Path,
+    orders_html: str | Path | None = None,
+    per_case: Mapping[str, Any] | None = None,
+) -> None:
     """The work-precision table, and the orders: expected, observed with the fit's standard
     error, the levels fitted, monotone or not, and the three-level uncertainty of a method that
     is its own reference by its finest level (config.yaml ``work_precision``)."""
@@ -303,21 +488,37 @@ def make_work_precision(runs: Sequence[str | Path], methods: Mapping[str, Any], 
     frame = work_precision_frame(records, methods)
     orders = observed_orders(frame, methods, fit_levels, arrival_window=arrival_window, per_case=per_case)
     write_table(frame, csv=csv)
-    write_table(orders, csv=orders_csv, md=orders_md, html=orders_html, views=orders_views(orders), caption=(
-        f"Orders of convergence: expected (from the scheme and the solution's regularity; none "
-        f"stated: a dash) and observed (log-log fit of the error against h = 1/resolution on the "
-        f"finest {fit_levels} levels whose error exceeds 10x the reference's, with its standard "
-        f"error); whether the errors fall at every fitted level and whether their signs change "
-        f"there; whether the order is within {ORDER_TOLERANCE:g} of the expected one; and, for a "
-        f"method measured against its own finest level, the grid convergence index of its finest "
-        f"three levels (safety factor 1.25) or, where they oscillate, half their range."))
+    write_table(
+        orders,
+        csv=orders_csv,
+        md=orders_md,
+        html=orders_html,
+        views=orders_views(orders),
+        caption=(
+            f"Orders of convergence: expected (from the scheme and the solution's regularity; none "
+            f"stated: a dash) and observed (log-log fit of the error against h = 1/resolution on the "
+            f"finest {fit_levels} levels whose error exceeds 10x the reference's, with its standard "
+            f"error); whether the errors fall at every fitted level and whether their signs change "
+            f"there; whether the order is within {ORDER_TOLERANCE:g} of the expected one; and, for a "
+            f"method measured against its own finest level, the grid convergence index of its finest "
+            f"three levels (safety factor 1.25) or, where they oscillate, half their range."
+        ),
+    )
     write_provenance(provenance, records, _outputs(csv, orders_csv, orders_md, orders_html))
     log.info("work precision: %d runs, %d cases", len(records), frame["case_id"].nunique())
 
 
-def make_work_precision_figure(runs: Sequence[str | Path], methods: Mapping[str, Any], fit_levels: int, *,
-                               arrival_window: float, pdf: str | Path, png: str | Path,
-                               provenance: str | Path, per_case: Mapping[str, Any] | None = None) -> None:
+def make_work_precision_figure(
+    runs: Sequence[str | Path],
+    methods: Mapping[str, Any],
+    fit_levels: int,
+    *,
+    arrival_window: float,
+    pdf: str | Path,
+    png: str | Path,
+    provenance: str | Path,
+    per_case: Mapping[str, Any] | None = None,
+) -> None:
     """Error against wall time for one case: every method and quantity, the observed and
     expected orders in the legends, a slope guide of the expected order, the fitted levels filled."""
     from rodimpact.present.study_figures import plot_work_precision
@@ -327,13 +528,19 @@ def make_work_precision_figure(runs: Sequence[str | Path], methods: Mapping[str,
     frame = work_precision_frame(records, methods)
     orders = observed_orders(frame, methods, fit_levels, arrival_window=arrival_window, per_case=per_case)
     fig = plot_work_precision(frame, orders, case, title=case_in_words(records[0].config))
-    _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance,
-                 title=f"Error against run time, case {case}")
+    _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance, title=f"Error against run time, case {case}")
 
 
-def make_stability(runs: Sequence[str | Path], references: Sequence[str | Path],
-                   tolerances: Mapping[str, Mapping[str, float]], *, csv: str | Path, md: str | Path,
-                   provenance: str | Path, html: str | Path | None = None) -> None:
+def make_stability(
+    runs: Sequence[str | Path],
+    references: Sequence[str | Path],
+    tolerances: Mapping[str, Mapping[str, float]],
+    *,
+    csv: str | Path,
+    md: str | Path,
+    provenance: str | Path,
+    html: str | Path | None = None,
+) -> None:
     """The stress runs checked against the stated tolerances; raises when one is a violation
     (a silent wrong answer), after logging the whole table."""
     records = [read_run(p) for p in runs]
@@ -342,20 +549,40 @@ def make_stability(runs: Sequence[str | Path], references: Sequence[str | Path],
     bad = violations(frame)
     if bad:
         log.error("stability table:\n%s", frame.to_string())
-        raise StudyViolation("stability study: runs that neither met their tolerances nor failed clearly:\n  "
-                           + "\n  ".join(bad))
-    write_table(frame, csv=csv, md=md, html=html, views=stability_views(frame), caption=(
-        "Stress cases: every method's result checked (finite, force >= 0, energy balance and first "
-        "contact time within the method's stated tolerances against a sem reference at tolerance "
-        "1e-8), or its failure message."))
+        raise StudyViolation(
+            "stability study: runs that neither met their tolerances nor failed clearly:\n  " + "\n  ".join(bad)
+        )
+    write_table(
+        frame,
+        csv=csv,
+        md=md,
+        html=html,
+        views=stability_views(frame),
+        caption=(
+            "Stress cases: every method's result checked (finite, force >= 0, energy balance and first "
+            "contact time within the method's stated tolerances against a sem reference at tolerance "
+            "1e-8), or its failure message."
+        ),
+    )
     write_provenance(provenance, [*records, *refs.values()], _outputs(csv, md, html))
-    log.info("stability: %d runs, %d ok, %d failed clearly", len(frame), (frame["verdict"] == "ok").sum(),
-             frame["verdict"].str.startswith("failed").sum())
+    log.info(
+        "stability: %d runs, %d ok, %d failed clearly",
+        len(frame),
+        (frame["verdict"] == "ok").sum(),
+        frame["verdict"].str.startswith("failed").sum(),
+    )
 
 
-def make_stability_map(runs: Sequence[str | Path], references: Sequence[str | Path],
-                       spec: Mapping[str, Any], *, csv: str | Path,
-                       pdf: str | Path, png: str | Path, provenance: str | Path) -> None:
+def make_stability_map(
+    runs: Sequence[str | Path],
+    references: Sequence[str | Path],
+    spec: Mapping[str, Any],
+    *,
+    csv: str | Path,
+    pdf: str | Path,
+    png: str | Path,
+    provenance: str | Path,
+) -> None:
     """The stability map: the table of its points and the figure."""
     from rodimpact.present.figures import save_figure
     from rodimpact.present.study_figures import plot_stability_map
@@ -370,8 +597,9 @@ def make_stability_map(runs: Sequence[str | Path], references: Sequence[str | Pa
     write_provenance(provenance, [*records, *refs.values()], [csv, pdf, png])
 
 
-def make_fig_force_fit(runs: Sequence[str | Path], jsons: Sequence[str | Path], *, pdf: str | Path,
-                       png: str | Path, provenance: str | Path) -> None:
+def make_fig_force_fit(
+    runs: Sequence[str | Path], jsons: Sequence[str | Path], *, pdf: str | Path, png: str | Path, provenance: str | Path
+) -> None:
     """The exported closed forms (``jsons``, one per run) over the computed forces of one case,
     and their errors."""
     from rodimpact.present.figures import plot_force_fits
@@ -379,7 +607,11 @@ def make_fig_force_fit(runs: Sequence[str | Path], jsons: Sequence[str | Path], 
 
     records = [read_run(p) for p in runs]
     case = _one_case(records, "the force's closed form")
-    fig = plot_force_fits(records, [read_force_json(p) for p in jsons],
-                          title=f"Contact force and its Chebyshev closed form, case {case!r}")
-    _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance,
-                 title="Contact force and its Chebyshev closed form")
+    fig = plot_force_fits(
+        records,
+        [read_force_json(p) for p in jsons],
+        title=f"Contact force and its Chebyshev closed form, case {case!r}",
+    )
+    _save_figure(
+        fig, records, pdf=pdf, png=png, provenance=provenance, title="Contact force and its Chebyshev closed form"
+    )

@@ -25,8 +25,16 @@ import numpy as np
 
 from rodimpact.solvers.registry import METHODS
 
-__all__ = ["COLUMNS", "Column", "LATEX_UNITS", "ROLE_WORDS", "SUFFIX_UNITS", "column", "headers_with_units",
-           "method_header"]
+__all__ = [
+    "COLUMNS",
+    "Column",
+    "LATEX_UNITS",
+    "ROLE_WORDS",
+    "SUFFIX_UNITS",
+    "column",
+    "headers_with_units",
+    "method_header",
+]
 
 
 @dataclass(frozen=True)
@@ -69,13 +77,32 @@ class Column:
 LATEX_UNITS = {"µs": r"$\mu$s", "µm": r"$\mu$m", "%": r"\%", "kg/s": "kg/s", "m/s": "m/s"}
 
 #: Suffix of a machine name -> unit, longest first (``_kg_s`` before ``_s``).
-SUFFIX_UNITS = {"_kg_s": "kg/s", "_m_s": "m/s", "_us": "µs", "_um": "µm", "_mm": "mm", "_kN": "kN", "_pct": "%",
-                "_MiB": "MiB", "_pa": "Pa", "_kg": "kg", "_g": "g", "_N": "N", "_m": "m", "_s": "s"}
+SUFFIX_UNITS = {
+    "_kg_s": "kg/s",
+    "_m_s": "m/s",
+    "_us": "µs",
+    "_um": "µm",
+    "_mm": "mm",
+    "_kN": "kN",
+    "_pct": "%",
+    "_MiB": "MiB",
+    "_pa": "Pa",
+    "_kg": "kg",
+    "_g": "g",
+    "_N": "N",
+    "_m": "m",
+    "_s": "s",
+}
 
 #: The readings of Table 2 with and without the sensor film (``film_tables.FILM_ROLES``), in words.
-ROLE_WORDS = {"no_film": "no film", "film": "film", "film_calibrated": "film, calibrated",
-              "no_film_calibrated": "calibrated, no film", "sensor": "sensor as built",
-              "sensor_calibrated": "sensor as built, calibrated"}
+ROLE_WORDS = {
+    "no_film": "no film",
+    "film": "film",
+    "film_calibrated": "film, calibrated",
+    "no_film_calibrated": "calibrated, no film",
+    "sensor": "sensor as built",
+    "sensor_calibrated": "sensor as built, calibrated",
+}
 
 _TEXT = ""
 _ORDINALS = ("1st", "2nd", "3rd")
@@ -83,74 +110,107 @@ _ORDINALS = ("1st", "2nd", "3rd")
 #: The fixed columns.
 COLUMNS: dict[str, Column] = {
     # what a row is
-    "case_id": Column("Case", fmt=_TEXT), "row": Column("Ball", fmt=_TEXT), "variant": Column("Reading", fmt=_TEXT),
-    "method": Column("Method", fmt=_TEXT), "sweep": Column("Sweep", fmt=_TEXT), "point": Column("Point", fmt=_TEXT),
-    "quantity": Column("Quantity", fmt=_TEXT), "film": Column("Film", fmt=_TEXT),
-    "contact_law": Column("Contact law", fmt=_TEXT), "law": Column("Law", fmt=_TEXT),
-    "paper_method": Column("Paper's method", fmt=_TEXT), "n_cases": Column("Cases", fmt=_TEXT),
+    "case_id": Column("Case", fmt=_TEXT),
+    "row": Column("Ball", fmt=_TEXT),
+    "variant": Column("Reading", fmt=_TEXT),
+    "method": Column("Method", fmt=_TEXT),
+    "sweep": Column("Sweep", fmt=_TEXT),
+    "point": Column("Point", fmt=_TEXT),
+    "quantity": Column("Quantity", fmt=_TEXT),
+    "film": Column("Film", fmt=_TEXT),
+    "contact_law": Column("Contact law", fmt=_TEXT),
+    "law": Column("Law", fmt=_TEXT),
+    "paper_method": Column("Paper's method", fmt=_TEXT),
+    "n_cases": Column("Cases", fmt=_TEXT),
     # a comparison's measured and computed values, each in its row's unit (column "unit")
-    "measured": Column("Measured", fmt=".5g"), "computed": Column("Computed", fmt=".5g"),
+    "measured": Column("Measured", fmt=".5g"),
+    "computed": Column("Computed", fmt=".5g"),
     # the balls and the rod
-    "diameter_mm": Column("Diameter", "mm"), "mass_g": Column("Mass", "g", ".3g"),
-    "ball_diameter_m": Column("Ball diameter", "m", ".5f"), "velocity_m_s": Column("Velocity", "m/s", ".4f"),
-    "rod_length_mm": Column("Rod length", "mm", ".1f"), "film_modulus_pa": Column("Film modulus", "Pa", ".3g"),
+    "diameter_mm": Column("Diameter", "mm"),
+    "mass_g": Column("Mass", "g", ".3g"),
+    "ball_diameter_m": Column("Ball diameter", "m", ".5f"),
+    "velocity_m_s": Column("Velocity", "m/s", ".4f"),
+    "rod_length_mm": Column("Rod length", "mm", ".1f"),
+    "film_modulus_pa": Column("Film modulus", "Pa", ".3g"),
     # Table 2: measured, printed by the paper, ours
-    "measured_us": Column("Measured", "µs"), "published_fem_us": Column("Paper FEM", "µs"),
-    "published_sem_us": Column("Paper SEM", "µs"), "published_fem_error_pct": Column("Paper FEM error", "%"),
+    "measured_us": Column("Measured", "µs"),
+    "published_fem_us": Column("Paper FEM", "µs"),
+    "published_sem_us": Column("Paper SEM", "µs"),
+    "published_fem_error_pct": Column("Paper FEM error", "%"),
     "published_sem_error_pct": Column("Paper SEM error", "%"),
     "sem_vs_published_sem_pct": Column("SEM vs paper SEM", "%"),
     # the errors per reading
-    "mean_error_pct": Column("Mean error", "%"), "max_error_pct": Column("Largest error", "%"),
+    "mean_error_pct": Column("Mean error", "%"),
+    "max_error_pct": Column("Largest error", "%"),
     "mean_signed_error_pct": Column("Mean signed error", "%"),
     "paper_mean_error_pct": Column("Paper's mean error", "%"),
     "paper_max_error_pct": Column("Paper's largest error", "%"),
     # the sensor film
-    "nominal_us": Column("Nominal", "µs"), "band_min_us": Column("Band min", "µs"),
-    "band_max_us": Column("Band max", "µs"), "measured_in_band": Column("Measured in band", fmt=_TEXT),
-    "monotone": Column("Monotone", fmt=_TEXT), "radius_to_thickness": Column("Contact radius / film thickness"),
+    "nominal_us": Column("Nominal", "µs"),
+    "band_min_us": Column("Band min", "µs"),
+    "band_max_us": Column("Band max", "µs"),
+    "measured_in_band": Column("Measured in band", fmt=_TEXT),
+    "monotone": Column("Monotone", fmt=_TEXT),
+    "radius_to_thickness": Column("Contact radius / film thickness"),
     "model_form_pct": Column("Model-form error", "%"),
     "sensor_model_form_pct": Column("Model-form error, sensor", "%"),
     "sensor_band_min_us": Column("Sensor band min (continuum)", "µs"),
     "sensor_band_max_us": Column("Sensor band max (continuum)", "µs"),
     "thin_layer_band_min_us": Column("Thin-layer band min (approximation)", "µs"),
     "thin_layer_band_max_us": Column("Thin-layer band max (approximation)", "µs"),
-    "nominal_error_pct": Column("Nominal error", "%"), "constants": Column("Constants", fmt=_TEXT),
-    "role": Column("Role", fmt=_TEXT), "fitted_us": Column("Fitted stack", "µs"),
-    "held_out_us": Column("Held out", "µs"), "fitted_error_pct": Column("Fitted stack error", "%"),
+    "nominal_error_pct": Column("Nominal error", "%"),
+    "constants": Column("Constants", fmt=_TEXT),
+    "role": Column("Role", fmt=_TEXT),
+    "fitted_us": Column("Fitted stack", "µs"),
+    "held_out_us": Column("Held out", "µs"),
+    "fitted_error_pct": Column("Fitted stack error", "%"),
     "held_out_error_pct": Column("Held-out error", "%"),
-    "force_N": Column("Force", "N", ".4g"), "continuum_approach_um": Column("Continuum approach", "µm", ".4f"),
-    "law_approach_um": Column("Law approach", "µm", ".4f"), "law_error_pct": Column("Law error", "%"),
+    "force_N": Column("Force", "N", ".4g"),
+    "continuum_approach_um": Column("Continuum approach", "µm", ".4f"),
+    "law_approach_um": Column("Law approach", "µm", ".4f"),
+    "law_error_pct": Column("Law error", "%"),
     "contact_radius_um": Column("Contact radius", "µm", ".1f"),
     "film_thickness_um": Column("Film thickness", "µm", ".1f"),
     "radius_to_film_thickness": Column("Contact radius / film thickness"),
     "interpolation_error_half": Column("Interpolation error", fmt=".1e"),
     # Fig. 2 and the sweeps
-    "contact_time_us": Column("Contact time", "µs", ".3f"), "n_maxima": Column("Maxima", fmt=_TEXT),
+    "contact_time_us": Column("Contact time", "µs", ".3f"),
+    "n_maxima": Column("Maxima", fmt=_TEXT),
     "maxima_vs_sem_pct": Column("Maxima vs SEM", "%", ".3f"),
     "paper_fem_vs_sem_contact_time_pct": Column("Paper FEM vs SEM, contact time", "%", ".0f"),
     "paper_fem_vs_sem_extrema_pct": Column("Paper FEM vs SEM, extrema", "%", ".0f"),
     "first_peak_force_N": Column("First force maximum", "N", ".4g"),
-    "max_force_N": Column("Largest force maximum", "N", ".4g"), "n_contacts": Column("Contacts", fmt=_TEXT),
+    "max_force_N": Column("Largest force maximum", "N", ".4g"),
+    "n_contacts": Column("Contacts", fmt=_TEXT),
     # the orders of convergence
-    "observed_order": Column("Observed order"), "theoretical_order": Column("Theoretical order", fmt=".0f"),
+    "observed_order": Column("Observed order"),
+    "theoretical_order": Column("Theoretical order", fmt=".0f"),
     "fitted_levels": Column("Fitted levels", fmt=_TEXT),
-    "expected_order": Column("Expected order", fmt=".3g"), "order_stderr": Column("Standard error", fmt=".2f"),
+    "expected_order": Column("Expected order", fmt=".3g"),
+    "order_stderr": Column("Standard error", fmt=".2f"),
     "sign_change": Column("Sign change", fmt=_TEXT),
     "within_expected": Column("Within 0.3 of expected", fmt=_TEXT),
     "asymptotic": Column("Asymptotic", fmt=_TEXT),
     "arrival_offset": Column("Offset from a wave arrival (of 2L/c)", fmt=".3f"),
-    "gci_order": Column("GCI order"), "gci_pct": Column("GCI", "%", ".3f"),
-    "oscillatory": Column("Oscillatory", fmt=_TEXT), "u_osc_pct": Column("Oscillatory half range", "%", ".3f"),
+    "gci_order": Column("GCI order"),
+    "gci_pct": Column("GCI", "%", ".3f"),
+    "oscillatory": Column("Oscillatory", fmt=_TEXT),
+    "u_osc_pct": Column("Oscillatory half range", "%", ".3f"),
     # the stress cases
-    "status": Column("Status", fmt=_TEXT), "success": Column("Success", fmt=_TEXT),
-    "finite": Column("Finite", fmt=_TEXT), "min_force_N": Column("Smallest force", "N", ".3g"),
-    "energy_error": Column("Energy error", fmt=".1e"), "energy_tolerance": Column("Energy tolerance", fmt=".0e"),
+    "status": Column("Status", fmt=_TEXT),
+    "success": Column("Success", fmt=_TEXT),
+    "finite": Column("Finite", fmt=_TEXT),
+    "min_force_N": Column("Smallest force", "N", ".3g"),
+    "energy_error": Column("Energy error", fmt=".1e"),
+    "energy_tolerance": Column("Energy tolerance", fmt=".0e"),
     "contact_time_s": Column("Contact time", "s", ".4e"),
     "reference_contact_time_s": Column("Reference contact time", "s", ".4e"),
     "contact_time_error": Column("Contact-time error", fmt=".1e"),
     "contact_time_tolerance": Column("Contact-time tolerance", fmt=".0e"),
-    "contact_intervals_us": Column("Contact intervals", "µs", _TEXT), "wall_time_s": Column("Wall time", "s", ".3f"),
-    "message": Column("Message", fmt=_TEXT), "verdict": Column("Verdict", fmt=_TEXT),
+    "contact_intervals_us": Column("Contact intervals", "µs", _TEXT),
+    "wall_time_s": Column("Wall time", "s", ".3f"),
+    "message": Column("Message", fmt=_TEXT),
+    "verdict": Column("Verdict", fmt=_TEXT),
 }
 
 

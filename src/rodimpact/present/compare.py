@@ -25,14 +25,28 @@ from rodimpact.contact.laws import law_of
 from rodimpact.solvers.registry import METHODS
 from rodimpact.storage.runs import RunRecord
 
-__all__ = ["COLUMNS", "HISTORY_QUANTITIES", "QUANTITIES", "X_AXES", "X_NAMES", "compare_frame", "compare_summary", "history_comparison",
-           "model_label", "x_axis"]
+__all__ = [
+    "COLUMNS",
+    "HISTORY_QUANTITIES",
+    "QUANTITIES",
+    "X_AXES",
+    "X_NAMES",
+    "compare_frame",
+    "compare_summary",
+    "history_comparison",
+    "model_label",
+    "x_axis",
+]
 
 #: Measured scalars a case may give (:data:`rodimpact.analysis.measured.MEASURED_KEYS`): key ->
 #: (words, unit, the computed value from a run's summary).
 QUANTITIES: dict[str, tuple[str, str, Any]] = {
     "contact_time_us": ("contact time", "µs", lambda s: 1e6 * float(s["contact_time_s"])),
-    "peak_force_n": ("peak force", "N", lambda s: float(np.max(s["peak_force_N"])) if len(s["peak_force_N"]) else math.nan),
+    "peak_force_n": (
+        "peak force",
+        "N",
+        lambda s: float(np.max(s["peak_force_N"])) if len(s["peak_force_N"]) else math.nan,
+    ),
     "rebound_velocity_m_s": ("rebound velocity", "m/s", lambda s: -float(s["rebound_velocity_m_s"])),
 }
 #: Rows a measured force history adds: quantity -> (words, unit).
@@ -58,33 +72,67 @@ def history_comparison(record: RunRecord, history: MeasuredHistory, threshold: f
     """The run's contact force against the measured history (needs the run's ``contact_force``)."""
     if "contact_force" not in record.series:
         raise ValueError(f"run {record.path}: no contact_force series to compare with the measured history")
-    return compare_force_histories(history.time_s, history.force_N, record.series["time"],
-                                   record.series["contact_force"], threshold)
+    return compare_force_histories(
+        history.time_s, history.force_N, record.series["time"], record.series["contact_force"], threshold
+    )
 
 
 #: The comparison table's columns, in order (each row: :func:`_row`).
-COLUMNS = ("case_id", "row", "variant", "mass_g", "velocity_m_s", "diameter_mm", "rod_length_mm", "method",
-           "method_label", "contact_law", "quantity", "quantity_words", "unit", "measured", "computed", "error_pct",
-           "source")
+COLUMNS = (
+    "case_id",
+    "row",
+    "variant",
+    "mass_g",
+    "velocity_m_s",
+    "diameter_mm",
+    "rod_length_mm",
+    "method",
+    "method_label",
+    "contact_law",
+    "quantity",
+    "quantity_words",
+    "unit",
+    "measured",
+    "computed",
+    "error_pct",
+    "source",
+)
 
 
-def _row(config: Mapping[str, Any], method: str, quantity: str, words: str, unit: str, measured: float,
-         computed: float, error_pct: float) -> dict[str, Any]:
-    return {"case_id": config["id"], "row": config.get("row", config["id"]), "variant": config.get("variant"),
-            "mass_g": 1000.0 * float(config["impactor"]["mass_kg"]),
-            "velocity_m_s": float(config["impactor"].get("velocity_m_s", math.nan)),
-            "diameter_mm": 2000.0 * float(config["impactor"].get("radius_m", math.nan)),
-            "rod_length_mm": 1000.0 * float(config.get("rod", {}).get("length_m", math.nan)),
-            "method": method,
-            "method_label": model_label(config, method),
-            "contact_law": law_of(config.get("contact")).name,
-            "quantity": quantity, "quantity_words": words, "unit": unit, "measured": measured,
-            "computed": computed, "error_pct": error_pct,
-            "source": str((config.get("measured") or {}).get("source", ""))}
+def _row(
+    config: Mapping[str, Any],
+    method: str,
+    quantity: str,
+    words: str,
+    unit: str,
+    measured: float,
+    computed: float,
+    error_pct: float,
+) -> dict[str, Any]:
+    return {
+        "case_id": config["id"],
+        "row": config.get("row", config["id"]),
+        "variant": config.get("variant"),
+        "mass_g": 1000.0 * float(config["impactor"]["mass_kg"]),
+        "velocity_m_s": float(config["impactor"].get("velocity_m_s", math.nan)),
+        "diameter_mm": 2000.0 * float(config["impactor"].get("radius_m", math.nan)),
+        "rod_length_mm": 1000.0 * float(config.get("rod", {}).get("length_m", math.nan)),
+        "method": method,
+        "method_label": model_label(config, method),
+        "contact_law": law_of(config.get("contact")).name,
+        "quantity": quantity,
+        "quantity_words": words,
+        "unit": unit,
+        "measured": measured,
+        "computed": computed,
+        "error_pct": error_pct,
+        "source": str((config.get("measured") or {}).get("source", "")),
+    }
 
 
-def compare_frame(records: Sequence[RunRecord],
-                  histories: Mapping[str, tuple[MeasuredHistory, float]] | None = None) -> pd.DataFrame:
+def compare_frame(
+    records: Sequence[RunRecord], histories: Mapping[str, tuple[MeasuredHistory, float]] | None = None
+) -> pd.DataFrame:
     """One row per case, method and measured quantity (see the module docstring).
 
     Parameters
@@ -109,15 +157,26 @@ def compare_frame(records: Sequence[RunRecord],
             if measured.get(key) is None:
                 continue
             value, computed = float(measured[key]), computed_of(record.summary)
-            rows.append(_row(config, record.method, key, words, unit, value, computed,
-                             100.0 * (computed - value) / abs(value)))
+            rows.append(
+                _row(config, record.method, key, words, unit, value, computed, 100.0 * (computed - value) / abs(value))
+            )
         if record.case_id in histories:
             history, threshold = histories[record.case_id]
             result = history_comparison(record, history, threshold)
             signal_us, model_us = 1e6 * result.measured_contact_time_s, 1e6 * result.model_contact_time_s
             words, unit = HISTORY_QUANTITIES["signal_contact_time_us"]
-            rows.append(_row(config, record.method, "signal_contact_time_us", f"{words} at {threshold:g} of its peak",
-                             unit, signal_us, model_us, 100.0 * (model_us - signal_us) / signal_us))
+            rows.append(
+                _row(
+                    config,
+                    record.method,
+                    "signal_contact_time_us",
+                    f"{words} at {threshold:g} of its peak",
+                    unit,
+                    signal_us,
+                    model_us,
+                    100.0 * (model_us - signal_us) / signal_us,
+                )
+            )
             for key, value in (("history_l2_pct", result.l2_error), ("history_max_pct", result.max_error)):
                 words, unit = HISTORY_QUANTITIES[key]
                 rows.append(_row(config, record.method, key, words, unit, math.nan, math.nan, 100.0 * value))
@@ -127,13 +186,21 @@ def compare_frame(records: Sequence[RunRecord],
     order = {m: k for k, m in enumerate(METHODS)}
     quantities = {q: k for k, q in enumerate([*QUANTITIES, *HISTORY_QUANTITIES])}
     frame = frame.assign(_m=frame["method"].map(order).fillna(len(order)), _q=frame["quantity"].map(quantities))
-    return frame.sort_values(["mass_g", "case_id", "_q", "_m"], kind="stable").drop(columns=["_m", "_q"]).reset_index(drop=True)
+    return (
+        frame.sort_values(["mass_g", "case_id", "_q", "_m"], kind="stable")
+        .drop(columns=["_m", "_q"])
+        .reset_index(drop=True)
+    )
 
 
 #: What a set's figure may draw its values against, in this order: the first that varies along
 #: the set (frame column -> axis label).
-X_AXES = {"mass_g": "impactor mass $m$ (g)", "velocity_m_s": "impact velocity $V_0$ (m/s)",
-          "diameter_mm": "impactor diameter (mm)", "rod_length_mm": "rod length (mm)"}
+X_AXES = {
+    "mass_g": "impactor mass $m$ (g)",
+    "velocity_m_s": "impact velocity $V_0$ (m/s)",
+    "diameter_mm": "impactor diameter (mm)",
+    "rod_length_mm": "rod length (mm)",
+}
 #: The names a case file's ``compare: {x: ...}`` gives them (workflow/schemas/cases.schema.yaml).
 X_NAMES = {"mass": "mass_g", "velocity": "velocity_m_s", "diameter": "diameter_mm", "rod_length": "rod_length_mm"}
 
@@ -162,9 +229,14 @@ def compare_summary(frame: pd.DataFrame) -> pd.DataFrame:
     signed error, %."""
     keys = ["variant", "method", "method_label", "quantity", "quantity_words"]
     if frame.empty:
-        return pd.DataFrame(columns=[*keys, "cases", "mean_abs_error_pct", "max_abs_error_pct", "mean_signed_error_pct"])
+        return pd.DataFrame(
+            columns=[*keys, "cases", "mean_abs_error_pct", "max_abs_error_pct", "mean_signed_error_pct"]
+        )
     grouped = frame.groupby(keys, sort=False, dropna=False)["error_pct"]
-    summary = grouped.agg(cases="count", mean_abs_error_pct=lambda e: float(np.mean(np.abs(e))),
-                          max_abs_error_pct=lambda e: float(np.max(np.abs(e))),
-                          mean_signed_error_pct="mean").reset_index()
+    summary = grouped.agg(
+        cases="count",
+        mean_abs_error_pct=lambda e: float(np.mean(np.abs(e))),
+        max_abs_error_pct=lambda e: float(np.max(np.abs(e))),
+        mean_signed_error_pct="mean",
+    ).reset_index()
     return summary

@@ -27,7 +27,8 @@ _CAPTION = (
     "computed value, and the error (computed − measured) / |measured| in %. A measured force history adds "
     "the contact time read from both signals at the history's threshold, and the L2 and max-norm errors "
     "of the computed force after the two are aligned where each first rises through that fraction of its "
-    "peak (config/README.md, \"Comparing with your experiment\").")
+    'peak (config/README.md, "Comparing with your experiment").'
+)
 
 
 def _histories(records) -> dict[str, tuple[Any, float]]:
@@ -36,40 +37,67 @@ def _histories(records) -> dict[str, tuple[Any, float]]:
     for record in records:
         spec = (record.config.get("measured") or {}).get("force_history")
         if spec and record.case_id not in out:
-            out[record.case_id] = (read_force_history(spec["path"], spec), float(spec.get("threshold", DEFAULT_THRESHOLD)))
+            out[record.case_id] = (
+                read_force_history(spec["path"], spec),
+                float(spec.get("threshold", DEFAULT_THRESHOLD)),
+            )
     return out
 
 
 def _history_files(records) -> list[str]:
-    return sorted({spec["path"] for r in records
-                   if (spec := (r.config.get("measured") or {}).get("force_history"))})
+    return sorted({spec["path"] for r in records if (spec := (r.config.get("measured") or {}).get("force_history"))})
 
 
-def make_compare_table(runs: Sequence[str | Path], set_name: str, *, csv: str | Path, summary: str | Path,
-                       md: str | Path, html: str | Path, tex: str | Path, provenance: str | Path) -> None:
+def make_compare_table(
+    runs: Sequence[str | Path],
+    set_name: str,
+    *,
+    csv: str | Path,
+    summary: str | Path,
+    md: str | Path,
+    html: str | Path,
+    tex: str | Path,
+    provenance: str | Path,
+) -> None:
     """The set's comparison table (:func:`~rodimpact.present.compare.compare_frame`) and its
     summary per method and quantity (:func:`~rodimpact.present.compare.compare_summary`)."""
     records = [read_run(p) for p in runs]
     frame = compare_frame(records, _histories(records))
     totals = compare_summary(frame)
-    views = panels(frame, f"Set {set_name} against its measurements", ["row", "quantity_words", "unit"],
-                   ["method_label", "measured", "computed", "error_pct"], by="variant" if frame["variant"].notna().any()
-                   else "")
+    views = panels(
+        frame,
+        f"Set {set_name} against its measurements",
+        ["row", "quantity_words", "unit"],
+        ["method_label", "measured", "computed", "error_pct"],
+        by="variant" if frame["variant"].notna().any() else "",
+    )
     write_table(frame, csv=csv, html=html, tex=tex, views=views)
     with atomic_output(summary) as tmp:
         totals.to_csv(tmp, index=False, float_format="%.10g")
     with atomic_output(md) as tmp:
-        tmp.write_text(f"{_CAPTION}\n\n{markdown_table(frame)}\n\nPer method and quantity: the cases compared, the "
-                       f"mean and the largest |error|, and the mean signed error (%).\n\n"
-                       f"{markdown_table(totals)}\n", encoding="utf-8")
-    write_provenance_with_files(provenance, records, [csv, summary, md, html, tex],
-                                {"measured force history": _history_files(records)})
+        tmp.write_text(
+            f"{_CAPTION}\n\n{markdown_table(frame)}\n\nPer method and quantity: the cases compared, the "
+            f"mean and the largest |error|, and the mean signed error (%).\n\n"
+            f"{markdown_table(totals)}\n",
+            encoding="utf-8",
+        )
+    write_provenance_with_files(
+        provenance, records, [csv, summary, md, html, tex], {"measured force history": _history_files(records)}
+    )
     log.info("set %s: %d comparisons of %d runs", set_name, len(frame), len(records))
 
 
-def make_compare_figure(runs: Sequence[str | Path], set_name: str, title: str, *, pdf: str | Path, png: str | Path,
-                        provenance: str | Path, descriptions: Mapping[str, str] | None = None,
-                        x: str | None = None) -> None:
+def make_compare_figure(
+    runs: Sequence[str | Path],
+    set_name: str,
+    title: str,
+    *,
+    pdf: str | Path,
+    png: str | Path,
+    provenance: str | Path,
+    descriptions: Mapping[str, str] | None = None,
+    x: str | None = None,
+) -> None:
     """The set's figure (:func:`~rodimpact.present.compare_figures.plot_compare_set`), against
     ``x`` (the set's ``compare.x``) or what varies along the set
     (:func:`~rodimpact.present.compare.x_axis`)."""
@@ -80,12 +108,19 @@ def make_compare_figure(runs: Sequence[str | Path], set_name: str, title: str, *
     records = [read_run(p) for p in runs]
     frame = compare_frame(records, _histories(records))
     column, x_label = x_axis(frame, x)
-    save_figure(plot_compare_set(frame, title, x=column, x_label=x_label, descriptions=descriptions), pdf=pdf, png=png,
-                provenance=provenance_record(records, [pdf, png]), title=f"Set {set_name} against its measurements")
+    save_figure(
+        plot_compare_set(frame, title, x=column, x_label=x_label, descriptions=descriptions),
+        pdf=pdf,
+        png=png,
+        provenance=provenance_record(records, [pdf, png]),
+        title=f"Set {set_name} against its measurements",
+    )
     write_provenance_with_files(provenance, records, [pdf, png], {"measured force history": _history_files(records)})
 
 
-def make_history_figure(runs: Sequence[str | Path], *, pdf: str | Path, png: str | Path, provenance: str | Path) -> None:
+def make_history_figure(
+    runs: Sequence[str | Path], *, pdf: str | Path, png: str | Path, provenance: str | Path
+) -> None:
     """One case's measured force history against each method's (every run of ``runs`` is of
     that case; :func:`~rodimpact.present.compare_figures.plot_history_overlay`).
 
@@ -103,9 +138,14 @@ def make_history_figure(runs: Sequence[str | Path], *, pdf: str | Path, png: str
     histories = _histories(records)
     if len(cases) != 1 or not histories:
         raise ValueError(f"runs: one case with a measured force history expected, got {sorted(cases)}")
-    (case_id, (history, threshold)), = histories.items()
+    ((case_id, (history, threshold)),) = histories.items()
     comparisons = [(r.method, history_comparison(r, history, threshold)) for r in records]
     description = str(records[0].config.get("description") or case_id)
-    save_figure(plot_history_overlay(comparisons, description, history.note), pdf=pdf, png=png,
-                provenance=provenance_record(records, [pdf, png]), title=f"{case_id}: measured and computed force")
+    save_figure(
+        plot_history_overlay(comparisons, description, history.note),
+        pdf=pdf,
+        png=png,
+        provenance=provenance_record(records, [pdf, png]),
+        title=f"{case_id}: measured and computed force",
+    )
     write_provenance_with_files(provenance, records, [pdf, png], {"measured force history": _history_files(records)})

@@ -34,8 +34,13 @@ def _method_style(method: str) -> dict:
     return {"color": spec.color, "ls": spec.style} if spec is not None else {"color": "0.3", "ls": "-"}
 
 
-def plot_compare_set(frame: pd.DataFrame, title: str, x: str = "mass_g", x_label: str = "impactor mass $m$ (g)",
-                     descriptions: Mapping[str, str] | None = None) -> matplotlib.figure.Figure:
+def plot_compare_set(
+    frame: pd.DataFrame,
+    title: str,
+    x: str = "mass_g",
+    x_label: str = "impactor mass $m$ (g)",
+    descriptions: Mapping[str, str] | None = None,
+) -> matplotlib.figure.Figure:
     """Measured and computed values against ``x``, a panel per measured quantity (rows) and
     variant (columns); measured points marked by their source, each method a line.
 
@@ -55,10 +60,14 @@ def plot_compare_set(frame: pd.DataFrame, title: str, x: str = "mass_g", x_label
     variants = list(dict.fromkeys(frame["variant"].fillna("")))
     cols = min(len(variants), _MAX_COLUMNS)
     per_quantity = math.ceil(len(variants) / cols)  # rows of panels each quantity takes
-    fig, axes = plt.subplots(len(quantities) * per_quantity, cols,
-                             figsize=(4.6 * cols, 3.2 * len(quantities) * per_quantity + 1.4), squeeze=False,
-                             layout="constrained")
-    for ax in axes.flat[len(quantities) * len(variants):]:
+    fig, axes = plt.subplots(
+        len(quantities) * per_quantity,
+        cols,
+        figsize=(4.6 * cols, 3.2 * len(quantities) * per_quantity + 1.4),
+        squeeze=False,
+        layout="constrained",
+    )
+    for ax in axes.flat[len(quantities) * len(variants) :]:
         ax.set_visible(False)
     sources = list(dict.fromkeys(frame["source"]))
     laws = list(dict.fromkeys(frame["contact_law"]))  # a method's models differ by their marker
@@ -70,14 +79,29 @@ def plot_compare_set(frame: pd.DataFrame, title: str, x: str = "mass_g", x_label
             rows = frame[(frame["quantity"] == quantity) & (frame["variant"].fillna("") == variant)]
             measured = rows.drop_duplicates("case_id").sort_values(x)
             for source, points in measured.groupby("source", sort=False):
-                ax.plot(points[x], points["measured"], _MARKERS[sources.index(source) % len(_MARKERS)], color="k",
-                        ms=6, ls="none", zorder=5, label=f"measured ({short_source(source)})" if source else "measured")
+                ax.plot(
+                    points[x],
+                    points["measured"],
+                    _MARKERS[sources.index(source) % len(_MARKERS)],
+                    color="k",
+                    ms=6,
+                    ls="none",
+                    zorder=5,
+                    label=f"measured ({short_source(source)})" if source else "measured",
+                )
             for (method, _, law), computed in rows.groupby(["method", "method_label", "contact_law"], sort=False):
                 computed = computed.sort_values(x)
                 takes_law = method in METHODS and METHODS[method].contact == "law"  # a continuum resolves the bodies
                 marker = _LAW_MARKERS[laws.index(law) % len(_LAW_MARKERS)] if takes_law else "o"
-                ax.plot(computed[x], computed["computed"], marker=marker, ms=4, lw=1.2,
-                        label=computed["method_label"].iloc[0], **_method_style(method))
+                ax.plot(
+                    computed[x],
+                    computed["computed"],
+                    marker=marker,
+                    ms=4,
+                    lw=1.2,
+                    label=computed["method_label"].iloc[0],
+                    **_method_style(method),
+                )
             words, unit = rows["quantity_words"].iloc[0], rows["unit"].iloc[0]
             ax.set_ylabel(f"{words} ({unit})")
             ax.set_xlabel(x_label)
@@ -93,14 +117,21 @@ def plot_compare_set(frame: pd.DataFrame, title: str, x: str = "mass_g", x_label
     for ax in axes.flat:
         for handle, label in zip(*ax.get_legend_handles_labels()):
             handles.setdefault(label, handle)
-    fig.legend(list(handles.values()), [textwrap.fill(label, 70) for label in handles], loc="outside lower center",
-               ncol=min(2, cols), fontsize=8, frameon=False)
+    fig.legend(
+        list(handles.values()),
+        [textwrap.fill(label, 70) for label in handles],
+        loc="outside lower center",
+        ncol=min(2, cols),
+        fontsize=8,
+        frameon=False,
+    )
     fig.suptitle(textwrap.fill(title, 90), fontsize=10)
     return fig
 
 
-def plot_history_overlay(comparisons: Sequence[tuple[str, HistoryComparison]], title: str,
-                         note: str = "") -> matplotlib.figure.Figure:
+def plot_history_overlay(
+    comparisons: Sequence[tuple[str, HistoryComparison]], title: str, note: str = ""
+) -> matplotlib.figure.Figure:
     """A measured force history and each method's, aligned (upper panel), and their difference
     computed minus measured (lower panel), against the computed time.
 
@@ -113,14 +144,20 @@ def plot_history_overlay(comparisons: Sequence[tuple[str, HistoryComparison]], t
     note : str
         How the history was measured (in the title).
     """
-    fig, (upper, lower) = plt.subplots(2, 1, figsize=(6.5, 6.0), sharex=True, height_ratios=(2, 1),
-                                       layout="constrained")
+    fig, (upper, lower) = plt.subplots(
+        2, 1, figsize=(6.5, 6.0), sharex=True, height_ratios=(2, 1), layout="constrained"
+    )
     drawn_measured = False
     for method, result in comparisons:
         t_us = 1e6 * result.time_s
         if not drawn_measured:
-            upper.plot(t_us, result.measured_N, color="k", lw=1.0, label="measured (aligned at "
-                       f"{result.threshold:g} of its peak)")
+            upper.plot(
+                t_us,
+                result.measured_N,
+                color="k",
+                lw=1.0,
+                label=f"measured (aligned at {result.threshold:g} of its peak)",
+            )
             drawn_measured = True
         style = _method_style(method)
         label = METHODS[method].label if method in METHODS else method
@@ -137,4 +174,3 @@ def plot_history_overlay(comparisons: Sequence[tuple[str, HistoryComparison]], t
     if not comparisons:
         upper.text(0.5, 0.5, "no run to compare", transform=upper.transAxes, ha="center")
     return fig
-

@@ -32,8 +32,17 @@ from rodimpact.storage.provenance import file_sha256
 from rodimpact.storage.runs import RunRecord
 from rodimpact.storage.sidecar import provenance_record
 
-__all__ = ["FILM_ROLES", "INDENTATION_COLUMNS", "film_band_frame", "film_indentation_frame", "film_table_frame",
-           "reading_of", "readings_frame", "table2_panels", "write_provenance_with_files"]
+__all__ = [
+    "FILM_ROLES",
+    "INDENTATION_COLUMNS",
+    "film_band_frame",
+    "film_indentation_frame",
+    "film_table_frame",
+    "reading_of",
+    "readings_frame",
+    "table2_panels",
+    "write_provenance_with_files",
+]
 
 log = logging.getLogger(__name__)
 
@@ -71,9 +80,11 @@ def readings_frame(records: Sequence[RunRecord]) -> pd.DataFrame:
         reading = reading_of(rec.config)
         known = rows.setdefault(variant, {"variant": variant, **reading})
         if (known["film"], known["contact_law"]) != (reading["film"], reading["contact_law"]):
-            raise ValueError(f"variant {variant!r}: its runs have different contact laws or films "
-                             f"({known['contact_law']}, film {known['film']} and {reading['contact_law']}, "
-                             f"film {reading['film']})")
+            raise ValueError(
+                f"variant {variant!r}: its runs have different contact laws or films "
+                f"({known['contact_law']}, film {known['film']} and {reading['contact_law']}, "
+                f"film {reading['film']})"
+            )
     columns = ["variant", "rod_radius_mm", "rod_length_mm", "film", "contact_law", "film_modulus_pa"]
     return pd.DataFrame(list(rows.values()), columns=columns)
 
@@ -86,6 +97,7 @@ def table2_panels(readings: pd.DataFrame, film_variants: Sequence[str] = ()) -> 
     has no reading without the film (both are logged). With no such base reading at all, every
     reading is its own panel.
     """
+
     def rod(reading: Any) -> tuple[float, float]:
         return (round(float(reading.rod_radius_mm), 9), round(float(reading.rod_length_mm), 9))
 
@@ -100,8 +112,12 @@ def table2_panels(readings: pd.DataFrame, film_variants: Sequence[str] = ()) -> 
         if reading.variant in film_variants and rod(reading) in home:
             panels[home[rod(reading)]].append(reading.variant)
         else:
-            log.info("the Table 2 figure does not draw the reading %r (%s law, film: %s)", reading.variant,
-                     reading.contact_law, reading.film)
+            log.info(
+                "the Table 2 figure does not draw the reading %r (%s law, film: %s)",
+                reading.variant,
+                reading.contact_law,
+                reading.film,
+            )
     return panels
 
 
@@ -117,9 +133,16 @@ def _row_of(case_id: str, variant: str, rows: Mapping[str, str]) -> str:
     return case_id[: -len(suffix)] if case_id.endswith(suffix) else case_id
 
 
-def film_table_frame(records: Sequence[RunRecord], variants: Mapping[str, str], bands: Sequence[CaseBand] = (),
-                     *, calibrated_method: str = "sem", continuum_method: str = "fem_axi",
-                     radius_method: str = "sem", sensor_bands: Sequence[CaseBand] = ()) -> pd.DataFrame:
+def film_table_frame(
+    records: Sequence[RunRecord],
+    variants: Mapping[str, str],
+    bands: Sequence[CaseBand] = (),
+    *,
+    calibrated_method: str = "sem",
+    continuum_method: str = "fem_axi",
+    radius_method: str = "sem",
+    sensor_bands: Sequence[CaseBand] = (),
+) -> pd.DataFrame:
     """Table 2 on one rod, without and with the film and the sensor as built, one row per Table 2 row (by mass).
 
     Parameters
@@ -166,8 +189,16 @@ def film_table_frame(records: Sequence[RunRecord], variants: Mapping[str, str], 
     stray = sorted({r.case_id for r in records if r.config.get("variant") not in role_of})
     if stray:
         raise ValueError(f"runs: cases {stray} belong to none of the variants {sorted(role_of)}")
-    base = ["row", "mass_g", "diameter_mm", "measured_us", "published_fem_us", "published_sem_us",
-            "published_fem_error_pct", "published_sem_error_pct"]
+    base = [
+        "row",
+        "mass_g",
+        "diameter_mm",
+        "measured_us",
+        "published_fem_us",
+        "published_sem_us",
+        "published_fem_error_pct",
+        "published_sem_error_pct",
+    ]
     parts, model_columns = [], []
     for role in FILM_ROLES:
         recs = [r for r in records if role in variants and r.config.get("variant") == variants[role]]
@@ -193,18 +224,23 @@ def film_table_frame(records: Sequence[RunRecord], variants: Mapping[str, str], 
         variant = variants.get(role, "")
         band_by_row = {_row_of(b.case_id, variant, by_case): b for b in case_bands}
         for end in ("min", "max"):
-            frame[f"{prefix}_band_{end}_us"] = [getattr(band_by_row[r], f"band_{end}_us") if r in band_by_row
-                                                else math.nan for r in frame["row"]]
+            frame[f"{prefix}_band_{end}_us"] = [
+                getattr(band_by_row[r], f"band_{end}_us") if r in band_by_row else math.nan for r in frame["row"]
+            ]
             band_columns.append(f"{prefix}_band_{end}_us")
     for column in model_columns:
         frame[column.removesuffix("_us") + "_error_pct"] = _error_pct(frame[column], measured)
     film_variant = variants.get("film", "")
-    ratio = {rec.config.get("row"): float(rec.summary.get("film_radius_to_thickness", math.nan)) for rec in records
-             if rec.method == radius_method and rec.config.get("variant") == film_variant}
+    ratio = {
+        rec.config.get("row"): float(rec.summary.get("film_radius_to_thickness", math.nan))
+        for rec in records
+        if rec.method == radius_method and rec.config.get("variant") == film_variant
+    }
     frame["radius_to_thickness"] = [ratio.get(r, math.nan) for r in frame["row"]]
     for name, calibrated, continuum in (
-            ("model_form_pct", f"{calibrated_method}_film_calibrated_us", f"{continuum_method}_film_us"),
-            ("sensor_model_form_pct", f"{calibrated_method}_sensor_calibrated_us", f"{continuum_method}_sensor_us")):
+        ("model_form_pct", f"{calibrated_method}_film_calibrated_us", f"{continuum_method}_film_us"),
+        ("sensor_model_form_pct", f"{calibrated_method}_sensor_calibrated_us", f"{continuum_method}_sensor_us"),
+    ):
         if calibrated in frame and continuum in frame:
             frame[name] = (frame[calibrated] - frame[continuum]) / frame[continuum] * 100.0
         else:
@@ -237,24 +273,56 @@ def film_band_frame(bands: Mapping[str, Sequence[CaseBand]], cases: Mapping[str,
             case = cases.get(band.case_id) or {}
             mass = 1000.0 * float(case["impactor"]["mass_kg"]) if case else math.nan
             measured = band.measured_us
-            rows.append({
-                "variant": variant, "row": case.get("row", _row_of(band.case_id, variant, {})),
-                "case_id": band.case_id, "mass_g": mass, "measured_us": measured, "nominal_us": band.nominal_us,
-                "band_min_us": band.band_min_us, "band_max_us": band.band_max_us,
-                "measured_in_band": bool(math.isfinite(measured) and band.band_min_us <= measured <= band.band_max_us),
-                "monotone": bool(band.monotone), "_order": order,
-            })
-    columns = ["variant", "row", "case_id", "mass_g", "measured_us", "nominal_us", "band_min_us", "band_max_us",
-               "measured_in_band", "monotone"]
+            rows.append(
+                {
+                    "variant": variant,
+                    "row": case.get("row", _row_of(band.case_id, variant, {})),
+                    "case_id": band.case_id,
+                    "mass_g": mass,
+                    "measured_us": measured,
+                    "nominal_us": band.nominal_us,
+                    "band_min_us": band.band_min_us,
+                    "band_max_us": band.band_max_us,
+                    "measured_in_band": bool(
+                        math.isfinite(measured) and band.band_min_us <= measured <= band.band_max_us
+                    ),
+                    "monotone": bool(band.monotone),
+                    "_order": order,
+                }
+            )
+    columns = [
+        "variant",
+        "row",
+        "case_id",
+        "mass_g",
+        "measured_us",
+        "nominal_us",
+        "band_min_us",
+        "band_max_us",
+        "measured_in_band",
+        "monotone",
+    ]
     frame = pd.DataFrame(rows, columns=[*columns, "_order"])
     frame = frame.sort_values(["_order", "mass_g"], kind="stable").reset_index(drop=True)
     return frame[columns]
 
 
 #: The columns of :func:`film_indentation_frame`, in order.
-INDENTATION_COLUMNS = ("case_id", "variant", "row", "point", "force_N", "continuum_approach_um", "law_approach_um",
-                       "law", "law_error_pct", "contact_radius_um", "film_thickness_um", "radius_to_film_thickness",
-                       "interpolation_error_half")
+INDENTATION_COLUMNS = (
+    "case_id",
+    "variant",
+    "row",
+    "point",
+    "force_N",
+    "continuum_approach_um",
+    "law_approach_um",
+    "law",
+    "law_error_pct",
+    "contact_radius_um",
+    "film_thickness_um",
+    "radius_to_film_thickness",
+    "interpolation_error_half",
+)
 
 
 def film_indentation_frame(curves: Sequence[ContactCurve]) -> pd.DataFrame:
@@ -278,29 +346,42 @@ def film_indentation_frame(curves: Sequence[ContactCurve]) -> pd.DataFrame:
         law_approach = data.get("law_approach_m", np.full_like(force, math.nan))
         radius = data["contact_radius_m"]
         for i in range(len(force)):
-            rows.append({
-                "case_id": curve.case_id, "variant": config.get("variant"), "row": config.get("row"), "point": i,
-                "force_N": float(force[i]), "continuum_approach_um": 1e6 * float(approach[i]),
-                "law_approach_um": 1e6 * float(law_approach[i]), "law": str(curve.summary.get("analytic_law", "")),
-                "law_error_pct": (float(law_approach[i]) - float(approach[i])) / float(approach[i]) * 100.0,
-                "contact_radius_um": 1e6 * float(radius[i]), "film_thickness_um": 1e6 * thickness,
-                "radius_to_film_thickness": float(radius[i]) / thickness,
-                "interpolation_error_half": float(curve.summary.get("interpolation_error_half", math.nan)),
-            })
+            rows.append(
+                {
+                    "case_id": curve.case_id,
+                    "variant": config.get("variant"),
+                    "row": config.get("row"),
+                    "point": i,
+                    "force_N": float(force[i]),
+                    "continuum_approach_um": 1e6 * float(approach[i]),
+                    "law_approach_um": 1e6 * float(law_approach[i]),
+                    "law": str(curve.summary.get("analytic_law", "")),
+                    "law_error_pct": (float(law_approach[i]) - float(approach[i])) / float(approach[i]) * 100.0,
+                    "contact_radius_um": 1e6 * float(radius[i]),
+                    "film_thickness_um": 1e6 * thickness,
+                    "radius_to_film_thickness": float(radius[i]) / thickness,
+                    "interpolation_error_half": float(curve.summary.get("interpolation_error_half", math.nan)),
+                }
+            )
     # no curve (no calibrated case): the header alone
     frame = pd.DataFrame(rows, columns=list(INDENTATION_COLUMNS))
     return frame.sort_values(["case_id", "force_N"], kind="stable").reset_index(drop=True)
 
 
-def write_provenance_with_files(path: str | Path, records: Sequence[RunRecord], artifacts: Iterable[str | Path],
-                                files: Mapping[str, Iterable[str | Path]]) -> None:
+def write_provenance_with_files(
+    path: str | Path,
+    records: Sequence[RunRecord],
+    artifacts: Iterable[str | Path],
+    files: Mapping[str, Iterable[str | Path]],
+) -> None:
     """A provenance sidecar (as :func:`rodimpact.storage.sidecar.write_provenance`) that also names
     the inputs that are not runs (band files, curve files, case files) with their SHA-256:
     ``input_files``, a list of ``{path, kind, sha256}`` (``files``: kind -> paths)."""
     artifacts = [str(a) for a in artifacts]
     record = provenance_record(records, artifacts)
-    record["input_files"] = [{"path": str(p), "kind": kind, "sha256": file_sha256(p)}
-                             for kind, paths in files.items() for p in paths]
+    record["input_files"] = [
+        {"path": str(p), "kind": kind, "sha256": file_sha256(p)} for kind, paths in files.items() for p in paths
+    ]
     record["sha256"] = {a: file_sha256(a) for a in artifacts}
     with atomic_output(path) as tmp:
         tmp.write_text(json.dumps(record, indent=2) + "\n", encoding="utf-8")

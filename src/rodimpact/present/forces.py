@@ -43,15 +43,23 @@ def force_fit_of(record: RunRecord, rel_tol: float = DEFAULT_REL_TOL) -> ForceFi
 
 
 def _provenance(record: RunRecord) -> dict[str, Any]:
-    return {"case_id": record.case_id, "method": record.method, "source": str(record.path),
-            "config_sha256": record.config_sha256, "data_sha256": record.data_sha256,
-            "run_code_version": record.code_version, "exported_by": f"rodimpact {code_version()}"}
+    return {
+        "case_id": record.case_id,
+        "method": record.method,
+        "source": str(record.path),
+        "config_sha256": record.config_sha256,
+        "data_sha256": record.data_sha256,
+        "run_code_version": record.code_version,
+        "exported_by": f"rodimpact {code_version()}",
+    }
 
 
 def _write_csv(path: str | Path, record: RunRecord, provenance: dict[str, Any]) -> None:
-    header = [f"# contact force P(t) of case {record.case_id!r} computed by method {record.method!r}",
-              *(f"# {key}: {value}" for key, value in provenance.items()),
-              "# columns: time_s (s, from the first contact), contact_force_N (N)"]
+    header = [
+        f"# contact force P(t) of case {record.case_id!r} computed by method {record.method!r}",
+        *(f"# {key}: {value}" for key, value in provenance.items()),
+        "# columns: time_s (s, from the first contact), contact_force_N (N)",
+    ]
     t, force = record.series["time"], record.series["contact_force"]
     with atomic_output(path) as tmp:
         with open(tmp, "w", encoding="utf-8", newline="") as handle:
@@ -64,13 +72,20 @@ def read_force_json(path: str | Path) -> ForceFit:
     from rodimpact.analysis.force_fit import ContactPiece
 
     data = json.loads(Path(path).read_text(encoding="utf-8"))["fit"]
-    pieces = tuple(ContactPiece(p["t0_s"], p["t1_s"], tuple(p["coefficients_N"]), p["max_abs_error_N"])
-                   for p in data["intervals"])
+    pieces = tuple(
+        ContactPiece(p["t0_s"], p["t1_s"], tuple(p["coefficients_N"]), p["max_abs_error_N"]) for p in data["intervals"]
+    )
     return ForceFit(pieces, data["peak_force_N"], data["max_abs_error_N"], data["rel_tol"])
 
 
-def export_forces(runs: Sequence[str | Path], csvs: Sequence[str | Path], jsons: Sequence[str | Path], *,
-                  provenance: str | Path | None, rel_tol: float = DEFAULT_REL_TOL) -> list[RunRecord]:
+def export_forces(
+    runs: Sequence[str | Path],
+    csvs: Sequence[str | Path],
+    jsons: Sequence[str | Path],
+    *,
+    provenance: str | Path | None,
+    rel_tol: float = DEFAULT_REL_TOL,
+) -> list[RunRecord]:
     """Write each run's force as CSV and its closed form as JSON (``runs[i]`` to ``csvs[i]``,
     ``jsons[i]``), and one provenance sidecar listing them all (none when ``provenance`` is None);
     the runs read."""
@@ -90,8 +105,14 @@ def export_forces(runs: Sequence[str | Path], csvs: Sequence[str | Path], jsons:
     return records
 
 
-def export_forces_into(runs: Sequence[str | Path], names: Sequence[str], directory: str | Path, *,
-                       provenance: str | Path, rel_tol: float = DEFAULT_REL_TOL) -> None:
+def export_forces_into(
+    runs: Sequence[str | Path],
+    names: Sequence[str],
+    directory: str | Path,
+    *,
+    provenance: str | Path,
+    rel_tol: float = DEFAULT_REL_TOL,
+) -> None:
     """:func:`export_forces` of every run of a case set into ``directory``: ``runs[i]`` to
     ``directory/{names[i]}.csv`` and ``.json`` (``names[i]`` is ``{case}/{method}``), the
     directory written whole or not at all (:func:`~rodimpact.storage.atomic.atomic_directory`),
@@ -100,6 +121,11 @@ def export_forces_into(runs: Sequence[str | Path], names: Sequence[str], directo
         raise ValueError(f"runs and names must be of one length, got {len(runs)} and {len(names)}")
     directory = Path(directory)
     with atomic_directory(directory) as tmp:
-        records = export_forces(runs, [tmp / f"{name}.csv" for name in names], [tmp / f"{name}.json" for name in names],
-                                provenance=None, rel_tol=rel_tol)
+        records = export_forces(
+            runs,
+            [tmp / f"{name}.csv" for name in names],
+            [tmp / f"{name}.json" for name in names],
+            provenance=None,
+            rel_tol=rel_tol,
+        )
     write_provenance(provenance, records, [directory / f"{name}.{ext}" for ext in ("csv", "json") for name in names])

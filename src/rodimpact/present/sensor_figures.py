@@ -19,8 +19,9 @@ __all__ = ["plot_sensor_fit"]
 log = logging.getLogger(__name__)
 
 
-def plot_sensor_fit(frame: pd.DataFrame, summary: Mapping[str, Any],
-                    descriptions: Mapping[str, str] | None = None) -> matplotlib.figure.Figure:
+def plot_sensor_fit(
+    frame: pd.DataFrame, summary: Mapping[str, Any], descriptions: Mapping[str, str] | None = None
+) -> matplotlib.figure.Figure:
     """Measured and computed contact time against ball mass: the sourced stack, the fitted one
     and (on the fitted reading) each row held out; one panel per reading.
 
@@ -33,20 +34,40 @@ def plot_sensor_fit(frame: pd.DataFrame, summary: Mapping[str, Any],
     """
     descriptions = dict(descriptions or {})
     variants = list(dict.fromkeys(frame["variant"]))
-    fig, axes = plt.subplots(1, len(variants), figsize=(5.2 * len(variants), 4.6), squeeze=False, sharey=True,
-                             layout="constrained")
+    fig, axes = plt.subplots(
+        1, len(variants), figsize=(5.2 * len(variants), 4.6), squeeze=False, sharey=True, layout="constrained"
+    )
     thickness = f"{summary['fitted_thickness_um']:.1f} ± {summary['standard_error_um']:.1f} µm"
     for ax, variant in zip(axes[0], variants):
         rows = frame[frame["variant"] == variant].sort_values("mass_g")
         fitted = bool((rows["role"] == "fitted").any())
         ax.plot(rows["mass_g"], rows["measured_us"], "s", color="k", ms=6, label="measured")
-        ax.plot(rows["mass_g"], rows["nominal_us"], "-o", color="tab:green", ms=4,
-                label="sensor as built, sourced constants (prediction, no fit)")
-        ax.plot(rows["mass_g"], rows["fitted_us"], "--D", color="tab:orange", ms=4,
-                label=f"FIT: {summary['layer']} {thickness} (fitted on the left panel's reading)")
+        ax.plot(
+            rows["mass_g"],
+            rows["nominal_us"],
+            "-o",
+            color="tab:green",
+            ms=4,
+            label="sensor as built, sourced constants (prediction, no fit)",
+        )
+        ax.plot(
+            rows["mass_g"],
+            rows["fitted_us"],
+            "--D",
+            color="tab:orange",
+            ms=4,
+            label=f"FIT: {summary['layer']} {thickness} (fitted on the left panel's reading)",
+        )
         if fitted:
-            ax.plot(rows["mass_g"], rows["held_out_us"], "o", mfc="none", color="tab:purple", ms=8,
-                    label="fit on the other rows, this row held out")
+            ax.plot(
+                rows["mass_g"],
+                rows["held_out_us"],
+                "o",
+                mfc="none",
+                color="tab:purple",
+                ms=8,
+                label="fit on the other rows, this row held out",
+            )
         title = textwrap.fill(descriptions.get(variant, variant), 60)
         ax.set_title(f"{title}\n({'the fit' if fitted else 'the fitted stack applied'})", fontsize=9)
         ax.set_xscale("log")
@@ -63,6 +84,9 @@ def plot_sensor_fit(frame: pd.DataFrame, summary: Mapping[str, Any],
         for handle, label in zip(*ax.get_legend_handles_labels()):
             handles.setdefault(label, handle)
     fig.legend(list(handles.values()), list(handles), loc="outside lower center", ncol=2, fontsize=8, frameon=False)
-    fig.suptitle(f"A fit, not a prediction: the {summary['layer']}'s thickness from the measurements "
-                 f"(sourced range {summary['source_low_um']:.0f}–{summary['source_high_um']:.0f} µm)", fontsize=10)
+    fig.suptitle(
+        f"A fit, not a prediction: the {summary['layer']}'s thickness from the measurements "
+        f"(sourced range {summary['source_low_um']:.0f}–{summary['source_high_um']:.0f} µm)",
+        fontsize=10,
+    )
     return fig

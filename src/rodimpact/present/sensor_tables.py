@@ -55,15 +55,38 @@ def sensor_band_frame(bands: Sequence[tuple[str, CaseBand]], cases: Mapping[str,
     for variant, band in bands:
         row, mass = _row(cases.get(band.case_id) or {}, band.case_id)
         measured = band.measured_us
-        rows.append({
-            "variant": variant, "row": row, "case_id": band.case_id, "mass_g": mass, "method": CALIBRATED_METHOD,
-            "measured_us": measured, "band_min_us": band.band_min_us, "nominal_us": band.nominal_us,
-            "band_max_us": band.band_max_us,
-            "measured_in_band": bool(math.isfinite(measured) and band.band_min_us <= measured <= band.band_max_us),
-            "nominal_error_pct": (band.nominal_us - measured) / measured * 100.0, "monotone": bool(band.monotone),
-            "constants": len(band.parameters)})
-    columns = ["variant", "row", "case_id", "mass_g", "method", "measured_us", "band_min_us", "nominal_us",
-               "band_max_us", "measured_in_band", "nominal_error_pct", "monotone", "constants"]
+        rows.append(
+            {
+                "variant": variant,
+                "row": row,
+                "case_id": band.case_id,
+                "mass_g": mass,
+                "method": CALIBRATED_METHOD,
+                "measured_us": measured,
+                "band_min_us": band.band_min_us,
+                "nominal_us": band.nominal_us,
+                "band_max_us": band.band_max_us,
+                "measured_in_band": bool(math.isfinite(measured) and band.band_min_us <= measured <= band.band_max_us),
+                "nominal_error_pct": (band.nominal_us - measured) / measured * 100.0,
+                "monotone": bool(band.monotone),
+                "constants": len(band.parameters),
+            }
+        )
+    columns = [
+        "variant",
+        "row",
+        "case_id",
+        "mass_g",
+        "method",
+        "measured_us",
+        "band_min_us",
+        "nominal_us",
+        "band_max_us",
+        "measured_in_band",
+        "nominal_error_pct",
+        "monotone",
+        "constants",
+    ]
     frame = pd.DataFrame(rows, columns=columns)
     return frame.sort_values(["variant", "mass_g"], kind="stable").reset_index(drop=True)
 
@@ -80,8 +103,13 @@ def _grid(bands: Sequence[CaseBand], parameter: str) -> tuple[np.ndarray, np.nda
     return grid, np.vstack([np.asarray(b.axis_us[parameter], float) for b in bands])
 
 
-def sensor_fit_frame(fitted: Sequence[CaseBand], applied: Sequence[CaseBand], cases: Mapping[str, Mapping[str, Any]],
-                     layer: str, variants: Mapping[str, str]) -> tuple[pd.DataFrame, dict[str, Any]]:
+def sensor_fit_frame(
+    fitted: Sequence[CaseBand],
+    applied: Sequence[CaseBand],
+    cases: Mapping[str, Mapping[str, Any]],
+    layer: str,
+    variants: Mapping[str, str],
+) -> tuple[pd.DataFrame, dict[str, Any]]:
     """The fit of ``layer``'s thickness to the measured times of the ``fitted`` cases.
 
     Parameters
@@ -118,28 +146,63 @@ def sensor_fit_frame(fitted: Sequence[CaseBand], applied: Sequence[CaseBand], ca
     rows = []
     for i, band in enumerate(fitted):
         row, mass = _row(cases.get(band.case_id) or {}, band.case_id)
-        rows.append({"variant": variants.get(band.case_id, ""), "role": "fitted", "row": row, "case_id": band.case_id,
-                     "mass_g": mass, "measured_us": band.measured_us, "nominal_us": band.nominal_us,
-                     "fitted_us": float(fit.predicted[i]), "held_out_us": float(loo.held_out_predicted[i])})
+        rows.append(
+            {
+                "variant": variants.get(band.case_id, ""),
+                "role": "fitted",
+                "row": row,
+                "case_id": band.case_id,
+                "mass_g": mass,
+                "measured_us": band.measured_us,
+                "nominal_us": band.nominal_us,
+                "fitted_us": float(fit.predicted[i]),
+                "held_out_us": float(loo.held_out_predicted[i]),
+            }
+        )
     if applied:
         applied_grid, applied_times = _grid(applied, parameter)
         at_fit = predict_at(applied_grid, applied_times, fit.theta)
         for i, band in enumerate(applied):
             row, mass = _row(cases.get(band.case_id) or {}, band.case_id)
-            rows.append({"variant": variants.get(band.case_id, ""), "role": "applied", "row": row,
-                         "case_id": band.case_id, "mass_g": mass, "measured_us": band.measured_us,
-                         "nominal_us": band.nominal_us, "fitted_us": float(at_fit[i]), "held_out_us": math.nan})
+            rows.append(
+                {
+                    "variant": variants.get(band.case_id, ""),
+                    "role": "applied",
+                    "row": row,
+                    "case_id": band.case_id,
+                    "mass_g": mass,
+                    "measured_us": band.measured_us,
+                    "nominal_us": band.nominal_us,
+                    "fitted_us": float(at_fit[i]),
+                    "held_out_us": math.nan,
+                }
+            )
     frame = pd.DataFrame(rows)
     for column in ("nominal", "fitted", "held_out"):
         frame[f"{column}_error_pct"] = (frame[f"{column}_us"] - frame["measured_us"]) / frame["measured_us"] * 100.0
     summary = {
-        "layer": layer, "fitted_thickness_um": 1e6 * fit.theta, "standard_error_um": 1e6 * fit.standard_error,
-        "source_low_um": 1e6 * source_range[0], "source_high_um": 1e6 * source_range[1],
-        "inside_source_range": bool(fit.inside_range), "success": bool(fit.success), "status": fit.status,
-        "residual_rms_pct": 100.0 * fit.residual_rms, "loo_mean_abs_error_pct": float(loo.mean_abs_error_pct),
-        "rows": len(fitted)}
-    log.info("fit of %s's thickness: %.2f +/- %.2f um (source %.0f-%.0f um, inside: %s), rms %.2f %%, "
-             "leave-one-out mean |error| %.2f %%", layer, summary["fitted_thickness_um"], summary["standard_error_um"],
-             summary["source_low_um"], summary["source_high_um"], summary["inside_source_range"],
-             summary["residual_rms_pct"], summary["loo_mean_abs_error_pct"])
+        "layer": layer,
+        "fitted_thickness_um": 1e6 * fit.theta,
+        "standard_error_um": 1e6 * fit.standard_error,
+        "source_low_um": 1e6 * source_range[0],
+        "source_high_um": 1e6 * source_range[1],
+        "inside_source_range": bool(fit.inside_range),
+        "success": bool(fit.success),
+        "status": fit.status,
+        "residual_rms_pct": 100.0 * fit.residual_rms,
+        "loo_mean_abs_error_pct": float(loo.mean_abs_error_pct),
+        "rows": len(fitted),
+    }
+    log.info(
+        "fit of %s's thickness: %.2f +/- %.2f um (source %.0f-%.0f um, inside: %s), rms %.2f %%, "
+        "leave-one-out mean |error| %.2f %%",
+        layer,
+        summary["fitted_thickness_um"],
+        summary["standard_error_um"],
+        summary["source_low_um"],
+        summary["source_high_um"],
+        summary["inside_source_range"],
+        summary["residual_rms_pct"],
+        summary["loo_mean_abs_error_pct"],
+    )
     return frame, summary

@@ -22,8 +22,17 @@ __all__ = ["order_text", "plot_stability_map", "plot_work_precision", "quantity_
 _COLORS = {name: spec.color for name, spec in METHODS.items()}
 #: Markers of the methods, in the registry's order.
 _MARKERS = ("o", "s", "^", "D", "v", "P")
-_ORDINALS = {1: "first", 2: "second", 3: "third", 4: "fourth", 5: "fifth", 6: "sixth", 7: "seventh",
-             8: "eighth", 9: "ninth"}
+_ORDINALS = {
+    1: "first",
+    2: "second",
+    3: "third",
+    4: "fourth",
+    5: "fifth",
+    6: "sixth",
+    7: "seventh",
+    8: "eighth",
+    9: "ninth",
+}
 #: The slope guide lies this factor below the first fitted level's error.
 _GUIDE_OFFSET = 0.35
 #: The error axis reaches this factor below the smallest error: room for each panel's box of orders.
@@ -35,8 +44,11 @@ def quantity_words(quantity: str) -> str:
     if quantity.startswith("max_") and quantity[4:].isdigit():
         k = int(quantity[4:])
         return f"{_ORDINALS.get(k, f'{k}th')} force maximum"
-    return {"contact_time": "contact time", "history_l2": "force history, $L_2$ norm",
-            "history_max": r"force history, max norm"}.get(quantity, quantity.replace("_", " "))
+    return {
+        "contact_time": "contact time",
+        "history_l2": "force history, $L_2$ norm",
+        "history_max": r"force history, max norm",
+    }.get(quantity, quantity.replace("_", " "))
 
 
 def order_text(order: float) -> str:
@@ -59,26 +71,41 @@ def _legend_text(order: pd.Series | None) -> str:
         return f"GCI {order.gci_pct:.2g} %"
     if not np.isfinite(order.expected_order) and np.isfinite(order.get("u_osc_pct", np.nan)):
         return f"half range {order.u_osc_pct:.2g} %"
-    observed = (f"{order.observed_order:.2f} ± {order.order_stderr:.2f}" if np.isfinite(order.observed_order)
-                else "–")
+    observed = f"{order.observed_order:.2f} ± {order.order_stderr:.2f}" if np.isfinite(order.observed_order) else "–"
     expected = order_text(order.expected_order) if np.isfinite(order.expected_order) else "none"
     return f"{observed} ({expected})"
 
 
-def _slope_guide(ax: matplotlib.axes.Axes, time: np.ndarray, err: np.ndarray, h: np.ndarray, fitted: np.ndarray,
-                 order: float, color: str) -> None:
+def _slope_guide(
+    ax: matplotlib.axes.Axes,
+    time: np.ndarray,
+    err: np.ndarray,
+    h: np.ndarray,
+    fitted: np.ndarray,
+    order: float,
+    color: str,
+) -> None:
     """A dashed segment under the fitted levels: over their wall times it falls as h^order would
     over their refinement, labelled with the order."""
     first, last = np.flatnonzero(fitted)[[0, -1]]
     x = np.array([time[first], time[last]])
     y = _GUIDE_OFFSET * err[first] * np.array([1.0, (h[last] / h[first]) ** order])
     ax.loglog(x, y, color=color, linestyle=(0, (4, 2)), linewidth=0.9, alpha=0.9)
-    ax.annotate(f"$h^{{{order_text(order)}}}$", (np.sqrt(x[0] * x[1]), np.sqrt(y[0] * y[1])), xytext=(-2, -3),
-                textcoords="offset points", ha="right", va="top", fontsize=6.5, color=color)
+    ax.annotate(
+        f"$h^{{{order_text(order)}}}$",
+        (np.sqrt(x[0] * x[1]), np.sqrt(y[0] * y[1])),
+        xytext=(-2, -3),
+        textcoords="offset points",
+        ha="right",
+        va="top",
+        fontsize=6.5,
+        color=color,
+    )
 
 
-def plot_work_precision(frame: pd.DataFrame, orders: pd.DataFrame, case_id: str,
-                        title: str = "") -> matplotlib.figure.Figure:
+def plot_work_precision(
+    frame: pd.DataFrame, orders: pd.DataFrame, case_id: str, title: str = ""
+) -> matplotlib.figure.Figure:
     """Log-log relative error against wall time of one case: one panel per error quantity, one
     line per method.
 
@@ -108,8 +135,15 @@ def plot_work_precision(frame: pd.DataFrame, orders: pd.DataFrame, case_id: str,
     drawn = [q for q in quantities(frame) if np.any(data[f"err_{q}"].to_numpy(float) > 0)]
     cols = min(len(drawn), 3 if len(drawn) <= 9 else 4)
     rows = -(-len(drawn) // cols)
-    fig, axes = plt.subplots(rows, cols, figsize=(3.1 * cols + 0.3, 2.6 * rows + 1.1), sharex=True, sharey=True,
-                             squeeze=False, layout="constrained")
+    fig, axes = plt.subplots(
+        rows,
+        cols,
+        figsize=(3.1 * cols + 0.3, 2.6 * rows + 1.1),
+        sharex=True,
+        sharey=True,
+        squeeze=False,
+        layout="constrained",
+    )
     handles = {}
     for ax, quantity in zip(axes.flat, drawn):
         for index, method in enumerate(methods):
@@ -125,19 +159,45 @@ def plot_work_precision(frame: pd.DataFrame, orders: pd.DataFrame, case_id: str,
             ax.loglog(time[keep], err[keep], color=color, linewidth=1.0)
             for filled in (True, False):
                 pick = keep & (in_fit == filled)
-                ax.loglog(time[pick], err[pick], linestyle="none", marker=marker, markersize=3.8, color=color,
-                          markerfacecolor=color if filled else "white", markeredgewidth=0.9)
+                ax.loglog(
+                    time[pick],
+                    err[pick],
+                    linestyle="none",
+                    marker=marker,
+                    markersize=3.8,
+                    color=color,
+                    markerfacecolor=color if filled else "white",
+                    markeredgewidth=0.9,
+                )
             ax.plot([], [], color=color, marker=marker, markersize=3.8, linewidth=1.0, label=_legend_text(order))
-            handles.setdefault(METHOD_LABELS.get(method, method), Line2D([], [], color=color, marker=marker,
-                                                                         markersize=3.8, linewidth=1.0))
+            handles.setdefault(
+                METHOD_LABELS.get(method, method),
+                Line2D([], [], color=color, marker=marker, markersize=3.8, linewidth=1.0),
+            )
             if order is not None and in_fit.sum() >= 3 and np.isfinite(order.expected_order):
-                _slope_guide(ax, time, err, 1.0 / rows_of["resolution_value"].to_numpy(float), in_fit & keep,
-                             float(order.expected_order), color)
+                _slope_guide(
+                    ax,
+                    time,
+                    err,
+                    1.0 / rows_of["resolution_value"].to_numpy(float),
+                    in_fit & keep,
+                    float(order.expected_order),
+                    color,
+                )
         ax.set_title(quantity_words(quantity), fontsize=9)
         ax.grid(alpha=0.3, which="both")
-        ax.legend(title="order: observed ± s.e. (expected)", fontsize=6.5, title_fontsize=6.5, loc="best",
-                  framealpha=0.85, handlelength=1.0, handletextpad=0.4, borderpad=0.3, labelspacing=0.2)
-    for ax in list(axes.flat)[len(drawn):]:
+        ax.legend(
+            title="order: observed ± s.e. (expected)",
+            fontsize=6.5,
+            title_fontsize=6.5,
+            loc="best",
+            framealpha=0.85,
+            handlelength=1.0,
+            handletextpad=0.4,
+            borderpad=0.3,
+            labelspacing=0.2,
+        )
+    for ax in list(axes.flat)[len(drawn) :]:
         ax.set_visible(False)
     errors = data[[f"err_{q}" for q in drawn]].to_numpy(float)
     low, high = np.min(errors[errors > 0]), np.max(errors[np.isfinite(errors)])
@@ -149,11 +209,18 @@ def plot_work_precision(frame: pd.DataFrame, orders: pd.DataFrame, case_id: str,
     for i in range(rows):
         axes[i, 0].set_ylabel("relative error")
     handles["level in the fit"] = Line2D([], [], color="0.3", marker="o", markersize=3.8, linestyle="none")
-    handles["level not in the fit"] = Line2D([], [], color="0.3", marker="o", markersize=3.8, linestyle="none",
-                                             markerfacecolor="white")
+    handles["level not in the fit"] = Line2D(
+        [], [], color="0.3", marker="o", markersize=3.8, linestyle="none", markerfacecolor="white"
+    )
     handles["expected order (slope guide)"] = Line2D([], [], color="0.3", linestyle=(0, (4, 2)), linewidth=0.9)
-    fig.legend(list(handles.values()), list(handles), loc="outside lower center", ncol=min(len(handles), 4),
-               fontsize=8, frameon=False)
+    fig.legend(
+        list(handles.values()),
+        list(handles),
+        loc="outside lower center",
+        ncol=min(len(handles), 4),
+        fontsize=8,
+        frameon=False,
+    )
     fig.suptitle(f"Error against run time: {title}" if title else "Error against run time", fontsize=10)
     return fig
 
@@ -166,22 +233,29 @@ def plot_stability_map(frame: pd.DataFrame, steps_per_contact: int, accuracy: fl
     the scheme is refused unless asked. The implicit scheme has no such limit.
     """
     methods = list(dict.fromkeys(frame["method"]))
-    fig, axes = plt.subplots(1, len(methods), figsize=(5.2 * len(methods), 5.2), sharey=True, squeeze=False,
-                             layout="constrained")
+    fig, axes = plt.subplots(
+        1, len(methods), figsize=(5.2 * len(methods), 5.2), sharey=True, squeeze=False, layout="constrained"
+    )
     line = enforced_limit_line(frame)
     masses, limit = line["mass_kg"].to_numpy(float), line["z_crit"].to_numpy(float)
-    styles = {MAP_CLASSES[0]: ("o", "C2"), MAP_CLASSES[1]: ("s", "C1"), MAP_CLASSES[2]: ("X", "C3"),
-              MAP_CLASSES[3]: ("d", "0.6")}
+    styles = {
+        MAP_CLASSES[0]: ("o", "C2"),
+        MAP_CLASSES[1]: ("s", "C1"),
+        MAP_CLASSES[2]: ("X", "C3"),
+        MAP_CLASSES[3]: ("d", "0.6"),
+    }
     for ax, method in zip(axes[0], methods):
         rows = frame[frame["method"] == method]
         for cls, (marker, color) in styles.items():
             pick = rows[rows["class"] == cls]
-            ax.scatter(pick["mass_kg"], pick["impedance_kg_s"], marker=marker, color=color, s=40,
-                       label=f"{cls} ({len(pick)})")
+            ax.scatter(
+                pick["mass_kg"], pick["impedance_kg_s"], marker=marker, color=color, s=40, label=f"{cls} ({len(pick)})"
+            )
         if getattr(METHODS[method].options(), "scheme", None) == "paper":
             floor = 0.5 * float(frame["impedance_kg_s"].min())
-            ax.loglog(masses, limit, "k--", linewidth=1,
-                      label=r"stability limit $h = 2Z/k_c(\alpha_H)$; shaded: unstable")
+            ax.loglog(
+                masses, limit, "k--", linewidth=1, label=r"stability limit $h = 2Z/k_c(\alpha_H)$; shaded: unstable"
+            )
             ax.fill_between(masses, np.maximum(limit, floor), floor, color="0.85", alpha=0.6, lw=0, zorder=0)
             ax.set_ylim(bottom=floor)
         ax.set_xscale("log")
@@ -191,6 +265,8 @@ def plot_stability_map(frame: pd.DataFrame, steps_per_contact: int, accuracy: fl
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), frameon=False)
     axes[0][0].set_ylabel(r"rod impedance $Z = S\sqrt{E\rho}$ (kg/s)")
-    fig.suptitle(f"Stability map: accurate = contact time (against the reference) and energy balance "
-                 f"within {accuracy:g}", fontsize=10)
+    fig.suptitle(
+        f"Stability map: accurate = contact time (against the reference) and energy balance within {accuracy:g}",
+        fontsize=10,
+    )
     return fig

@@ -78,8 +78,10 @@ def panel_grid(panels: Sequence[str], readings: pd.DataFrame | None) -> list[lis
     rods: dict[str, tuple[float, float]] = {}
     if readings is not None and set(panels) <= set(readings["variant"]):
         known = readings.set_index("variant")
-        rods = {v: (round(float(known.at[v, "rod_radius_mm"]), 9), round(float(known.at[v, "rod_length_mm"]), 9))
-                for v in panels}
+        rods = {
+            v: (round(float(known.at[v, "rod_radius_mm"]), 9), round(float(known.at[v, "rod_length_mm"]), 9))
+            for v in panels
+        }
         panels.sort(key=lambda v: rods[v])
     radii = sorted({r for r, _ in rods.values()})
     lengths = sorted({length for _, length in rods.values()})
@@ -89,11 +91,16 @@ def panel_grid(panels: Sequence[str], readings: pd.DataFrame | None) -> list[lis
             grid[radii.index(radius)][lengths.index(length)] = variant
         return grid
     cols = 2 if len(panels) > 1 else 1
-    return [panels[i:i + cols] + [None] * (cols - len(panels[i:i + cols])) for i in range(0, len(panels), cols)]
+    return [panels[i : i + cols] + [None] * (cols - len(panels[i : i + cols])) for i in range(0, len(panels), cols)]
 
 
-def _panel_title(variant: str, overlays: Sequence[str], descriptions: Mapping[str, str],
-                 readings: pd.DataFrame | None, sensors: Mapping[str, bool]) -> str:
+def _panel_title(
+    variant: str,
+    overlays: Sequence[str],
+    descriptions: Mapping[str, str],
+    readings: pd.DataFrame | None,
+    sensors: Mapping[str, bool],
+) -> str:
     """The reading in words (its ``description`` in the case file), and what its overlays add:
     the sensor as built (``sensors``), the film alone (the other overlays)."""
     title = descriptions.get(variant, "")
@@ -115,8 +122,17 @@ def _rings(ax: matplotlib.axes.Axes, mass: Sequence[float], time: Sequence[float
     """Rings round the points whose run had more than one contact."""
     pick = np.asarray(many, bool)
     if pick.any():
-        ax.plot(np.asarray(mass, float)[pick], np.asarray(time, float)[pick], "o", ms=9, mfc="none", mew=1.0,
-                color="0.15", label=SECOND_CONTACT_LABEL, zorder=5)
+        ax.plot(
+            np.asarray(mass, float)[pick],
+            np.asarray(time, float)[pick],
+            "o",
+            ms=9,
+            mfc="none",
+            mew=1.0,
+            color="0.15",
+            label=SECOND_CONTACT_LABEL,
+            zorder=5,
+        )
 
 
 def _many_contacts(frame: pd.DataFrame) -> np.ndarray:
@@ -134,26 +150,52 @@ def _film_sweep(ax: matplotlib.axes.Axes, curves: pd.DataFrame, nominal_pa: floa
     nominal = moduli[np.argmin(np.abs(moduli - nominal_pa))] if np.isfinite(nominal_pa) else np.median(moduli)
     by_modulus = {m: c.sort_values("diameter_mm") for m, c in curves.groupby("film_modulus_pa")}
     line = by_modulus[nominal]
-    ax.plot(line["mass_g"], line["contact_time_us"], "-", lw=1.2, color="tab:red",
-            label=f"{METHOD_LABELS.get(method, method)}, film as a thin layer: sweep at film modulus {nominal / 1e9:g} GPa")
+    ax.plot(
+        line["mass_g"],
+        line["contact_time_us"],
+        "-",
+        lw=1.2,
+        color="tab:red",
+        label=f"{METHOD_LABELS.get(method, method)}, film as a thin layer: sweep at film modulus {nominal / 1e9:g} GPa",
+    )
     _rings(ax, line["mass_g"], line["contact_time_us"], _many_contacts(line))
     if len(moduli) > 1:
         low, high = by_modulus[moduli[0]], by_modulus[moduli[-1]]
         edges = low[["diameter_mm", "mass_g", "contact_time_us"]].merge(
-            high[["diameter_mm", "contact_time_us"]], on="diameter_mm", suffixes=("_low", "_high"))
-        ax.fill_between(edges["mass_g"], np.minimum(edges["contact_time_us_low"], edges["contact_time_us_high"]),
-                        np.maximum(edges["contact_time_us_low"], edges["contact_time_us_high"]), color="tab:red",
-                        alpha=0.15, lw=0, label=f"film modulus {moduli[0] / 1e9:g} to {moduli[-1] / 1e9:g} GPa")
+            high[["diameter_mm", "contact_time_us"]], on="diameter_mm", suffixes=("_low", "_high")
+        )
+        ax.fill_between(
+            edges["mass_g"],
+            np.minimum(edges["contact_time_us_low"], edges["contact_time_us_high"]),
+            np.maximum(edges["contact_time_us_low"], edges["contact_time_us_high"]),
+            color="tab:red",
+            alpha=0.15,
+            lw=0,
+            label=f"film modulus {moduli[0] / 1e9:g} to {moduli[-1] / 1e9:g} GPa",
+        )
 
 
-def _film_overlay(ax: matplotlib.axes.Axes, variant: str, frame: pd.DataFrame | None, sweeps: pd.DataFrame | None,
-                  bands: pd.DataFrame | None, nominal_pa: float, method: str,
-                  contacts: Mapping[tuple[str, str], int]) -> None:
+def _film_overlay(
+    ax: matplotlib.axes.Axes,
+    variant: str,
+    frame: pd.DataFrame | None,
+    sweeps: pd.DataFrame | None,
+    bands: pd.DataFrame | None,
+    nominal_pa: float,
+    method: str,
+    contacts: Mapping[tuple[str, str], int],
+) -> None:
     """A film reading on the panel of its rod: its runs, its sweep with the modulus band, and
     each row's prediction band over the film constants' ranges."""
     if frame is not None and f"{method}_us" in frame:
-        ax.plot(frame["mass_g"], frame[f"{method}_us"], "D", ms=4.5, color="tab:red",
-                label=f"{METHOD_LABELS.get(method, method)}, film as a thin layer (approximation, too soft)")
+        ax.plot(
+            frame["mass_g"],
+            frame[f"{method}_us"],
+            "D",
+            ms=4.5,
+            color="tab:red",
+            label=f"{METHOD_LABELS.get(method, method)}, film as a thin layer (approximation, too soft)",
+        )
         _rings(ax, frame["mass_g"], frame[f"{method}_us"], [contacts.get((c, method), 1) > 1 for c in frame["case_id"]])
     if sweeps is not None and not sweeps.empty and "film_modulus_pa" in sweeps:
         for _, curves in sweeps[(sweeps["variant"] == variant) & sweeps["film_modulus_pa"].notna()].groupby("method"):
@@ -162,14 +204,26 @@ def _film_overlay(ax: matplotlib.axes.Axes, variant: str, frame: pd.DataFrame | 
         band = bands[bands["variant"] == variant]
         if not band.empty:
             nominal = band["nominal_us"].to_numpy(float)
-            ax.errorbar(band["mass_g"], nominal, yerr=[nominal - band["band_min_us"].to_numpy(float),
-                                                       band["band_max_us"].to_numpy(float) - nominal],
-                        fmt="none", ecolor="darkred", elinewidth=1.2, capsize=3,
-                        label="film as a thin layer: band over the film constants' ranges (approximation)")
+            ax.errorbar(
+                band["mass_g"],
+                nominal,
+                yerr=[nominal - band["band_min_us"].to_numpy(float), band["band_max_us"].to_numpy(float) - nominal],
+                fmt="none",
+                ecolor="darkred",
+                elinewidth=1.2,
+                capsize=3,
+                label="film as a thin layer: band over the film constants' ranges (approximation)",
+            )
 
 
-def _sensor_overlay(ax: matplotlib.axes.Axes, variant: str, frame: pd.DataFrame | None, calibrated: bool,
-                    bands: pd.DataFrame | None, sweeps: pd.DataFrame | None) -> None:
+def _sensor_overlay(
+    ax: matplotlib.axes.Axes,
+    variant: str,
+    frame: pd.DataFrame | None,
+    calibrated: bool,
+    bands: pd.DataFrame | None,
+    sweeps: pd.DataFrame | None,
+) -> None:
     """A reading with the sensor as built, on the panel of its rod: the continuum's dynamic runs
     (``fem_axi``), or the 1-D methods with the law the continuum calibrates on the stack (the
     SEM: its sweep over the ball sizes as a line, each indented by the continuum, or a line
@@ -178,17 +232,35 @@ def _sensor_overlay(ax: matplotlib.axes.Axes, variant: str, frame: pd.DataFrame 
     if frame is None:
         return
     if not calibrated and "fem_axi_us" in frame:
-        ax.plot(frame["mass_g"], frame["fem_axi_us"], "D", ms=6, color=SENSOR_COLOR, zorder=6,
-                label=f"{METHOD_LABELS['fem_axi']}, sensor as built (electrodes, film, bond line)")
+        ax.plot(
+            frame["mass_g"],
+            frame["fem_axi_us"],
+            "D",
+            ms=6,
+            color=SENSOR_COLOR,
+            zorder=6,
+            label=f"{METHOD_LABELS['fem_axi']}, sensor as built (electrodes, film, bond line)",
+        )
     if calibrated and "sem_us" in frame:
         label = f"{METHOD_LABELS['sem']}, sensor as built, contact law calibrated by the continuum"
-        sweep = (None if sweeps is None or sweeps.empty else
-                 sweeps[(sweeps["variant"] == variant) & (sweeps["method"] == "sem")].sort_values("mass_g"))
+        sweep = (
+            None
+            if sweeps is None or sweeps.empty
+            else sweeps[(sweeps["variant"] == variant) & (sweeps["method"] == "sem")].sort_values("mass_g")
+        )
         if sweep is not None and not sweep.empty:
-            ax.plot(sweep["mass_g"], sweep["contact_time_us"], "-", lw=1.6, color=SENSOR_COLOR, zorder=5,
-                    label=f"{label}: sweep over {len(sweep)} ball sizes")
-            ax.plot(frame["mass_g"], frame["sem_us"], "o", ms=4, color=SENSOR_COLOR, zorder=6,
-                    label=f"{label}: the rows")
+            ax.plot(
+                sweep["mass_g"],
+                sweep["contact_time_us"],
+                "-",
+                lw=1.6,
+                color=SENSOR_COLOR,
+                zorder=5,
+                label=f"{label}: sweep over {len(sweep)} ball sizes",
+            )
+            ax.plot(
+                frame["mass_g"], frame["sem_us"], "o", ms=4, color=SENSOR_COLOR, zorder=6, label=f"{label}: the rows"
+            )
         else:
             ordered = frame.sort_values("mass_g")
             ax.plot(ordered["mass_g"], ordered["sem_us"], "-", lw=1.6, color=SENSOR_COLOR, zorder=5, label=label)
@@ -196,14 +268,26 @@ def _sensor_overlay(ax: matplotlib.axes.Axes, variant: str, frame: pd.DataFrame 
             band = bands[bands["case_id"].isin(frame["case_id"])]
             if not band.empty:
                 nominal = band["nominal_us"].to_numpy(float)
-                ax.errorbar(band["mass_g"], nominal, yerr=[nominal - band["band_min_us"].to_numpy(float),
-                                                           band["band_max_us"].to_numpy(float) - nominal],
-                            fmt="none", ecolor="teal", elinewidth=1.6, capsize=4, zorder=5,
-                            label="sensor as built: band over its sourced ranges (continuum's law)")
+                ax.errorbar(
+                    band["mass_g"],
+                    nominal,
+                    yerr=[nominal - band["band_min_us"].to_numpy(float), band["band_max_us"].to_numpy(float) - nominal],
+                    fmt="none",
+                    ecolor="teal",
+                    elinewidth=1.6,
+                    capsize=4,
+                    zorder=5,
+                    label="sensor as built: band over its sourced ranges (continuum's law)",
+                )
 
 
-def _rows(ax: matplotlib.axes.Axes, frame: pd.DataFrame, sources: Mapping[str, str],
-          contacts: Mapping[tuple[str, str], int], set_title: str) -> None:
+def _rows(
+    ax: matplotlib.axes.Axes,
+    frame: pd.DataFrame,
+    sources: Mapping[str, str],
+    contacts: Mapping[tuple[str, str], int],
+    set_title: str,
+) -> None:
     """A reading's rows: measured (one marker per source), the paper's FEM and SEM where the
     cases declare them, ours."""
     mass = frame["mass_g"]
@@ -212,17 +296,38 @@ def _rows(ax: matplotlib.axes.Axes, frame: pd.DataFrame, sources: Mapping[str, s
     every = list(dict.fromkeys(sources.values())) or [""]
     for source, rows in measured.groupby("_source", sort=False):
         marker = _SOURCE_MARKERS[every.index(source) % len(_SOURCE_MARKERS)] if source in every else "s"
-        ax.plot(rows["mass_g"], rows["measured_us"], marker, color="k", ms=6, ls="none", zorder=4,
-                label=f"measured ({short_source(source)})" if source else "measured")
+        ax.plot(
+            rows["mass_g"],
+            rows["measured_us"],
+            marker,
+            color="k",
+            ms=6,
+            ls="none",
+            zorder=4,
+            label=f"measured ({short_source(source)})" if source else "measured",
+        )
     for family, marker, colour in (("fem", "^", "tab:gray"), ("sem", "v", "tab:brown")):
         column = f"published_{family}_us"
         if column in frame and frame[column].notna().any():
-            ax.plot(mass, frame[column], marker, mfc="none", color=colour, ls="none",
-                    label=f"the paper's {family.upper()} (its {set_title})")
+            ax.plot(
+                mass,
+                frame[column],
+                marker,
+                mfc="none",
+                color=colour,
+                ls="none",
+                label=f"the paper's {family.upper()} (its {set_title})",
+            )
     for method in METHOD_ORDER:
         if f"{method}_us" in frame:
-            ax.plot(mass, frame[f"{method}_us"], "o" + METHODS[method].style, ms=4, color=METHODS[method].color,
-                    label=f"{METHOD_LABELS[method]}, no film")
+            ax.plot(
+                mass,
+                frame[f"{method}_us"],
+                "o" + METHODS[method].style,
+                ms=4,
+                color=METHODS[method].color,
+                label=f"{METHOD_LABELS[method]}, no film",
+            )
             _rings(ax, mass, frame[f"{method}_us"], [contacts.get((c, method), 1) > 1 for c in frame["case_id"]])
 
 
@@ -235,14 +340,20 @@ def _sweep_curves(ax: matplotlib.axes.Axes, variant: str, sweeps: pd.DataFrame |
     if "film_modulus_pa" in plain:
         plain = plain[plain["film_modulus_pa"].isna()]
     for (_, method), curve in plain.groupby(["row", "method"]):
-        ax.plot(curve["mass_g"], curve["contact_time_us"], METHODS[method].style if method in METHODS else "-",
-                lw=1.0, color="tab:purple",
-                label=f"{METHOD_LABELS.get(method, method)}, no film: sweep over {len(curve)} ball sizes")
+        ax.plot(
+            curve["mass_g"],
+            curve["contact_time_us"],
+            METHODS[method].style if method in METHODS else "-",
+            lw=1.0,
+            color="tab:purple",
+            label=f"{METHOD_LABELS.get(method, method)}, no film: sweep over {len(curve)} ball sizes",
+        )
         _rings(ax, curve["mass_g"], curve["contact_time_us"], _many_contacts(curve))
 
 
-def _limits(axes: Sequence[matplotlib.axes.Axes], frames: Sequence[pd.DataFrame],
-            bands: pd.DataFrame | None) -> tuple[tuple[float, float], tuple[float, float]]:
+def _limits(
+    axes: Sequence[matplotlib.axes.Axes], frames: Sequence[pd.DataFrame], bands: pd.DataFrame | None
+) -> tuple[tuple[float, float], tuple[float, float]]:
     """Mass limits fitted to the table's balls; time limits fitted to everything drawn at those
     masses (points, curves, band ends)."""
     masses = np.concatenate([f["mass_g"].to_numpy(float) for f in frames])
@@ -267,15 +378,21 @@ def _log_ticks(ax: matplotlib.axes.Axes) -> None:
         axis.set_minor_formatter(matplotlib.ticker.NullFormatter())
 
 
-def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame], sweeps: pd.DataFrame | None = None, *,
-                             panels: Mapping[str, Sequence[str]] | None = None,
-                             readings: pd.DataFrame | None = None, bands: pd.DataFrame | None = None,
-                             descriptions: Mapping[str, str] | None = None,
-                             sources: Mapping[str, str] | None = None,
-                             contacts: Mapping[tuple[str, str], int] | None = None,
-                             film_method: str = "sem", sensors: Mapping[str, bool] | None = None,
-                             sensor_bands: pd.DataFrame | None = None,
-                             set_title: str) -> matplotlib.figure.Figure:
+def plot_table2_contact_time(
+    frames: Mapping[str, pd.DataFrame],
+    sweeps: pd.DataFrame | None = None,
+    *,
+    panels: Mapping[str, Sequence[str]] | None = None,
+    readings: pd.DataFrame | None = None,
+    bands: pd.DataFrame | None = None,
+    descriptions: Mapping[str, str] | None = None,
+    sources: Mapping[str, str] | None = None,
+    contacts: Mapping[tuple[str, str], int] | None = None,
+    film_method: str = "sem",
+    sensors: Mapping[str, bool] | None = None,
+    sensor_bands: pd.DataFrame | None = None,
+    set_title: str,
+) -> matplotlib.figure.Figure:
     """Contact time against ball mass per rod: measured, published and ours, with the film.
 
     Parameters
@@ -316,12 +433,18 @@ def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame], sweeps: pd.Data
     panels = {v: () for v in frames} if panels is None else dict(panels)
     descriptions, sources, contacts = dict(descriptions or {}), dict(sources or {}), dict(contacts or {})
     sensors = dict(sensors or {})
-    nominal = ({} if readings is None else
-               dict(zip(readings["variant"], readings["film_modulus_pa"].astype(float))))
+    nominal = {} if readings is None else dict(zip(readings["variant"], readings["film_modulus_pa"].astype(float)))
     grid = panel_grid(list(panels), readings)
     rows, cols = len(grid), len(grid[0])
-    fig, axes = plt.subplots(rows, cols, figsize=(_PANEL_WIDTH_IN * cols, _PANEL_HEIGHT_IN * rows + 1.6), squeeze=False,
-                             sharex=True, sharey=True, layout="constrained")
+    fig, axes = plt.subplots(
+        rows,
+        cols,
+        figsize=(_PANEL_WIDTH_IN * cols, _PANEL_HEIGHT_IN * rows + 1.6),
+        squeeze=False,
+        sharex=True,
+        sharey=True,
+        layout="constrained",
+    )
     drawn = []
     for (i, j), variant in np.ndenumerate(np.array(grid, dtype=object)):
         ax = axes[i, j]
@@ -335,8 +458,9 @@ def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame], sweeps: pd.Data
             if film in sensors:
                 _sensor_overlay(ax, film, frames.get(film), sensors[film], sensor_bands, sweeps)
             else:
-                _film_overlay(ax, film, frames.get(film), sweeps, bands, nominal.get(film, math.nan), film_method,
-                              contacts)
+                _film_overlay(
+                    ax, film, frames.get(film), sweeps, bands, nominal.get(film, math.nan), film_method, contacts
+                )
         ax.set_title(_panel_title(variant, panels[variant], descriptions, readings, sensors), fontsize=9)
         ax.set_xscale("log")
         ax.set_yscale("log")  # one scale for all panels: the readings' times differ tenfold
@@ -364,8 +488,9 @@ def plot_table2_contact_time(frames: Mapping[str, pd.DataFrame], sweeps: pd.Data
     # each legend column holds its share of the figure's width, less the marker: wrap to it
     width = int((_PANEL_WIDTH_IN * cols / ncol - 0.6) / (_CHAR_EM * _LEGEND_PT / 72.0))
     labels = [textwrap.fill(label, width) for label in handles]
-    fig.legend(list(handles.values()), labels, loc="outside lower center", ncol=ncol, fontsize=_LEGEND_PT,
-               frameon=False)
+    fig.legend(
+        list(handles.values()), labels, loc="outside lower center", ncol=ncol, fontsize=_LEGEND_PT, frameon=False
+    )
     # the legend below the panels takes its own height: the panels keep theirs
     lines = math.ceil(sum(label.count("\n") + 1 for label in labels) / ncol)
     fig.set_size_inches(_PANEL_WIDTH_IN * cols, _PANEL_HEIGHT_IN * rows + 0.8 + lines * _LEGEND_PT * 1.5 / 72.0)

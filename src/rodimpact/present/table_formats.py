@@ -23,8 +23,19 @@ import pandas as pd
 
 from rodimpact.present.columns import LATEX_UNITS, Column, column
 
-__all__ = ["LATEX_CHAR_PT", "LATEX_COLUMN_SEP_PT", "MAX_COLUMNS", "Panel", "header_lines", "html_tables",
-           "latex_escape", "latex_tables", "latex_width_pt", "markdown_table", "panels"]
+__all__ = [
+    "LATEX_CHAR_PT",
+    "LATEX_COLUMN_SEP_PT",
+    "MAX_COLUMNS",
+    "Panel",
+    "header_lines",
+    "html_tables",
+    "latex_escape",
+    "latex_tables",
+    "latex_width_pt",
+    "markdown_table",
+    "panels",
+]
 
 #: The most columns a panel shows (a page's width of numbers).
 MAX_COLUMNS = 8
@@ -80,8 +91,18 @@ class Panel:
         return spec
 
 
-def panels(frame: pd.DataFrame, title: str, key: Sequence[str], values: Sequence[str], *, label: str = "",
-           latex_caption: str = "", drop: str = "", by: str = "", max_columns: int = MAX_COLUMNS) -> list[Panel]:
+def panels(
+    frame: pd.DataFrame,
+    title: str,
+    key: Sequence[str],
+    values: Sequence[str],
+    *,
+    label: str = "",
+    latex_caption: str = "",
+    drop: str = "",
+    by: str = "",
+    max_columns: int = MAX_COLUMNS,
+) -> list[Panel]:
     """The columns ``key`` + ``values`` of ``frame`` as panels of at most ``max_columns``.
 
     Columns the frame lacks are skipped (a table's methods vary). When the values do not fit in
@@ -101,9 +122,16 @@ def panels(frame: pd.DataFrame, title: str, key: Sequence[str], values: Sequence
         out = []
         for value in groups:
             rows = tuple(int(i) for i in (frame[by] == value).to_numpy().nonzero()[0])
-            for panel in panels(frame, f"{title}: {column(by).label.lower()} {value}", [c for c in key if c != by],
-                                [c for c in values if c != by], label=label, latex_caption=latex_caption,
-                                drop=drop, max_columns=max_columns):
+            for panel in panels(
+                frame,
+                f"{title}: {column(by).label.lower()} {value}",
+                [c for c in key if c != by],
+                [c for c in values if c != by],
+                label=label,
+                latex_caption=latex_caption,
+                drop=drop,
+                max_columns=max_columns,
+            ):
                 out.append(Panel(panel.title, panel.columns, panel.label, panel.latex_caption, panel.drop, rows))
         return out
     key = [c for c in key if c in frame.columns]
@@ -113,29 +141,42 @@ def panels(frame: pd.DataFrame, title: str, key: Sequence[str], values: Sequence
         raise ValueError(f"{title!r}: {len(key)} key columns leave no room in {max_columns}")
     n = max(1, -(-len(values) // room))
     size = -(-len(values) // n) if values else 0
-    chunks = [values[i * size:(i + 1) * size] for i in range(n)]
+    chunks = [values[i * size : (i + 1) * size] for i in range(n)]
     if n == 1:
         return [Panel(title, (*key, *values), label, latex_caption, drop)]
-    return [Panel(f"{title}, part {i} of {n}", (*key, *chunk), f"{label}-{i}" if label else "",
-                  f"{latex_caption} (part {i} of {n})" if latex_caption else "", drop)
-            for i, chunk in enumerate(chunks, start=1)]
+    return [
+        Panel(
+            f"{title}, part {i} of {n}",
+            (*key, *chunk),
+            f"{label}-{i}" if label else "",
+            f"{latex_caption} (part {i} of {n})" if latex_caption else "",
+            drop,
+        )
+        for i, chunk in enumerate(chunks, start=1)
+    ]
 
 
 def _numeric(frame: pd.DataFrame, name: str) -> bool:
-    return bool(column(name).fmt) and pd.api.types.is_numeric_dtype(frame[name]) \
+    return (
+        bool(column(name).fmt)
+        and pd.api.types.is_numeric_dtype(frame[name])
         and not pd.api.types.is_bool_dtype(frame[name])
+    )
 
 
-def html_tables(frame: pd.DataFrame, shown: Sequence[Panel], *, scroll_rows: int = 40,
-                max_height_rem: float = 36.0) -> str:
+def html_tables(
+    frame: pd.DataFrame, shown: Sequence[Panel], *, scroll_rows: int = 40, max_height_rem: float = 36.0
+) -> str:
     """The panels as HTML tables (each with its title as ``<caption>``), for a report caption.
 
     Numbers are right-aligned in their column's format. A table of more than ``scroll_rows``
     rows scrolls inside a box ``max_height_rem`` high, its header (label, then unit) in view.
     """
     cell = "padding:0.12rem 0.25rem;white-space:nowrap;"
-    head = ("padding:0.12rem 0.25rem;vertical-align:bottom;position:sticky;top:0;background:#1e293b;"
-            "border-bottom:1px solid #94a3b8;")
+    head = (
+        "padding:0.12rem 0.25rem;vertical-align:bottom;position:sticky;top:0;background:#1e293b;"
+        "border-bottom:1px solid #94a3b8;"
+    )
     if not shown:
         return "<p>The table has no rows.</p>\n"
     out = []
@@ -144,26 +185,55 @@ def html_tables(frame: pd.DataFrame, shown: Sequence[Panel], *, scroll_rows: int
         align = ["right" if _numeric(frame, name) else "left" for name in panel.columns]
         long = len(panel.cells(frame)) > scroll_rows
         box = f"overflow:auto;max-height:{max_height_rem:g}rem;" if long else "overflow-x:auto;"
-        rows = ["<tr>" + "".join(
-            f'<th scope="col" style="{head}text-align:{a}">{html.escape(s.label)}'
-            + (f'<br><span style="font-weight:normal">({html.escape(s.unit)})</span>' if s.unit else "")
-            + "</th>" for s, a in zip(specs, align)) + "</tr>"]
+        rows = [
+            "<tr>"
+            + "".join(
+                f'<th scope="col" style="{head}text-align:{a}">{html.escape(s.label)}'
+                + (f'<br><span style="font-weight:normal">({html.escape(s.unit)})</span>' if s.unit else "")
+                + "</th>"
+                for s, a in zip(specs, align)
+            )
+            + "</tr>"
+        ]
         body = []
         for values in panel.cells(frame).itertuples(index=False):
-            body.append("<tr>" + "".join(f'<td style="{cell}text-align:{a}">{html.escape(s.text(v))}</td>'
-                                         for s, a, v in zip(specs, align, values)) + "</tr>")
+            body.append(
+                "<tr>"
+                + "".join(
+                    f'<td style="{cell}text-align:{a}">{html.escape(s.text(v))}</td>'
+                    for s, a, v in zip(specs, align, values)
+                )
+                + "</tr>"
+            )
         out.append(
             f'<div style="{box}margin:0.5rem 0 1rem">\n'
             '<table style="width:auto;margin:0;font-size:0.7rem;line-height:1.3;border-collapse:collapse">\n'
             f'<caption style="caption-side:top;text-align:left;font-weight:600;padding-bottom:0.3rem">'
-            f'{html.escape(panel.title)}</caption>\n'
-            f"<thead>{rows[0]}</thead>\n<tbody>\n" + "\n".join(body) + "\n</tbody>\n</table>\n</div>")
+            f"{html.escape(panel.title)}</caption>\n"
+            f"<thead>{rows[0]}</thead>\n<tbody>\n" + "\n".join(body) + "\n</tbody>\n</table>\n</div>"
+        )
     return "\n".join(out) + "\n"
 
 
-_LATEX_SPECIAL = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_",
-                  "{": r"\{", "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}", "–": "--",
-                  "µ": r"$\mu$", "−": "$-$", "²": r"$^2$", "³": r"$^3$", "·": r"$\cdot$", "×": r"$\times$"}
+_LATEX_SPECIAL = {
+    "\\": r"\textbackslash{}",
+    "&": r"\&",
+    "%": r"\%",
+    "$": r"\$",
+    "#": r"\#",
+    "_": r"\_",
+    "{": r"\{",
+    "}": r"\}",
+    "~": r"\textasciitilde{}",
+    "^": r"\textasciicircum{}",
+    "–": "--",
+    "µ": r"$\mu$",
+    "−": "$-$",
+    "²": r"$^2$",
+    "³": r"$^3$",
+    "·": r"$\cdot$",
+    "×": r"$\times$",
+}
 
 
 def latex_escape(text: str) -> str:
@@ -191,8 +261,11 @@ def latex_width_pt(frame: pd.DataFrame, panel: Panel) -> float:
     width = 0.0
     for name in panel.columns:
         spec = panel.header(name)
-        texts = [*header_lines(spec.label), f"({spec.unit})" if spec.unit else "",
-                 *(spec.text(v) for v in panel.cells(frame)[name])]
+        texts = [
+            *header_lines(spec.label),
+            f"({spec.unit})" if spec.unit else "",
+            *(spec.text(v) for v in panel.cells(frame)[name]),
+        ]
         width += LATEX_CHAR_PT * max(map(len, texts)) + LATEX_COLUMN_SEP_PT
     return width
 
@@ -210,14 +283,25 @@ def latex_tables(frame: pd.DataFrame, shown: Sequence[Panel]) -> str:
             header.append(" & ".join(latex_escape(line[1]) for line in lines) + r" \\")
         if any(s.unit for s in specs):
             header.append(" & ".join(_latex_unit(s.unit) for s in specs) + r" \\")
-        body = [" & ".join(latex_escape(s.text(v)) for s, v in zip(specs, values)) + r" \\"
-                for values in panel.cells(frame).itertuples(index=False)]
+        body = [
+            " & ".join(latex_escape(s.text(v)) for s, v in zip(specs, values)) + r" \\"
+            for values in panel.cells(frame).itertuples(index=False)
+        ]
         caption = panel.latex_caption or latex_escape(panel.title)
         out += [r"\begin{table}[tbp]", r"\centering", rf"\caption{{{caption}}}"]
         if panel.label:
             out.append(rf"\label{{{panel.label}}}")
-        out += [rf"\begin{{tabular}}{{{align}}}", r"\toprule", *header, r"\midrule", *body, r"\bottomrule",
-                r"\end{tabular}", r"\end{table}", ""]
+        out += [
+            rf"\begin{{tabular}}{{{align}}}",
+            r"\toprule",
+            *header,
+            r"\midrule",
+            *body,
+            r"\bottomrule",
+            r"\end{tabular}",
+            r"\end{table}",
+            "",
+        ]
     return "\n".join(out)
 
 

@@ -130,31 +130,35 @@ def sweep_results_frame(records: Sequence[RunRecord]) -> pd.DataFrame:
     rows = []
     for rec in records:
         config, summary = rec.config, rec.summary
-        maxima = first_contact_maxima(summary["peak_time_s"], summary["peak_force_N"],
-                                      summary.get("contact_end_s", np.empty(0)))
-        rows.append({
-            "sweep": config["sweep_of"],
-            "row": config.get("row"),
-            "variant": config.get("variant"),
-            "method": rec.method,
-            **{f"{name}": float(value) for name, value in (config.get("sweep_point") or {}).items()},
-            "mass_g": 1000.0 * config["impactor"]["mass_kg"],
-            "diameter_mm": 2000.0 * config["impactor"]["radius_m"],
-            "velocity_m_s": config["impactor"]["velocity_m_s"],
-            "rod_length_mm": 1000.0 * config["rod"]["length_m"],
-            "contact_time_us": 1e6 * float(summary["contact_time_s"]),
-            "first_peak_force_N": float(maxima[0]) if len(maxima) else math.nan,
-            "max_force_N": float(np.max(maxima)) if len(maxima) else math.nan,
-            "n_contacts": int(summary.get("n_contacts", 1)),
-        })
+        maxima = first_contact_maxima(
+            summary["peak_time_s"], summary["peak_force_N"], summary.get("contact_end_s", np.empty(0))
+        )
+        rows.append(
+            {
+                "sweep": config["sweep_of"],
+                "row": config.get("row"),
+                "variant": config.get("variant"),
+                "method": rec.method,
+                **{f"{name}": float(value) for name, value in (config.get("sweep_point") or {}).items()},
+                "mass_g": 1000.0 * config["impactor"]["mass_kg"],
+                "diameter_mm": 2000.0 * config["impactor"]["radius_m"],
+                "velocity_m_s": config["impactor"]["velocity_m_s"],
+                "rod_length_mm": 1000.0 * config["rod"]["length_m"],
+                "contact_time_us": 1e6 * float(summary["contact_time_s"]),
+                "first_peak_force_N": float(maxima[0]) if len(maxima) else math.nan,
+                "max_force_N": float(np.max(maxima)) if len(maxima) else math.nan,
+                "n_contacts": int(summary.get("n_contacts", 1)),
+            }
+        )
     frame = pd.DataFrame(rows)
     if frame.empty:
         return frame
     return frame.sort_values(["sweep", "method", "mass_g"], kind="stable").reset_index(drop=True)
 
 
-def variants_summary(frames: dict[str, pd.DataFrame],
-                     readings: Mapping[str, Mapping[str, Any]] | None = None) -> pd.DataFrame:
+def variants_summary(
+    frames: dict[str, pd.DataFrame], readings: Mapping[str, Mapping[str, Any]] | None = None
+) -> pd.DataFrame:
     """Per variant and method: mean, max and mean signed error against the measurements,
     next to the paper's own errors for the same family of method (SEM or FEM) when a case
     declares them (else no ``paper_*`` columns).
@@ -169,8 +173,11 @@ def variants_summary(frames: dict[str, pd.DataFrame],
     """
     rows = []
     for variant, frame in frames.items():
-        reading = {} if readings is None else {"film": bool(readings[variant]["film"]),
-                                                 "contact_law": str(readings[variant]["contact_law"])}
+        reading = (
+            {}
+            if readings is None
+            else {"film": bool(readings[variant]["film"]), "contact_law": str(readings[variant]["contact_law"])}
+        )
         measured = frame["measured_us"].to_numpy(float)
         for column in frame.columns:
             if not column.endswith("_us") or column.startswith(("measured", "published")):
@@ -181,18 +188,20 @@ def variants_summary(frames: dict[str, pd.DataFrame],
             signed = (ours - measured) / measured * 100.0
             published = f"published_{family}_error_pct"
             paper = frame[published].to_numpy(float) if family and published in frame else np.array([np.nan])
-            rows.append({
-                "variant": variant,
-                **reading,
-                "method": method,
-                "n_cases": int(np.sum(np.isfinite(signed))),
-                "mean_error_pct": float(np.nanmean(np.abs(signed))),
-                "max_error_pct": float(np.nanmax(np.abs(signed))),
-                "mean_signed_error_pct": float(np.nanmean(signed)),
-                "paper_method": family or "",
-                "paper_mean_error_pct": float(np.nanmean(paper)),
-                "paper_max_error_pct": float(np.nanmax(paper)),
-            })
+            rows.append(
+                {
+                    "variant": variant,
+                    **reading,
+                    "method": method,
+                    "n_cases": int(np.sum(np.isfinite(signed))),
+                    "mean_error_pct": float(np.nanmean(np.abs(signed))),
+                    "max_error_pct": float(np.nanmax(np.abs(signed))),
+                    "mean_signed_error_pct": float(np.nanmean(signed)),
+                    "paper_method": family or "",
+                    "paper_mean_error_pct": float(np.nanmean(paper)),
+                    "paper_max_error_pct": float(np.nanmax(paper)),
+                }
+            )
     summary = pd.DataFrame(rows)
     if not any("published_fem_us" in frame for frame in frames.values()):
         summary = summary.drop(columns=[c for c in summary.columns if c.startswith("paper_")])
@@ -225,13 +234,18 @@ def comparison_frame(records: Sequence[RunRecord], reference: str = "sem") -> pd
     for method in _methods(records):
         rec = by_method[method]
         tc, maxima = float(rec.summary["contact_time_s"]), _first_contact_maxima(rec)
-        row: dict[str, Any] = {"case_id": rec.case_id, "method": method, "contact_time_us": 1e6 * tc,
-                               "n_maxima": len(maxima)}
+        row: dict[str, Any] = {
+            "case_id": rec.case_id,
+            "method": method,
+            "contact_time_us": 1e6 * tc,
+            "n_maxima": len(maxima),
+        }
         for i, value in enumerate(maxima, start=1):
             row[f"max_{i}_kN"] = 1e-3 * value
         row[f"contact_time_vs_{reference}_pct"] = (tc / ref_tc - 1.0) * 100.0
-        row[f"maxima_vs_{reference}_pct"] = (float(np.max(np.abs(maxima / ref_max - 1.0))) * 100.0
-                                             if len(maxima) == len(ref_max) else math.nan)
+        row[f"maxima_vs_{reference}_pct"] = (
+            float(np.max(np.abs(maxima / ref_max - 1.0))) * 100.0 if len(maxima) == len(ref_max) else math.nan
+        )
         row["paper_fem_vs_sem_contact_time_pct"] = published.get("contact_time_difference_pct", math.nan)
         row["paper_fem_vs_sem_extrema_pct"] = published.get("extrema_difference_pct", math.nan)
         rows.append(row)
@@ -241,9 +255,16 @@ def comparison_frame(records: Sequence[RunRecord], reference: str = "sem") -> pd
     return frame[head + [c for c in frame.columns if c not in head]]
 
 
-def write_table(frame: pd.DataFrame, *, csv: str | Path, md: str | Path | None = None,
-                html: str | Path | None = None, tex: str | Path | None = None, caption: str = "",
-                views: Sequence[Panel] | None = None) -> None:
+def write_table(
+    frame: pd.DataFrame,
+    *,
+    csv: str | Path,
+    md: str | Path | None = None,
+    html: str | Path | None = None,
+    tex: str | Path | None = None,
+    caption: str = "",
+    views: Sequence[Panel] | None = None,
+) -> None:
     """Write a table: the CSV with every column at full precision (machine names), and for
     people, each optional: Markdown (every column, rounded, headers in words with units, after
     ``caption``), and the panels ``views`` as HTML tables (for the report) and as LaTeX tables

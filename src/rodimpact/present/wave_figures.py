@@ -65,8 +65,9 @@ def plot_wave_map(records: Sequence[RunRecord], title: str = "") -> matplotlib.f
         raise ValueError("runs: none stored the strain field (output strain_field)")
     limit = 100.0 * max(float(np.max(np.abs(r.field["strain"]))) for r in runs)
     norm = matplotlib.colors.Normalize(-limit, limit)
-    fig, axes = plt.subplots(1, len(runs), figsize=(3.6 * len(runs) + 1.2, 4.3), sharey=True,
-                             layout="constrained", squeeze=False)
+    fig, axes = plt.subplots(
+        1, len(runs), figsize=(3.6 * len(runs) + 1.2, 4.3), sharey=True, layout="constrained", squeeze=False
+    )
     for ax, run in zip(axes[0], runs):
         mesh = _panel(ax, run, norm)
     axes[0][0].set_ylabel("distance from the struck end $x$ (m)")
@@ -75,10 +76,16 @@ def plot_wave_map(records: Sequence[RunRecord], title: str = "") -> matplotlib.f
     formatter = matplotlib.ticker.ScalarFormatter(useMathText=True)
     formatter.set_powerlimits((-3, 4))  # a small strain's ticks as multiples of a power of ten
     bar.formatter = formatter
-    handles = [Line2D([], [], linestyle="-", **_FRONT), Line2D([], [], linestyle="--", **_FRONT),
-               Line2D([], [], color="k", linewidth=4.0, solid_capstyle="butt")]
-    labels = ["wave front from the start of a contact, reflected at both ends",
-              "wave front from the end of a contact", "contact"]
+    handles = [
+        Line2D([], [], linestyle="-", **_FRONT),
+        Line2D([], [], linestyle="--", **_FRONT),
+        Line2D([], [], color="k", linewidth=4.0, solid_capstyle="butt"),
+    ]
+    labels = [
+        "wave front from the start of a contact, reflected at both ends",
+        "wave front from the end of a contact",
+        "contact",
+    ]
     fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=8, frameon=False)
     if title:
         fig.suptitle(title, fontsize=10)
@@ -88,8 +95,9 @@ def plot_wave_map(records: Sequence[RunRecord], title: str = "") -> matplotlib.f
 def _panel(ax: matplotlib.axes.Axes, run: RunRecord, norm: matplotlib.colors.Normalize):
     """One run's map, its fronts and its contacts; returns the map (for the colour bar)."""
     t_us, x = 1e6 * run.field["time"], run.field["x"]
-    mesh = ax.pcolormesh(t_us, x, 100.0 * run.field["strain"].T, cmap=_CMAP, norm=norm, shading="nearest",
-                         rasterized=True)
+    mesh = ax.pcolormesh(
+        t_us, x, 100.0 * run.field["strain"].T, cmap=_CMAP, norm=norm, shading="nearest", rasterized=True
+    )
     length, speed, t_end = float(x[-1]), float(run.summary["wave_speed_m_s"]), float(run.field["time"][-1])
     starts = np.atleast_1d(run.summary["contact_start_s"])
     ends = np.atleast_1d(run.summary["contact_end_s"])
@@ -111,12 +119,14 @@ def _title(config: dict) -> str:
     rod = config["rod"]
     words = f"rod {1000 * float(rod['length_m']):.3g} mm long, far end {rod['far_end']}"
     description = str(config.get("description") or "").strip()
-    return f"Axial strain along the rod against time\n{description}; {words}" if description else (
-        f"Axial strain along the rod against time\n{words[0].upper()}{words[1:]}")
+    return (
+        f"Axial strain along the rod against time\n{description}; {words}"
+        if description
+        else (f"Axial strain along the rod against time\n{words[0].upper()}{words[1:]}")
+    )
 
 
-def make_wave_map(runs: Sequence[str | Path], *, pdf: str | Path, png: str | Path,
-                  provenance: str | Path) -> None:
+def make_wave_map(runs: Sequence[str | Path], *, pdf: str | Path, png: str | Path, provenance: str | Path) -> None:
     """The strain map of one case from its runs that stored the field, with its provenance.
 
     Parameters
@@ -133,7 +143,12 @@ def make_wave_map(runs: Sequence[str | Path], *, pdf: str | Path, png: str | Pat
     if len(cases) != 1:
         raise ValueError(f"runs: the wave map shows one case's stored fields, got cases {cases}")
     fig = plot_wave_map(records, title=_title(records[0].config))
-    save_figure(fig, pdf=pdf, png=png, provenance=provenance_record(records, [pdf, png]),
-                title="The waves in the rod: axial strain against time and position")
+    save_figure(
+        fig,
+        pdf=pdf,
+        png=png,
+        provenance=provenance_record(records, [pdf, png]),
+        title="The waves in the rod: axial strain against time and position",
+    )
     write_provenance(provenance, records, [pdf, png])
     log.info("wave map of %s: %d panels (%s)", cases[0], len(records), ", ".join(r.method for r in records))

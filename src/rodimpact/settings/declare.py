@@ -99,8 +99,9 @@ class Material:
         if missing:
             return f"must give {', '.join(missing)}"
         modulus, nu, rho = (value[key] for key in cls.CONSTANTS)
-        if not all(isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
-                   for x in (modulus, nu, rho)):
+        if not all(
+            isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x) for x in (modulus, nu, rho)
+        ):
             return "must have finite numbers as constants"
         if not (modulus > 0 and rho > 0 and -1.0 < nu < 0.5):
             return f"must have E > 0, density > 0 and -1 < nu < 0.5, got {modulus!r}, {rho!r}, {nu!r}"
@@ -136,9 +137,16 @@ class Setting:
 
     def bounds_text(self) -> str:
         """The bounds as a short phrase, e.g. ``>= 10`` or ``> 0 and < 1``."""
-        parts = [f"{op} {value:g}" for op, value in ((">=", self.minimum), (">", self.exclusive_minimum),
-                                                     ("<=", self.maximum), ("<", self.exclusive_maximum))
-                 if value is not None]
+        parts = [
+            f"{op} {value:g}"
+            for op, value in (
+                (">=", self.minimum),
+                (">", self.exclusive_minimum),
+                ("<=", self.maximum),
+                ("<", self.exclusive_maximum),
+            )
+            if value is not None
+        ]
         return " and ".join(parts)
 
     def problem(self, value: Any) -> str | None:
@@ -174,8 +182,11 @@ class Setting:
         if self.kind is bool:
             return None if isinstance(value, bool) else f"must be true or false, got {value!r}"
         if self.choices:
-            return None if value in self.choices else (
-                f"must be one of {', '.join(map(repr, self.choices))}; got {value!r}")
+            return (
+                None
+                if value in self.choices
+                else (f"must be one of {', '.join(map(repr, self.choices))}; got {value!r}")
+            )
         if self.kind is str:
             return None if isinstance(value, str) else f"must be a string, got {value!r}"
         if isinstance(value, bool) or not isinstance(value, (int, float)):
@@ -184,10 +195,12 @@ class Setting:
             return f"must be an integer, got {value!r}"
         if not math.isfinite(value):
             return f"must be a finite number, got {value!r}"
-        ok = ((self.minimum is None or value >= self.minimum)
-              and (self.exclusive_minimum is None or value > self.exclusive_minimum)
-              and (self.maximum is None or value <= self.maximum)
-              and (self.exclusive_maximum is None or value < self.exclusive_maximum))
+        ok = (
+            (self.minimum is None or value >= self.minimum)
+            and (self.exclusive_minimum is None or value > self.exclusive_minimum)
+            and (self.maximum is None or value <= self.maximum)
+            and (self.exclusive_maximum is None or value < self.exclusive_maximum)
+        )
         return None if ok else f"must be {self.bounds_text()}, got {value!r}"
 
     def json_schema(self, default: Any = REQUIRED, *, material_ref: str = "#/$defs/material") -> dict[str, Any]:
@@ -223,18 +236,32 @@ class Setting:
         schema: dict[str, Any] = {"type": _KIND_SCHEMA[self.kind]}
         if self.choices:
             schema["enum"] = list(self.choices)
-        for key, value in (("minimum", self.minimum), ("exclusiveMinimum", self.exclusive_minimum),
-                           ("maximum", self.maximum), ("exclusiveMaximum", self.exclusive_maximum)):
+        for key, value in (
+            ("minimum", self.minimum),
+            ("exclusiveMinimum", self.exclusive_minimum),
+            ("maximum", self.maximum),
+            ("exclusiveMaximum", self.exclusive_maximum),
+        ):
             if value is not None:
                 schema[key] = value
         return schema
 
 
-def setting(default: Any, doc: str, *, unit: str = "1", kind: Any = float, nullable: bool = False,
-            minimum: float | None = None, exclusive_minimum: float | None = None,
-            maximum: float | None = None, exclusive_maximum: float | None = None,
-            choices: tuple[Any, ...] = (), items: tuple[int, int | None] | None = None,
-            key: str | None = None) -> Any:
+def setting(
+    default: Any,
+    doc: str,
+    *,
+    unit: str = "1",
+    kind: Any = float,
+    nullable: bool = False,
+    minimum: float | None = None,
+    exclusive_minimum: float | None = None,
+    maximum: float | None = None,
+    exclusive_maximum: float | None = None,
+    choices: tuple[Any, ...] = (),
+    items: tuple[int, int | None] | None = None,
+    key: str | None = None,
+) -> Any:
     """A dataclass field declaring one setting.
 
     Parameters
@@ -259,9 +286,19 @@ def setting(default: Any, doc: str, *, unit: str = "1", kind: Any = float, nulla
     key : str, optional
         The setting's name in a mapping, where it cannot be the field's (``from``).
     """
-    meta = Setting(doc=doc, unit=unit, kind=kind, nullable=nullable, minimum=minimum,
-                   exclusive_minimum=exclusive_minimum, maximum=maximum, exclusive_maximum=exclusive_maximum,
-                   choices=tuple(choices), items=items, key=key)
+    meta = Setting(
+        doc=doc,
+        unit=unit,
+        kind=kind,
+        nullable=nullable,
+        minimum=minimum,
+        exclusive_minimum=exclusive_minimum,
+        maximum=maximum,
+        exclusive_maximum=exclusive_maximum,
+        choices=tuple(choices),
+        items=items,
+        key=key,
+    )
     if default is REQUIRED:
         return dataclasses.field(metadata={"setting": meta})
     return dataclasses.field(default=default, metadata={"setting": meta})
@@ -301,14 +338,20 @@ class Settings:
     @classmethod
     def required(cls) -> tuple[str, ...]:
         """The keys of the settings that have no default."""
-        return tuple(f.metadata["setting"].key or f.name for f in dataclasses.fields(cls)
-                     if "setting" in f.metadata and f.default is dataclasses.MISSING)
+        return tuple(
+            f.metadata["setting"].key or f.name
+            for f in dataclasses.fields(cls)
+            if "setting" in f.metadata and f.default is dataclasses.MISSING
+        )
 
     @classmethod
     def defaults(cls) -> dict[str, Any]:
         """Setting key -> default (the settings that have one)."""
-        return {f.metadata["setting"].key or f.name: f.default for f in dataclasses.fields(cls)
-                if "setting" in f.metadata and f.default is not dataclasses.MISSING}
+        return {
+            f.metadata["setting"].key or f.name: f.default
+            for f in dataclasses.fields(cls)
+            if "setting" in f.metadata and f.default is not dataclasses.MISSING
+        }
 
     @classmethod
     def from_settings(cls: type[T], data: Mapping[str, Any], *, material: MaterialResolver | None = None) -> T:
@@ -347,9 +390,13 @@ class Settings:
         defaults = cls.defaults()
         schema: dict[str, Any] = {
             "description": cls.DESCRIPTION or (cls.__doc__ or "").strip().splitlines()[0],
-            "type": "object", "additionalProperties": False,
-            "properties": {key: meta.json_schema(defaults.get(key, REQUIRED), material_ref=material_ref)
-                           for key, meta in cls.settings().items()}}
+            "type": "object",
+            "additionalProperties": False,
+            "properties": {
+                key: meta.json_schema(defaults.get(key, REQUIRED), material_ref=material_ref)
+                for key, meta in cls.settings().items()
+            },
+        }
         if cls.required():
             schema["required"] = list(cls.required())
         return schema

@@ -43,17 +43,32 @@ class FieldGrid(Options):
 
     DESCRIPTION: ClassVar[str] = (
         "The grid of the output strain_field (the axial strain over the whole rod against time), the same for "
-        "every method of the case; used only by a case that lists that output.")
+        "every method of the case; used only by a case that lists that output."
+    )
 
     sections: int = setting(
-        41, "Cross-sections where the strain is recorded, evenly spaced from the struck end (x = 0) to the far "
-        "end (x = l), both included.", kind=int, minimum=2, maximum=1001)
+        41,
+        "Cross-sections where the strain is recorded, evenly spaced from the struck end (x = 0) to the far "
+        "end (x = l), both included.",
+        kind=int,
+        minimum=2,
+        maximum=1001,
+    )
     samples_per_transit: int = setting(
-        40, "Time samples per wave transit l / a of the rod (a = sqrt(E / rho), the bar wave speed), evenly "
-        "spaced from the first contact on.", kind=int, minimum=2, maximum=1000)
+        40,
+        "Time samples per wave transit l / a of the rod (a = sqrt(E / rho), the bar wave speed), evenly "
+        "spaced from the first contact on.",
+        kind=int,
+        minimum=2,
+        maximum=1000,
+    )
     round_trips_after: float = setting(
-        1.0, "Time the field covers after the last contact ends, in wave round trips 2 l / a (at least one: the "
-        "waves the contact leaves reach both ends and return to the struck end).", minimum=1, maximum=100)
+        1.0,
+        "Time the field covers after the last contact ends, in wave round trips 2 l / a (at least one: the "
+        "waves the contact leaves reach both ends and return to the struck end).",
+        minimum=1,
+        maximum=100,
+    )
 
     def positions(self, length_m: float) -> NDArray[np.float64]:
         """The cross-sections, m from the struck end, shape (sections,)."""
@@ -65,8 +80,9 @@ class FieldGrid(Options):
         """The time between samples, s: the transit l / a over ``samples_per_transit``."""
         return transit_s / self.samples_per_transit
 
-    def times(self, transit_s: float, status: str, contact_end_s: Sequence[float], run_end_s: float
-              ) -> NDArray[np.float64]:
+    def times(
+        self, transit_s: float, status: str, contact_end_s: Sequence[float], run_end_s: float
+    ) -> NDArray[np.float64]:
         """The sample times, s, shape (m,): multiples of :meth:`sample_step` from 0.
 
         A completed run (no further contact possible) is sampled to the last contact's end
@@ -82,8 +98,9 @@ class FieldGrid(Options):
         return step * np.arange(max(count, 1) + 1, dtype=float)
 
 
-def field_datasets(times: NDArray[np.float64], positions: NDArray[np.float64], strain: NDArray[np.float64],
-                   source: str) -> dict[str, tuple[NDArray[np.float64], str, str]]:
+def field_datasets(
+    times: NDArray[np.float64], positions: NDArray[np.float64], strain: NDArray[np.float64], source: str
+) -> dict[str, tuple[NDArray[np.float64], str, str]]:
     """The field as a run stores it: name -> (array, units, description).
 
     Parameters
@@ -100,6 +117,8 @@ def field_datasets(times: NDArray[np.float64], positions: NDArray[np.float64], s
     strain = np.asarray(strain, dtype=float)
     if strain.shape != (len(times), len(positions)):
         raise ValueError(f"strain field of shape {strain.shape}, expected ({len(times)}, {len(positions)})")
-    return {"time": (np.asarray(times, dtype=float), "s", "time since first contact"),
-            "x": (np.asarray(positions, dtype=float), "m", "distance of the cross-section from the struck end"),
-            "strain": (strain, "1", f"axial strain du/dx over the rod (negative in compression; {source})")}
+    return {
+        "time": (np.asarray(times, dtype=float), "s", "time since first contact"),
+        "x": (np.asarray(positions, dtype=float), "m", "distance of the cross-section from the struck end"),
+        "strain": (strain, "1", f"axial strain du/dx over the rod (negative in compression; {source})"),
+    }

@@ -37,8 +37,7 @@ from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
 __all__ = ["CONTACT_KINDS", "METHODS", "Method", "UnknownMethod", "method"]
 
 #: How a method treats the contact (``Method.contact``) -> what that means, in words.
-CONTACT_KINDS = {"law": "takes the case's contact law P(alpha)",
-                 "continuum": "resolves the contact in the continuum"}
+CONTACT_KINDS = {"law": "takes the case's contact law P(alpha)", "continuum": "resolves the contact in the continuum"}
 
 
 class UnknownMethod(KeyError):
@@ -166,24 +165,66 @@ def _load(path: str) -> Callable[..., Any]:
 
 
 #: Every method, in the order tables and legends list them.
-METHODS: dict[str, Method] = {m.name: m for m in (
-    Method(name="sem", options=SEMOptions, problem=ImpactProblem.from_case,
-           solver="rodimpact.solvers.sem.solver:solve_sem", cost="rodimpact.solvers.sem.cost:sem_cost",
-           label="SEM, implicit scheme", header="SEM", order=2.0, family="sem", style="-", color="C0",
-           records_field=True),
-    Method(name="sem_paper", options=PaperSEMOptions, problem=ImpactProblem.from_case,
-           solver="rodimpact.solvers.sem.solver:solve_sem", cost="rodimpact.solvers.sem.cost:sem_cost",
-           label="SEM, the paper's explicit scheme", header="SEM, explicit", order=1.0, family="sem", style="--",
-           color="C1"),
-    Method(name="fem1d", options=FEM1DOptions, problem=ImpactProblem.from_case,
-           solver="rodimpact.solvers.fem1d.solver:solve_fem1d", cost="rodimpact.solvers.fem1d.cost:fem1d_cost",
-           label="FEM, 1D bar", header="FEM 1-D", order=2.0, family="fem", style="-.", color="C2",
-           records_field=True),
-    Method(name="fem_axi", options=FEMAxiOptions, problem=AxiImpact.from_case,
-           solver="rodimpact.solvers.fem_axi.solver:solve_fem_axi", cost="rodimpact.solvers.fem_axi.cost:fem_axi_cost",
-           label="FEM, axisymmetric continuum", header="FEM axisym.", order=2.0, family="fem", style=":", color="C3",
-           contact="continuum"),
-)}
+METHODS: dict[str, Method] = {
+    m.name: m
+    for m in (
+        Method(
+            name="sem",
+            options=SEMOptions,
+            problem=ImpactProblem.from_case,
+            solver="rodimpact.solvers.sem.solver:solve_sem",
+            cost="rodimpact.solvers.sem.cost:sem_cost",
+            label="SEM, implicit scheme",
+            header="SEM",
+            order=2.0,
+            family="sem",
+            style="-",
+            color="C0",
+            records_field=True,
+        ),
+        Method(
+            name="sem_paper",
+            options=PaperSEMOptions,
+            problem=ImpactProblem.from_case,
+            solver="rodimpact.solvers.sem.solver:solve_sem",
+            cost="rodimpact.solvers.sem.cost:sem_cost",
+            label="SEM, the paper's explicit scheme",
+            header="SEM, explicit",
+            order=1.0,
+            family="sem",
+            style="--",
+            color="C1",
+        ),
+        Method(
+            name="fem1d",
+            options=FEM1DOptions,
+            problem=ImpactProblem.from_case,
+            solver="rodimpact.solvers.fem1d.solver:solve_fem1d",
+            cost="rodimpact.solvers.fem1d.cost:fem1d_cost",
+            label="FEM, 1D bar",
+            header="FEM 1-D",
+            order=2.0,
+            family="fem",
+            style="-.",
+            color="C2",
+            records_field=True,
+        ),
+        Method(
+            name="fem_axi",
+            options=FEMAxiOptions,
+            problem=AxiImpact.from_case,
+            solver="rodimpact.solvers.fem_axi.solver:solve_fem_axi",
+            cost="rodimpact.solvers.fem_axi.cost:fem_axi_cost",
+            label="FEM, axisymmetric continuum",
+            header="FEM axisym.",
+            order=2.0,
+            family="fem",
+            style=":",
+            color="C3",
+            contact="continuum",
+        ),
+    )
+}
 
 
 def method(name: str) -> Method:

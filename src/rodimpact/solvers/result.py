@@ -31,8 +31,10 @@ OUTPUT_DATASETS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
     "station_displacement": (("station_displacement",), ()),
     "contact_radius": (("contact_radius",), ()),
     "station_strain": (("station_strain",), ()),
-    "energy": (("impactor_kinetic_energy", "contact_energy", "rod_energy"),
-               ("rod_kinetic_energy", "rod_strain_energy")),
+    "energy": (
+        ("impactor_kinetic_energy", "contact_energy", "rod_energy"),
+        ("rod_kinetic_energy", "rod_strain_energy"),
+    ),
     # not a history: the field over the rod on its own grid (ImpactResult.field, :mod:`.field`)
     "strain_field": ((), ()),
 }

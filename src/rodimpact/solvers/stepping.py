@@ -17,8 +17,16 @@ from rodimpact.analysis.signals import local_maxima
 from rodimpact.solvers.options import Options, setting
 from rodimpact.solvers.result import ImpactResult
 
-__all__ = ["NON_FINITE_ENERGY", "Nodes", "Outcome", "SEPARATION_ROUND_TRIPS", "StepHistory", "SteppingOptions",
-           "energy_error", "limit_reached"]
+__all__ = [
+    "NON_FINITE_ENERGY",
+    "Nodes",
+    "Outcome",
+    "SEPARATION_ROUND_TRIPS",
+    "StepHistory",
+    "SteppingOptions",
+    "energy_error",
+    "limit_reached",
+]
 
 #: The window after a separation over which the impactor must stay clear of the rod's end
 #: before a run may end, in wave round trips 2T: 8T, two periods 4T of a fixed rod's end
@@ -36,16 +44,25 @@ class SteppingOptions(Options):
     """The settings every time-stepping method has (its own class adds the rest)."""
 
     dt_s: float | None = setting(
-        None, "Fixed time step; null chooses it from the case: the contact time on a rigid rod "
+        None,
+        "Fixed time step; null chooses it from the case: the contact time on a rigid rod "
         "divided by steps_per_contact (or, for sem with steps_per_contact null, the step for tolerance).",
-        unit="s", nullable=True, exclusive_minimum=0)
+        unit="s",
+        nullable=True,
+        exclusive_minimum=0,
+    )
     steps_per_contact: int | None = setting(
-        None, "Time steps per contact time on a rigid rod, when dt_s is null.", kind=int, nullable=True, minimum=1)
+        None, "Time steps per contact time on a rigid rod, when dt_s is null.", kind=int, nullable=True, minimum=1
+    )
     max_time_factor: float = setting(
-        100.0, "Simulated time limit as a multiple of the estimated contact time.", exclusive_minimum=1)
+        100.0, "Simulated time limit as a multiple of the estimated contact time.", exclusive_minimum=1
+    )
     max_contacts: int = setting(
-        50, "Largest number of successive contacts (the impactor re-striking the rod) that are followed.",
-        kind=int, minimum=1)
+        50,
+        "Largest number of successive contacts (the impactor re-striking the rod) that are followed.",
+        kind=int,
+        minimum=1,
+    )
 
 
 @dataclass(frozen=True)
@@ -57,8 +74,9 @@ class Outcome:
     wall_time_s: float
 
 
-def limit_reached(starts: list[float], ends: list[float], t: float, t_max: float, options: SteppingOptions
-                  ) -> tuple[str, str] | None:
+def limit_reached(
+    starts: list[float], ends: list[float], t: float, t_max: float, options: SteppingOptions
+) -> tuple[str, str] | None:
     """The limits every time-stepping solver shares: too many contacts, or the time horizon.
 
     Parameters
@@ -83,8 +101,10 @@ def limit_reached(starts: list[float], ends: list[float], t: float, t_max: float
         return "truncated", f"stopped at max_contacts={options.max_contacts}; later contacts not computed"
     if t >= t_max:
         status = "truncated" if ends else "failed"
-        return status, (f"time horizon {t_max:.6g} s (max_time_factor={options.max_time_factor}) reached"
-                        + ("" if ends else " before the first contact ended"))
+        return status, (
+            f"time horizon {t_max:.6g} s (max_time_factor={options.max_time_factor}) reached"
+            + ("" if ends else " before the first contact ended")
+        )
     return None
 
 
@@ -150,14 +170,30 @@ class StepHistory:
 
     def nodes(self) -> Nodes:
         """The histories as arrays (:class:`Nodes`)."""
-        return Nodes(time=np.asarray(self.t), force=np.asarray(self.force), x=np.asarray(self.x),
-                     w=np.asarray(self.w), u_end=np.asarray(self.u_end), alpha=np.asarray(self.alpha))
+        return Nodes(
+            time=np.asarray(self.t),
+            force=np.asarray(self.force),
+            x=np.asarray(self.x),
+            w=np.asarray(self.w),
+            u_end=np.asarray(self.u_end),
+            alpha=np.asarray(self.alpha),
+        )
 
-    def result(self, nodes: Nodes, outcome: Outcome, *, scheme: str, dt_s: float, energy_error: float,
-               rod_energy_J: float, n_events: int, extra: dict[str, Any],
-               extra_series: dict[str, tuple[NDArray[np.float64], str, str]],
-               field: dict[str, tuple[NDArray[np.float64], str, str]] | None = None,
-               min_prominence: float = 0.0) -> ImpactResult:
+    def result(
+        self,
+        nodes: Nodes,
+        outcome: Outcome,
+        *,
+        scheme: str,
+        dt_s: float,
+        energy_error: float,
+        rod_energy_J: float,
+        n_events: int,
+        extra: dict[str, Any],
+        extra_series: dict[str, tuple[NDArray[np.float64], str, str]],
+        field: dict[str, tuple[NDArray[np.float64], str, str]] | None = None,
+        min_prominence: float = 0.0,
+    ) -> ImpactResult:
         """The run's :class:`~rodimpact.solvers.result.ImpactResult`.
 
         A run that did not fail fails when its energy balance is not finite
@@ -192,12 +228,29 @@ class StepHistory:
         ends = np.asarray(self.ends)
         peak_t, peak_p = local_maxima(nodes.time, nodes.force, min_prominence=min_prominence)
         return ImpactResult(
-            success=status != "failed", status=status, message=message, scheme=scheme, dt_s=dt_s,
-            time=nodes.time, contact_force=nodes.force, approach=nodes.alpha, impactor_displacement=nodes.x,
-            impactor_velocity=nodes.w, rod_end_displacement=nodes.u_end,
-            contact_start_s=np.asarray(self.starts[: len(ends)]), contact_end_s=ends,
-            peak_time_s=peak_t, peak_force_N=peak_p, rebound_velocity_m_s=float(self.w[-1]),
-            rod_energy_J=rod_energy_J, energy_error=energy_error, n_steps=len(nodes.time) - 1,
-            n_newton_iterations=int(self.n_newton), n_events=n_events, wall_time_s=outcome.wall_time_s,
-            extra=extra, extra_series=extra_series, field={} if field is None else field,
+            success=status != "failed",
+            status=status,
+            message=message,
+            scheme=scheme,
+            dt_s=dt_s,
+            time=nodes.time,
+            contact_force=nodes.force,
+            approach=nodes.alpha,
+            impactor_displacement=nodes.x,
+            impactor_velocity=nodes.w,
+            rod_end_displacement=nodes.u_end,
+            contact_start_s=np.asarray(self.starts[: len(ends)]),
+            contact_end_s=ends,
+            peak_time_s=peak_t,
+            peak_force_N=peak_p,
+            rebound_velocity_m_s=float(self.w[-1]),
+            rod_energy_J=rod_energy_J,
+            energy_error=energy_error,
+            n_steps=len(nodes.time) - 1,
+            n_newton_iterations=int(self.n_newton),
+            n_events=n_events,
+            wall_time_s=outcome.wall_time_s,
+            extra=extra,
+            extra_series=extra_series,
+            field={} if field is None else field,
         )

@@ -70,7 +70,10 @@ class CaseBand:
 
 
 def _arrays(band: CaseBand) -> dict[str, NDArray[np.float64]]:
-    arrays = {"corner_parameters": np.asarray(band.corner_parameters, float), "corner_us": np.asarray(band.corner_us, float)}
+    arrays = {
+        "corner_parameters": np.asarray(band.corner_parameters, float),
+        "corner_us": np.asarray(band.corner_us, float),
+    }
     for index, name in enumerate(band.parameters):
         arrays[f"axis_values_{index}"] = np.asarray(band.axis_values[name], float)
         arrays[f"axis_us_{index}"] = np.asarray(band.axis_us[name], float)
@@ -87,24 +90,34 @@ def _sha256(bands: list[CaseBand]) -> str:
     return digest.hexdigest()
 
 
-def write_band(path: str | Path, bands: list[CaseBand], *, variant: str, method: str,
-               config: Any) -> Path:
+def write_band(path: str | Path, bands: list[CaseBand], *, variant: str, method: str, config: Any) -> Path:
     """Write the bands of one reading atomically (layout in the module docstring)."""
     path = Path(path)
     with atomic_output(path) as tmp:
         with h5py.File(tmp, "x", track_order=True) as h5:
-            h5.attrs.update({
-                "variant": variant, "method": method, "code_version": provenance.code_version(),
-                "library_versions": provenance.canonical_json(provenance.library_versions()),
-                "config_json": provenance.canonical_json(config),
-                "created_utc": datetime.now(UTC).isoformat(timespec="seconds"),
-                "data_sha256": _sha256(bands),
-            })
+            h5.attrs.update(
+                {
+                    "variant": variant,
+                    "method": method,
+                    "code_version": provenance.code_version(),
+                    "library_versions": provenance.canonical_json(provenance.library_versions()),
+                    "config_json": provenance.canonical_json(config),
+                    "created_utc": datetime.now(UTC).isoformat(timespec="seconds"),
+                    "data_sha256": _sha256(bands),
+                }
+            )
             for band in bands:
                 group = h5.create_group(band.case_id)
-                group.attrs.update({"measured_us": band.measured_us, "nominal_us": band.nominal_us,
-                                    "band_min_us": band.band_min_us, "band_max_us": band.band_max_us,
-                                    "monotone": band.monotone, "parameters_json": json.dumps(list(band.parameters))})
+                group.attrs.update(
+                    {
+                        "measured_us": band.measured_us,
+                        "nominal_us": band.nominal_us,
+                        "band_min_us": band.band_min_us,
+                        "band_max_us": band.band_max_us,
+                        "monotone": band.monotone,
+                        "parameters_json": json.dumps(list(band.parameters)),
+                    }
+                )
                 for name, array in _arrays(band).items():
                     group.create_dataset(name, data=array)
     return path
@@ -126,9 +139,18 @@ def read_band(path: str | Path) -> tuple[str, list[CaseBand]]:
                 names = tuple(json.loads(str(group.attrs["parameters_json"])))
                 axis_values = {n: group[f"axis_values_{i}"][()] for i, n in enumerate(names)}
                 axis_us = {n: group[f"axis_us_{i}"][()] for i, n in enumerate(names)}
-                bands.append(CaseBand(case_id, float(group.attrs["measured_us"]), float(group.attrs["nominal_us"]),
-                                      group["corner_parameters"][()], group["corner_us"][()], axis_values, axis_us,
-                                      names))
+                bands.append(
+                    CaseBand(
+                        case_id,
+                        float(group.attrs["measured_us"]),
+                        float(group.attrs["nominal_us"]),
+                        group["corner_parameters"][()],
+                        group["corner_us"][()],
+                        axis_values,
+                        axis_us,
+                        names,
+                    )
+                )
     except (OSError, KeyError) as error:
         raise StoredFileError(path, f"not a readable band file ({error})") from None
     if _sha256(bands) != expected:

@@ -32,13 +32,16 @@ def write_case_records(name: str, records: list[Mapping[str, Any]], path: str | 
     """Write a case file (YAML, atomically): the records of the cases of ``name``, under a comment
     that says what it is."""
     sources = sorted({str(r["case"].get("source_file", "?")) for r in records})
-    header = (f"# The resolved cases of {name!r} (from {', '.join(sources)}), with the scales derived\n"
-              "# from each and the cost of each method: what their runs compute. Written by the\n"
-              "# workflow (rule case_file); edit the cases under config/cases, not this file.\n")
+    header = (
+        f"# The resolved cases of {name!r} (from {', '.join(sources)}), with the scales derived\n"
+        "# from each and the cost of each method: what their runs compute. Written by the\n"
+        "# workflow (rule case_file); edit the cases under config/cases, not this file.\n"
+    )
     document = {"format": CASE_FILE_VERSION, "name": name, "cases": [dict(r) for r in records]}
     with atomic_output(path) as tmp:
-        tmp.write_text(header + yaml.safe_dump(document, sort_keys=False, allow_unicode=True, width=100),
-                       encoding="utf-8")
+        tmp.write_text(
+            header + yaml.safe_dump(document, sort_keys=False, allow_unicode=True, width=100), encoding="utf-8"
+        )
 
 
 def read_case_file(path: str | Path) -> dict[str, Any]:
@@ -55,13 +58,20 @@ def read_case_file(path: str | Path) -> dict[str, Any]:
     except (yaml.YAMLError, UnicodeDecodeError) as exc:
         raise UnreadableInput(path, f"not a readable case file ({type(exc).__name__})", mark=True) from None
     records = document.get("cases") if isinstance(document, dict) else None
-    if not isinstance(document, dict) or document.get("format") != CASE_FILE_VERSION or not isinstance(records, list) \
-            or not all(isinstance(r, dict) and "case" in r and "case_id" in r for r in records):
+    if (
+        not isinstance(document, dict)
+        or document.get("format") != CASE_FILE_VERSION
+        or not isinstance(records, list)
+        or not all(isinstance(r, dict) and "case" in r and "case_id" in r for r in records)
+    ):
         raise UnreadableInput(path, f"not a case file (format {CASE_FILE_VERSION})", mark=True)
     for record in records:
         if config_sha256(record["case"]) != record.get("config_sha256"):
-            raise UnreadableInput(path, f"its case {record.get('case_id')!r} differs from the hash it was written "
-                                        "with (edited by hand?)", mark=True)
+            raise UnreadableInput(
+                path,
+                f"its case {record.get('case_id')!r} differs from the hash it was written with (edited by hand?)",
+                mark=True,
+            )
     return document
 
 

@@ -140,5 +140,9 @@ def read_contact_curve(path: str | Path) -> ContactCurve:
         raise StoredFileError(path, f"missing datasets {missing}")
     if _data_sha256(data) != attrs["data_sha256"]:
         raise StoredFileError(path, "the data do not match their data_sha256 (edited or corrupt)")
-    return ContactCurve(case_id=str(attrs["case_id"]), data=data, summary=json.loads(attrs["summary_json"]),
-                        config=json.loads(attrs["config_json"]))
+    return ContactCurve(
+        case_id=str(attrs["case_id"]),
+        data=data,
+        summary=json.loads(attrs["summary_json"]),
+        config=json.loads(attrs["config_json"]),
+    )

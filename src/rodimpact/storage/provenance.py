@@ -76,9 +76,7 @@ def _check_plain_json(obj: Any, path: str, active: set[int]) -> None:
     kind = type(obj)
     if kind in _SCALAR_TYPES:
         if kind is float and not math.isfinite(obj):
-            raise ValueError(
-                f"canonical_json: value at {path} is {obj!r}; NaN and infinities are not allowed"
-            )
+            raise ValueError(f"canonical_json: value at {path} is {obj!r}; NaN and infinities are not allowed")
         return
     if isinstance(obj, dict) or kind is list:
         if id(obj) in active:
@@ -129,9 +127,7 @@ def canonical_json(obj: Any) -> str:
         message names the key path.
     """
     _check_plain_json(obj, "$", set())
-    return json.dumps(
-        obj, sort_keys=True, separators=(",", ":"), ensure_ascii=False, allow_nan=False
-    )
+    return json.dumps(obj, sort_keys=True, separators=(",", ":"), ensure_ascii=False, allow_nan=False)
 
 
 def config_sha256(obj: Any) -> str:
@@ -219,9 +215,7 @@ def code_version(repo_root: str | Path | None = None) -> str:
         status = _git(root, "status", "--porcelain", "--", "src")
     except (OSError, subprocess.SubprocessError) as exc:
         detail = getattr(exc, "stderr", None) or exc
-        logger.warning(
-            "code_version: git failed in %s (%s); using %s", root, str(detail).strip(), unknown
-        )
+        logger.warning("code_version: git failed in %s (%s); using %s", root, str(detail).strip(), unknown)
         return unknown
     if not _SHORT_SHA.match(short):
         logger.warning("code_version: unexpected git rev-parse output %r; using %s", short, unknown)

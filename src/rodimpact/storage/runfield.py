@@ -61,8 +61,10 @@ def check_field(field: Mapping[str, tuple[np.ndarray, str, str]] | None) -> list
         array = np.ascontiguousarray(entry[0], dtype=np.float64)
         shape = (len(checked[0][1]), len(checked[1][1])) if name not in _AXES else None
         if (shape is None and array.ndim != 1) or (shape is not None and array.shape != shape):
-            raise ValueError(f"field[{name!r}] has shape {array.shape}; expected "
-                             + ("1-D" if shape is None else f"(len(time), len(x)) = {shape}"))
+            raise ValueError(
+                f"field[{name!r}] has shape {array.shape}; expected "
+                + ("1-D" if shape is None else f"(len(time), len(x)) = {shape}")
+            )
         checked.append((name, array, entry[1], entry[2]))
     return checked
 

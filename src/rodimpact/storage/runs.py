@@ -79,9 +79,7 @@ __all__ = ["REQUIRED_SUMMARY", "SCHEMA_VERSION", "CorruptRun", "RunRecord", "Sto
 __all__ += ["read_run", "read_summary", "write_run"]
 
 SCHEMA_VERSION = 1
-_STR_ATTRS = tuple(
-    "case_id method config_json config_sha256 code_version library_versions created_utc".split()
-)
+_STR_ATTRS = tuple("case_id method config_json config_sha256 code_version library_versions created_utc".split())
 _ROOT_ATTRS = (*_STR_ATTRS, "wall_time_s", "schema_version")
 _COMPRESS_MIN_ELEMENTS = 4096
 _COMPRESSION = {"compression": "gzip", "compression_opts": 4, "shuffle": True}
@@ -206,8 +204,11 @@ def write_run(
         "created_utc": datetime.now(UTC).isoformat(timespec="seconds"),
         "schema_version": np.int64(SCHEMA_VERSION),
         "data_sha256": provenance.data_sha256(
-            config_json, method, {**{n: (a, u, d) for n, a, u, d in checked_series}, **digest_entries(checked_field)},
-            checked_summary),
+            config_json,
+            method,
+            {**{n: (a, u, d) for n, a, u, d in checked_series}, **digest_entries(checked_field)},
+            checked_summary,
+        ),
     }
     with atomic_output(path) as tmp:
         with h5py.File(tmp, "x", track_order=True) as h5:
@@ -303,7 +304,9 @@ def _read_record(path: str | Path, *, verify: bool, with_series: bool) -> RunRec
     )  # fmt: skip
 
 
-def _read_parts(h5: h5py.File, path: Path, verify: bool, with_series: bool) -> tuple[dict, dict, dict, dict, dict, list]:
+def _read_parts(
+    h5: h5py.File, path: Path, verify: bool, with_series: bool
+) -> tuple[dict, dict, dict, dict, dict, list]:
     """The root attributes, the summary and (when asked for, or to verify the content) the series
     and the field."""
     attrs = {key: _attr_value(h5.attrs[key]) for key in (*_ROOT_ATTRS, "data_sha256") if key in h5.attrs}

@@ -22,8 +22,14 @@ def provenance_record(records: Sequence[RunRecord], artifacts: Iterable[str | Pa
         "created_utc": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
         "code_version": code_version(),
         "inputs": [
-            {"path": str(r.path), "case_id": r.case_id, "method": r.method,
-             "config_sha256": r.config_sha256, "data_sha256": r.data_sha256, "code_version": r.code_version}
+            {
+                "path": str(r.path),
+                "case_id": r.case_id,
+                "method": r.method,
+                "config_sha256": r.config_sha256,
+                "data_sha256": r.data_sha256,
+                "code_version": r.code_version,
+            }
             for r in records
         ],
     }

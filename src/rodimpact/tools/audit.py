@@ -44,8 +44,17 @@ from rodimpact.storage.runs import CorruptRun, StoreError, read_run, read_summar
 
 logger = logging.getLogger(__name__)
 
-__all__ = ["EXEMPT", "AuditResult", "Finding", "audit", "audit_run", "audit_sidecar", "code_problems",
-           "main", "workflow_status"]
+__all__ = [
+    "EXEMPT",
+    "AuditResult",
+    "Finding",
+    "audit",
+    "audit_run",
+    "audit_sidecar",
+    "code_problems",
+    "main",
+    "workflow_status",
+]
 
 #: Files under results/ the audit does not check, and why.
 EXEMPT: dict[str, str] = {
@@ -85,8 +94,10 @@ class AuditResult:
     @property
     def message(self) -> str:
         failed = sum(not f.ok for f in self.findings)
-        return (f"{len(self.findings)} files audited: {len(self.findings) - failed} resolve to their "
-                f"config and code, {failed} do not")
+        return (
+            f"{len(self.findings)} files audited: {len(self.findings) - failed} resolve to their "
+            f"config and code, {failed} do not"
+        )
 
 
 def code_problems(version: str, repo_root: Path | None) -> list[str]:
@@ -115,11 +126,14 @@ def audit_run(path: str | Path, libraries: Mapping[str, str], repo_root: Path | 
     if not record.data_sha256:
         problems.append("no content digest (written by an older version of the code)")
     problems += case_file_problems(record.config.get("run", {}).get("case_file"))
-    changed = sorted(name for name, version in record.library_versions.items()
-                     if libraries.get(name, version) != version)
+    changed = sorted(
+        name for name, version in record.library_versions.items() if libraries.get(name, version) != version
+    )
     if changed:
-        problems.append("made with other library versions: " + ", ".join(
-            f"{name} {record.library_versions[name]} (now {libraries[name]})" for name in changed))
+        problems.append(
+            "made with other library versions: "
+            + ", ".join(f"{name} {record.library_versions[name]} (now {libraries[name]})" for name in changed)
+        )
     return Finding(str(path), "run", tuple(problems), (record.code_version,), (record.config_sha256,))
 
 
@@ -255,8 +269,9 @@ def audit(root: str | Path = ".", *, results: str = "results", workflow: bool = 
         for path in files:
             if path.startswith(f"{results}/indentation/") and path.endswith(".h5"):
                 found[path] = audit_derived(path, "curve", repo_root)
-            elif path.startswith((f"{results}/studies/film_band_", f"{results}/studies/sensor_band/")) \
-                    and path.endswith(".h5"):
+            elif path.startswith(
+                (f"{results}/studies/film_band_", f"{results}/studies/sensor_band/")
+            ) and path.endswith(".h5"):
                 found[path] = audit_derived(path, "band", repo_root)
             elif path.endswith(".h5"):
                 found[path] = audit_run(path, libraries, repo_root)
@@ -293,8 +308,9 @@ def audit(root: str | Path = ".", *, results: str = "results", workflow: bool = 
 
 
 def _merged(finding: Finding, problems: Sequence[str]) -> Finding:
-    return Finding(finding.path, finding.kind, (*finding.problems, *problems), finding.code_versions,
-                   finding.config_sha256)
+    return Finding(
+        finding.path, finding.kind, (*finding.problems, *problems), finding.code_versions, finding.config_sha256
+    )
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> argparse.ArgumentParser:
@@ -320,9 +336,17 @@ def run(args: argparse.Namespace) -> int:
     versions = sorted({v for f in result.findings for v in f.code_versions})
     sys.stdout.write(f"{result.message}; code versions: {', '.join(versions) or 'none'}\n")
     if args.json:
-        rows = [{"path": f.path, "kind": f.kind, "ok": f.ok, "problems": list(f.problems),
-                 "code_versions": list(f.code_versions), "config_sha256": list(f.config_sha256)}
-                for f in result.findings]
+        rows = [
+            {
+                "path": f.path,
+                "kind": f.kind,
+                "ok": f.ok,
+                "problems": list(f.problems),
+                "code_versions": list(f.code_versions),
+                "config_sha256": list(f.config_sha256),
+            }
+            for f in result.findings
+        ]
         Path(args.json).parent.mkdir(parents=True, exist_ok=True)
         Path(args.json).write_text(json.dumps({"success": result.success, "findings": rows}, indent=1) + "\n")
     return 0 if result.success else 1

@@ -69,8 +69,13 @@ def _row(label: str, problem: ImpactProblem, tolerance: float) -> dict[str, Any]
     }
 
 
-def benchmark_sem_scaling(model: Mapping[str, Any], stress: Mapping[str, Any], *,
-                          round_trips: Sequence[int] = SCALING_ROUND_TRIPS, tolerance: float = 1e-6) -> pd.DataFrame:
+def benchmark_sem_scaling(
+    model: Mapping[str, Any],
+    stress: Mapping[str, Any],
+    *,
+    round_trips: Sequence[int] = SCALING_ROUND_TRIPS,
+    tolerance: float = 1e-6,
+) -> pd.DataFrame:
     """Time per step of the SEM against the round trips during the contact.
 
     Parameters
@@ -95,10 +100,15 @@ def benchmark_sem_scaling(model: Mapping[str, Any], stress: Mapping[str, Any], *
     """
     rows = []
     for n in round_trips:
-        rows.append(_row(f"{model['id']}, rod for {n} round trips",
-                         ImpactProblem.from_case(shortened_rod(model, n)), tolerance))
-        log.info("%s: %.2f us a step, automatic step x%.2f", rows[-1]["case"], rows[-1]["us_per_step"],
-                 rows[-1]["auto_over_fixed"])
+        rows.append(
+            _row(f"{model['id']}, rod for {n} round trips", ImpactProblem.from_case(shortened_rod(model, n)), tolerance)
+        )
+        log.info(
+            "%s: %.2f us a step, automatic step x%.2f",
+            rows[-1]["case"],
+            rows[-1]["us_per_step"],
+            rows[-1]["auto_over_fixed"],
+        )
     frame = pd.DataFrame(rows)
     slope = float(np.polyfit(np.log(frame["round_trips"]), np.log(frame["us_per_step"]), 1)[0])
     stress_row = _row(str(stress["id"]), ImpactProblem.from_case(stress), tolerance)

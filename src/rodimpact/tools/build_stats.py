@@ -43,8 +43,18 @@ __all__ = ["COLUMNS", "Job", "RuleStats", "build_stats", "main", "read_jobs", "w
 log = logging.getLogger(__name__)
 
 #: Columns of ``build.csv``, in order (times in seconds).
-COLUMNS = ("rule", "jobs", "runs", "solver_s", "job_s", "overhead_s", "median_job_s", "median_overhead_s",
-           "overhead_per_run_s", "wall_s")
+COLUMNS = (
+    "rule",
+    "jobs",
+    "runs",
+    "solver_s",
+    "job_s",
+    "overhead_s",
+    "median_job_s",
+    "median_overhead_s",
+    "overhead_per_run_s",
+    "wall_s",
+)
 #: Outputs a build's table leaves out: the benchmarks (``make bench`` times its own runs).
 EXCLUDED = ("results/benchmarks/",)
 #: Records of one job end within this many seconds of each other (snakemake touches its outputs
@@ -177,19 +187,32 @@ def _run_files(root: Path, output: str) -> list[Path]:
 def _job(rule: str, entries: list[tuple[float, float, str]], root: Path) -> Job:
     outputs = tuple(sorted(output for _, _, output in entries))
     solver = [s for s in (_solver_seconds(f) for o in outputs for f in _run_files(root, o)) if s is not None]
-    return Job(rule=rule, start=min(start for _, start, _ in entries), end=max(end for end, _, _ in entries),
-               outputs=outputs, solver_s=sum(solver), runs=len(solver))
+    return Job(
+        rule=rule,
+        start=min(start for _, start, _ in entries),
+        end=max(end for end, _, _ in entries),
+        outputs=outputs,
+        solver_s=sum(solver),
+        runs=len(solver),
+    )
 
 
 def _stats(rule: str, jobs: Sequence[Job]) -> RuleStats:
     job_s = sum(job.seconds for job in jobs)
     solver_s = sum(job.solver_s for job in jobs)
     runs = sum(job.runs for job in jobs)
-    return RuleStats(rule=rule, jobs=len(jobs), runs=runs, solver_s=solver_s, job_s=job_s,
-                     overhead_s=job_s - solver_s, median_job_s=statistics.median(job.seconds for job in jobs),
-                     median_overhead_s=statistics.median(job.seconds - job.solver_s for job in jobs),
-                     overhead_per_run_s=(job_s - solver_s) / runs if runs else None,
-                     wall_s=max(job.end for job in jobs) - min(job.start for job in jobs))
+    return RuleStats(
+        rule=rule,
+        jobs=len(jobs),
+        runs=runs,
+        solver_s=solver_s,
+        job_s=job_s,
+        overhead_s=job_s - solver_s,
+        median_job_s=statistics.median(job.seconds for job in jobs),
+        median_overhead_s=statistics.median(job.seconds - job.solver_s for job in jobs),
+        overhead_per_run_s=(job_s - solver_s) / runs if runs else None,
+        wall_s=max(job.end for job in jobs) - min(job.start for job in jobs),
+    )
 
 
 def build_stats(jobs: Iterable[Job]) -> list[RuleStats]:
@@ -206,6 +229,7 @@ def build_stats(jobs: Iterable[Job]) -> list[RuleStats]:
 
 def write_build_stats(rows: Sequence[RuleStats], path: str | Path) -> Path:
     """Write the table as CSV (atomically; seconds with 4 decimals); returns the path."""
+
     def cell(value: object) -> object:
         return "" if value is None else round(value, 4) if isinstance(value, float) else value
 
@@ -230,9 +254,17 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 1
     path = write_build_stats(rows, Path(args.root, args.csv))
     total = rows[-1]
-    log.info("%s: %d jobs, %d runs in %.1f s (wall); jobs %.1f s = solvers %.1f s + overhead %.1f s "
-             "(median per job %.2f s)", path, total.jobs, total.runs, total.wall_s, total.job_s, total.solver_s,
-             total.overhead_s, total.median_overhead_s)
+    log.info(
+        "%s: %d jobs, %d runs in %.1f s (wall); jobs %.1f s = solvers %.1f s + overhead %.1f s (median per job %.2f s)",
+        path,
+        total.jobs,
+        total.runs,
+        total.wall_s,
+        total.job_s,
+        total.solver_s,
+        total.overhead_s,
+        total.median_overhead_s,
+    )
     return 0
 
 

@@ -33,28 +33,37 @@ __all__ = ["main"]
 
 
 def _parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="rodimpact", description="Axial impact on an elastic rod: "
-                                     "solve a case file, or audit the results' provenance.")
+    parser = argparse.ArgumentParser(
+        prog="rodimpact",
+        description="Axial impact on an elastic rod: solve a case file, or audit the results' provenance.",
+    )
     parser.add_argument("--version", action="version", version=f"rodimpact {rodimpact.__version__}")
     commands = parser.add_subparsers(dest="command", required=True)
     run = commands.add_parser("run", help="solve the cases of one case file and print their summaries")
     run.add_argument("case_file", type=Path, help="a case file (the format of config/cases/*.yaml)")
     run.add_argument("--case", action="append", help="only this case id (repeatable; default: every case)")
     run.add_argument("--method", action="append", help="only this method (repeatable; default: the case's)")
-    run.add_argument("--root", type=Path, default=Path("."),
-                     help="project directory whose config/config.yaml and materials apply (default: .)")
+    run.add_argument(
+        "--root",
+        type=Path,
+        default=Path("."),
+        help="project directory whose config/config.yaml and materials apply (default: .)",
+    )
     audit.add_arguments(commands.add_parser("audit", help="audit results/: every file resolves to its config and code"))
     return parser
 
 
 def _summary_line(case_id: str, method: str, result) -> str:
     peaks = ", ".join(f"{p / 1e3:.4g}" for p in result.peak_force_N) or "none"
-    return (f"{case_id:<28} {method:<9} contact {1e6 * result.contact_time_s:10.4g} us  "
-            f"maxima [{peaks}] kN  rebound {result.rebound_velocity_m_s:+.4g} m/s  {result.status}: {result.message}")
+    return (
+        f"{case_id:<28} {method:<9} contact {1e6 * result.contact_time_s:10.4g} us  "
+        f"maxima [{peaks}] kN  rebound {result.rebound_velocity_m_s:+.4g} m/s  {result.status}: {result.message}"
+    )
 
 
-def run_file(case_file: Path, root: Path, cases: Sequence[str] | None, methods: Sequence[str] | None,
-             out: TextIO) -> int:
+def run_file(
+    case_file: Path, root: Path, cases: Sequence[str] | None, methods: Sequence[str] | None, out: TextIO
+) -> int:
     """Solve and print; the exit status (1 after a one-line error on stderr)."""
     try:
         resolved = load_case_file(case_file, load_global_config(root / "config" / "config.yaml"), root)
@@ -69,8 +78,9 @@ def run_file(case_file: Path, root: Path, cases: Sequence[str] | None, methods: 
         case = resolved[case_id]
         for method in methods or case["methods"]:
             if method not in case["methods"]:
-                sys.stderr.write(f"rodimpact: case {case_id!r} does not run {method!r}; its methods: "
-                                 f"{', '.join(case['methods'])}\n")
+                sys.stderr.write(
+                    f"rodimpact: case {case_id!r} does not run {method!r}; its methods: {', '.join(case['methods'])}\n"
+                )
                 return 1
             try:
                 result = run_case(case, method)

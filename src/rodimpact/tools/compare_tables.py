@@ -36,8 +36,20 @@ import pandas as pd
 __all__ = ["TIMING_COLUMNS", "TableDifference", "compare_csv", "compare_text", "compare_tables", "main"]
 
 #: Columns of the machine's work, not of the results: wall times, their repeats, the machine.
-TIMING_COLUMNS = frozenset({"wall_time_s", "wall_time_min_s", "wall_time_max_s", "repeats", "wall_time_repeats",
-                            "machine", "run_time_s", "created_utc", "Wall time (s)", "Run time (s)"})
+TIMING_COLUMNS = frozenset(
+    {
+        "wall_time_s",
+        "wall_time_min_s",
+        "wall_time_max_s",
+        "repeats",
+        "wall_time_repeats",
+        "machine",
+        "run_time_s",
+        "created_utc",
+        "Wall time (s)",
+        "Run time (s)",
+    }
+)
 SUFFIXES = (".csv", ".md", ".html", ".tex", ".json")
 _NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 _HTML_CELL = re.compile(r"<t[hd][^>]*>(.*?)</t[hd]>", re.S)
@@ -144,11 +156,17 @@ def compare_text(before: Path, after: Path, rtol: float) -> TableDifference:
     return TableDifference(after.name, 0.0, tuple(problems[:5]))
 
 
-def compare_tables(before: Path, after: Path, rtol: float = 1e-9,
-                   ignore: Sequence[str] = ()) -> list[TableDifference]:
+def compare_tables(before: Path, after: Path, rtol: float = 1e-9, ignore: Sequence[str] = ()) -> list[TableDifference]:
     """Every table file of two ``results/tables`` directories (``ignore``: file names left out)."""
-    names = sorted({p.name for d in (before, after) for p in d.iterdir()
-                    if p.suffix in SUFFIXES and not p.name.endswith(".provenance.json")} - set(ignore))
+    names = sorted(
+        {
+            p.name
+            for d in (before, after)
+            for p in d.iterdir()
+            if p.suffix in SUFFIXES and not p.name.endswith(".provenance.json")
+        }
+        - set(ignore)
+    )
     out = []
     for name in names:
         a, b = before / name, after / name
@@ -162,7 +180,9 @@ def compare_tables(before: Path, after: Path, rtol: float = 1e-9,
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m rodimpact.tools.compare_tables", description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(
+        prog="python -m rodimpact.tools.compare_tables", description=__doc__.split("\n")[0]
+    )
     parser.add_argument("before", type=Path, help="a build's results/tables directory")
     parser.add_argument("after", type=Path, help="the other build's results/tables directory")
     parser.add_argument("--rtol", type=float, default=1e-9, help="relative tolerance (default 1e-9)")

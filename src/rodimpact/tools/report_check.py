@@ -46,9 +46,17 @@ CHROMEDRIVER = Path("/usr/bin/chromedriver")
 WINDOW = (1400, 900)
 
 #: Chromium's switches: headless, no network of its own, no first-run chores.
-CHROME_ARGS = ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-               "--disable-background-networking", "--disable-component-update", "--disable-sync",
-               "--disable-dev-shm-usage")
+CHROME_ARGS = (
+    "--headless=new",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--disable-dev-shm-usage",
+)
 
 #: The report's title: the heading docutils makes of the description's title, inside the
 #: description (snakemake's own navigation bar has an ``h1`` too, outside it).
@@ -102,8 +110,11 @@ class TitleBox:
     @property
     def visible(self) -> bool:
         """The whole box lies inside the window, is not empty, and nothing covers it."""
-        return (self.uncovered and 0.0 <= self.top < self.bottom <= self.height
-                and 0.0 <= self.left < self.right <= self.width)
+        return (
+            self.uncovered
+            and 0.0 <= self.top < self.bottom <= self.height
+            and 0.0 <= self.left < self.right <= self.width
+        )
 
 
 def _free_port() -> int:
@@ -121,16 +132,22 @@ class _Driver:
                 raise ChromeError(f"{binary} is missing: apt-get install -y chromium chromium-driver")
         self.port = _free_port()
         self.timeout_s = timeout_s
-        self.process = subprocess.Popen([str(chromedriver), f"--port={self.port}"], stdout=subprocess.DEVNULL,
-                                        stderr=subprocess.DEVNULL)
+        self.process = subprocess.Popen(
+            [str(chromedriver), f"--port={self.port}"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
+        )
         self.session = ""
         try:
             self._wait_ready()
             width, height = WINDOW
-            options = {"binary": str(chromium),
-                       "args": [*CHROME_ARGS, f"--window-size={width},{height}", f"--user-data-dir={profile}"]}
-            answer = self.call("POST", "/session", {"capabilities": {"alwaysMatch": {
-                "browserName": "chrome", "goog:chromeOptions": options}}})
+            options = {
+                "binary": str(chromium),
+                "args": [*CHROME_ARGS, f"--window-size={width},{height}", f"--user-data-dir={profile}"],
+            }
+            answer = self.call(
+                "POST",
+                "/session",
+                {"capabilities": {"alwaysMatch": {"browserName": "chrome", "goog:chromeOptions": options}}},
+            )
             self.session = answer["sessionId"]
         except BaseException:
             self.close()
@@ -152,8 +169,12 @@ class _Driver:
     def call(self, method: str, path: str, body: dict[str, Any] | None = None) -> Any:
         """One WebDriver command; its ``value``."""
         data = None if body is None else json.dumps(body).encode()
-        request = urllib.request.Request(f"http://127.0.0.1:{self.port}{path}", data=data, method=method,
-                                         headers={"Content-Type": "application/json"})
+        request = urllib.request.Request(
+            f"http://127.0.0.1:{self.port}{path}",
+            data=data,
+            method=method,
+            headers={"Content-Type": "application/json"},
+        )
         try:
             with urllib.request.urlopen(request, timeout=self.timeout_s) as response:
                 answer = json.loads(response.read())
@@ -198,8 +219,14 @@ def title_box(driver: _Driver, timeout_s: float) -> TitleBox:
         time.sleep(0.2)
 
 
-def check_report(report: str | Path, screenshot: str | Path, *, chromium: Path = CHROMIUM,
-                 chromedriver: Path = CHROMEDRIVER, timeout_s: float = 60.0) -> TitleBox:
+def check_report(
+    report: str | Path,
+    screenshot: str | Path,
+    *,
+    chromium: Path = CHROMIUM,
+    chromedriver: Path = CHROMEDRIVER,
+    timeout_s: float = 60.0,
+) -> TitleBox:
     """Open ``report`` in headless Chromium at :data:`WINDOW`, save the first screen as the PNG
     ``screenshot``, and return where the title is.
 
@@ -224,17 +251,30 @@ def check_report(report: str | Path, screenshot: str | Path, *, chromium: Path =
     screenshot = Path(screenshot)
     screenshot.parent.mkdir(parents=True, exist_ok=True)
     screenshot.write_bytes(png)
-    log.info("%s: title %r at top %.0f px, bottom %.0f px, left %.0f px, right %.0f px in the %.0f x %.0f px "
-             "viewport of a %d x %d window%s; screenshot %s", report, box.text, box.top, box.bottom, box.left,
-             box.right, box.width, box.height, *WINDOW, "" if box.uncovered else " (covered)", screenshot)
+    log.info(
+        "%s: title %r at top %.0f px, bottom %.0f px, left %.0f px, right %.0f px in the %.0f x %.0f px "
+        "viewport of a %d x %d window%s; screenshot %s",
+        report,
+        box.text,
+        box.top,
+        box.bottom,
+        box.left,
+        box.right,
+        box.width,
+        box.height,
+        *WINDOW,
+        "" if box.uncovered else " (covered)",
+        screenshot,
+    )
     return box
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """The command line: 0 when the title is visible on the first screen, 1 when not, 2 on a
     browser error."""
-    parser = argparse.ArgumentParser(prog="python -m rodimpact.tools.report_check",
-                                     description=__doc__.split("\n\n")[0])
+    parser = argparse.ArgumentParser(
+        prog="python -m rodimpact.tools.report_check", description=__doc__.split("\n\n")[0]
+    )
     parser.add_argument("report", nargs="?", default="results/report.html")
     parser.add_argument("--screenshot", default="results/report_screenshot.png")
     parser.add_argument("--timeout", type=float, default=60.0, help="s to wait for the browser and the page")
@@ -246,9 +286,16 @@ def main(argv: Sequence[str] | None = None) -> int:
         log.error("%s", error)
         return 2
     if not box.visible:
-        log.error("the report's title %r is not inside the first %.0f x %.0f screen (top %.0f px, bottom %.0f px%s): "
-                  "shorten workflow/report/workflow.rst", box.text, box.width, box.height, box.top, box.bottom,
-                  "" if box.uncovered else ", covered by another element")
+        log.error(
+            "the report's title %r is not inside the first %.0f x %.0f screen (top %.0f px, bottom %.0f px%s): "
+            "shorten workflow/report/workflow.rst",
+            box.text,
+            box.width,
+            box.height,
+            box.top,
+            box.bottom,
+            "" if box.uncovered else ", covered by another element",
+        )
         return 1
     log.info("the report's title is visible on the first screen")
     return 0

@@ -58,8 +58,11 @@ def synthetic_history(case: Mapping[str, Any], record: SyntheticRecord) -> tuple
     clean = np.interp(1e-6 * samples, t, force, left=0.0, right=0.0)
     peak = float(force.max())
     noisy = record.gain * clean + np.random.default_rng(record.seed).normal(0.0, record.noise * peak, len(samples))
-    facts = {"contact_time_us": 1e6 * float(result.contact_time_s), "peak_force_n": peak,
-             "rebound_velocity_m_s": -float(result.rebound_velocity_m_s)}
+    facts = {
+        "contact_time_us": 1e6 * float(result.contact_time_s),
+        "peak_force_n": peak,
+        "rebound_velocity_m_s": -float(result.rebound_velocity_m_s),
+    }
     return samples + record.trigger_us, noisy, facts
 
 

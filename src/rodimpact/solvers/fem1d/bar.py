@@ -52,8 +52,13 @@ class BarModel:
     field_probes: sp.csr_matrix | None = None
 
 
-def bar_model(rod: Rod, element: Literal["P1", "P2"], n_elements: int,
-              stations_m: Sequence[float] = (), field_m: Sequence[float] = ()) -> BarModel:
+def bar_model(
+    rod: Rod,
+    element: Literal["P1", "P2"],
+    n_elements: int,
+    stations_m: Sequence[float] = (),
+    field_m: Sequence[float] = (),
+) -> BarModel:
     """Assemble the bar 0 <= x <= l struck at x = 0 (the far end fixed or free).
 
     Parameters

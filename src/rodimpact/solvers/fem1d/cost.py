@@ -35,8 +35,13 @@ def fem1d_cost(case: Mapping[str, Any], options: FEM1DOptions) -> Cost:
     steps = span / step + 1.0
     if FIELD_OUTPUT in case.get("outputs", ()) and math.isfinite(problem.rod.reflection_period):
         # the strain field: the bar stepped alone for its round trips after the last contact
-        steps += FieldGrid.from_settings(case.get("field_grid", {})).round_trips_after * problem.rod.reflection_period / step
+        steps += (
+            FieldGrid.from_settings(case.get("field_grid", {})).round_trips_after * problem.rod.reflection_period / step
+        )
     stations = len(case.get("stations", ()))
-    return Cost(time_step_s=step, steps=steps,
-                solve_s=SOLVE_S + steps * (FEM1D_STEP_S + FEM1D_DOF_STEP_S * dofs),
-                mem_mib=(steps * (FEM1D_STEP_BYTES + STATION_STEP_BYTES * stations) + dofs * FEM1D_DOF_BYTES) / MIB)
+    return Cost(
+        time_step_s=step,
+        steps=steps,
+        solve_s=SOLVE_S + steps * (FEM1D_STEP_S + FEM1D_DOF_STEP_S * dofs),
+        mem_mib=(steps * (FEM1D_STEP_BYTES + STATION_STEP_BYTES * stations) + dofs * FEM1D_DOF_BYTES) / MIB,
+    )

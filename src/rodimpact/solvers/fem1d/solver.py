@@ -66,18 +66,24 @@ class _History(StepHistory):
 
 def _hermite_root(a0: float, a1: float, d0: float, d1: float, h: float) -> float:
     """Zero in (0, h) of the cubic Hermite interpolant of values a0, a1 and slopes d0, d1."""
+
     def cubic(s: float) -> float:
         q = s / h
-        return ((2 * q**3 - 3 * q**2 + 1) * a0 + (q**3 - 2 * q**2 + q) * h * d0
-                + (-2 * q**3 + 3 * q**2) * a1 + (q**3 - q**2) * h * d1)
+        return (
+            (2 * q**3 - 3 * q**2 + 1) * a0
+            + (q**3 - 2 * q**2 + q) * h * d0
+            + (-2 * q**3 + 3 * q**2) * a1
+            + (q**3 - q**2) * h * d1
+        )
 
     if cubic(0.0) * cubic(h) > 0:  # interpolant without a sign change: fall back to linear
         return h * a0 / (a0 - a1)
     return brentq(cubic, 0.0, h, xtol=1e-14 * h)
 
 
-def _setup(problem: ImpactProblem, options: FEM1DOptions, stations: Sequence[float],
-           field: FieldGrid | None = None) -> _Setup:
+def _setup(
+    problem: ImpactProblem, options: FEM1DOptions, stations: Sequence[float], field: FieldGrid | None = None
+) -> _Setup:
     n_el, h, warnings = options.resolve(problem)
     rod = problem.rod
     xs = tuple(float(s) * rod.length_m for s in stations)
@@ -86,12 +92,25 @@ def _setup(problem: ImpactProblem, options: FEM1DOptions, stations: Sequence[flo
     solve = banded_solver(K + (4.0 / h**2) * M)
     e0 = end_vector(bar)
     static_end = banded_solver(K)(e0)[bar.end] if rod.far_end == "fixed" else math.inf
-    return _Setup(bar=bar, n_elements=n_el, h=h, warnings=tuple(warnings), stations_m=xs, solve=solve,
-                  g=solve(e0), static_end=static_end, rod_momentum=M.T @ np.ones(M.shape[0]))
+    return _Setup(
+        bar=bar,
+        n_elements=n_el,
+        h=h,
+        warnings=tuple(warnings),
+        stations_m=xs,
+        solve=solve,
+        g=solve(e0),
+        static_end=static_end,
+        rod_momentum=M.T @ np.ones(M.shape[0]),
+    )
 
 
-def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
-                stations: Sequence[float] = (), field: FieldGrid | None = None) -> ImpactResult:
+def solve_fem1d(
+    problem: ImpactProblem,
+    options: FEM1DOptions | None = None,
+    stations: Sequence[float] = (),
+    field: FieldGrid | None = None,
+) -> ImpactResult:
     """Solve the impact with the rod as a finite-element bar.
 
     Parameters
@@ -134,9 +153,18 @@ def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
     d = M.shape[0]
     u, v, a = np.zeros(d), np.zeros(d), np.zeros(d)
     x, w, p, alpha = 0.0, problem.velocity_m_s, 0.0, 0.0
-    hist = _History(t=[0.0], force=[0.0], x=[0.0], w=[w], u_end=[0.0], alpha=[0.0],
-                    station_u=[bar.station_probes @ u], station_e=[bar.strain_probes @ u],
-                    rod_kinetic=[0.0], rod_strain=[0.0])
+    hist = _History(
+        t=[0.0],
+        force=[0.0],
+        x=[0.0],
+        w=[w],
+        u_end=[0.0],
+        alpha=[0.0],
+        station_u=[bar.station_probes @ u],
+        station_e=[bar.strain_probes @ u],
+        rod_kinetic=[0.0],
+        rod_strain=[0.0],
+    )
     recorder = None if field is None else _FieldRecorder(field, rod, bar.field_probes, u)
     starts, ends, AL = hist.starts, hist.ends, hist.alpha
     in_contact = True
@@ -176,9 +204,19 @@ def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
         hist.rod_strain.append(0.5 * u @ (K @ u))
         if recorder is not None:
             recorder.record(t, u)
-        if not in_contact and ends and _no_further_contact(
-                rod, x, w, hist.rod_kinetic[-1] + hist.rod_strain[-1], setup.static_end, t - ends[-1],
-                setup.rod_momentum @ v):
+        if (
+            not in_contact
+            and ends
+            and _no_further_contact(
+                rod,
+                x,
+                w,
+                hist.rod_kinetic[-1] + hist.rod_strain[-1],
+                setup.static_end,
+                t - ends[-1],
+                setup.rod_momentum @ v,
+            )
+        ):
             status, message = "completed", f"{len(ends)} contact(s); no further contact possible"
             break
         limit = limit_reached(starts, ends, t, t_max, options)
@@ -199,15 +237,17 @@ def solve_fem1d(problem: ImpactProblem, options: FEM1DOptions | None = None,
     return _result(problem, options, setup, hist, outcome, field_data)
 
 
-def _free_displacement(solve: Any, M: Any, u: NDArray[np.float64], v: NDArray[np.float64],
-                       a: NDArray[np.float64], h: float) -> NDArray[np.float64]:
+def _free_displacement(
+    solve: Any, M: Any, u: NDArray[np.float64], v: NDArray[np.float64], a: NDArray[np.float64], h: float
+) -> NDArray[np.float64]:
     """The bar's displacement after a step ``h`` (s) with no contact force (average-acceleration
     Newmark; ``solve`` factors K + 4 M / h^2)."""
     return solve(M @ ((4.0 / h**2) * u + (4.0 / h) * v + a))
 
 
-def _rates(u: NDArray[np.float64], v: NDArray[np.float64], a: NDArray[np.float64],
-           u_new: NDArray[np.float64], h: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def _rates(
+    u: NDArray[np.float64], v: NDArray[np.float64], a: NDArray[np.float64], u_new: NDArray[np.float64], h: float
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Velocity and acceleration after a Newmark step from ``u, v, a`` to ``u_new``."""
     a_new = (4.0 / h**2) * (u_new - u) - (4.0 / h) * v - a
     return v + 0.5 * h * (a + a_new), a_new
@@ -241,12 +281,14 @@ class _FieldRecorder:
     def datasets(self, times: NDArray[np.float64]) -> dict[str, tuple[NDArray[np.float64], str, str]]:
         """The field at ``times`` (the grid's; those the run reached)."""
         count = min(len(times), len(self.samples))
-        return field_datasets(times[:count], self.positions, np.asarray(self.samples[:count]),
-                              "FEM, the bar's displacements")
+        return field_datasets(
+            times[:count], self.positions, np.asarray(self.samples[:count]), "FEM, the bar's displacements"
+        )
 
 
-def _no_further_contact(rod: Rod, x: float, w: float, rod_energy: float, static_end: float,
-                        since_separation: float, rod_momentum: float) -> bool:
+def _no_further_contact(
+    rod: Rod, x: float, w: float, rod_energy: float, static_end: float, since_separation: float, rod_momentum: float
+) -> bool:
     """Fixed far end: the end can never be further out than sqrt(2 E_rod C_static), so an
     impactor moving away beyond that never returns (rigorous). Free far end: the impactor
     is no faster than the rod's centre of mass and has stayed clear for
@@ -257,8 +299,14 @@ def _no_further_contact(rod: Rod, x: float, w: float, rod_energy: float, static_
     return w <= rod_momentum / rod.mass_kg and since_separation >= SEPARATION_ROUND_TRIPS * rod.reflection_period
 
 
-def _result(problem: ImpactProblem, options: FEM1DOptions, setup: _Setup, hist: _History,
-            outcome: Outcome, field: dict[str, tuple[NDArray[np.float64], str, str]]) -> ImpactResult:
+def _result(
+    problem: ImpactProblem,
+    options: FEM1DOptions,
+    setup: _Setup,
+    hist: _History,
+    outcome: Outcome,
+    field: dict[str, tuple[NDArray[np.float64], str, str]],
+) -> ImpactResult:
     nodes = hist.nodes()
     kinetic = 0.5 * problem.mass_kg * nodes.w**2
     contact = problem.contact.energy(nodes.alpha)
@@ -273,19 +321,37 @@ def _result(problem: ImpactProblem, options: FEM1DOptions, setup: _Setup, hist: 
     radius = problem.contact.contact_radius(nodes.alpha)
     if radius is not None:
         series["contact_radius"] = (radius, "m", "radius of the contact patch (the contact law; Hertz: sqrt(R alpha))")
-    extra: dict[str, Any] = {"n_elements": int(setup.n_elements), "element": options.element,
-                             "n_dofs": int(setup.bar.mass.shape[0]), "warnings": "; ".join(setup.warnings)}
+    extra: dict[str, Any] = {
+        "n_elements": int(setup.n_elements),
+        "element": options.element,
+        "n_dofs": int(setup.bar.mass.shape[0]),
+        "warnings": "; ".join(setup.warnings),
+    }
     if setup.stations_m:
-        series["station_displacement"] = (np.asarray(hist.station_u), "m",
-                                          "axial displacement of the cross-sections at station_x_m (FEM)")
-        series["station_strain"] = (np.asarray(hist.station_e), "1",
-                                    "axial strain du/dx at station_x_m (negative in compression; FEM)")
+        series["station_displacement"] = (
+            np.asarray(hist.station_u),
+            "m",
+            "axial displacement of the cross-sections at station_x_m (FEM)",
+        )
+        series["station_strain"] = (
+            np.asarray(hist.station_e),
+            "1",
+            "axial strain du/dx at station_x_m (negative in compression; FEM)",
+        )
         extra["station_x_m"] = np.asarray(setup.stations_m)
     if field:
         extra["wave_speed_m_s"] = float(problem.rod.wave_speed)
     # every located start and end, less the run's first start (t = 0) and a start left open
     events = len(hist.ends) + min(len(hist.starts), len(hist.ends)) - 1
-    return hist.result(nodes, outcome, scheme=f"fem1d-{options.element}-newmark", dt_s=float(setup.h),
-                       energy_error=energy_error(kinetic, contact, rod_kin, rod_str),
-                       rod_energy_J=float(rod_kin[-1] + rod_str[-1]), n_events=events,
-                       extra=extra, extra_series=series, field=field)
+    return hist.result(
+        nodes,
+        outcome,
+        scheme=f"fem1d-{options.element}-newmark",
+        dt_s=float(setup.h),
+        energy_error=energy_error(kinetic, contact, rod_kin, rod_str),
+        rod_energy_J=float(rod_kin[-1] + rod_str[-1]),
+        n_events=events,
+        extra=extra,
+        extra_series=series,
+        field=field,
+    )

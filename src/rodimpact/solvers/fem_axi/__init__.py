@@ -13,6 +13,7 @@ r-weighted elasticity forms), :mod:`.axibody` (one body's Newmark operators),
 cost model) and :mod:`.indentation` (the static indentation check).
 
 What it may import: :mod:`rodimpact.contact` (for the scales and the film's description
-only: the continuum resolves the contact, and the film, itself), :mod:`rodimpact.model`, :mod:`rodimpact.analysis.signals`, the shared
-pieces of :mod:`rodimpact.solvers`, scikit-fem and qdldl (the LDL^T factor). This ``__init__`` imports nothing.
+only: the continuum resolves the contact, and the film, itself), :mod:`rodimpact.model`,
+:mod:`rodimpact.analysis.signals`, the shared pieces of :mod:`rodimpact.solvers`, scikit-fem
+and qdldl (the LDL^T factor). This ``__init__`` imports nothing.
 """

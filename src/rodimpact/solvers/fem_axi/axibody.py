@@ -67,8 +67,9 @@ def spd_solver(matrix: sp.spmatrix) -> Callable[[NDArray[np.float64]], NDArray[n
     return solve
 
 
-def spd_inverse_rows(matrix: sp.spmatrix, rows: sp.spmatrix
-                     ) -> tuple[NDArray[np.float64], Callable[[NDArray[np.float64]], NDArray[np.float64]]]:
+def spd_inverse_rows(
+    matrix: sp.spmatrix, rows: sp.spmatrix
+) -> tuple[NDArray[np.float64], Callable[[NDArray[np.float64]], NDArray[np.float64]]]:
     """``rows matrix^-1 rows^T`` of a sparse SPD matrix and sparse rows, from one LDL^T factor.
 
     With the factor P (I + L) D (I + L)^T P^T of :func:`spd_solver`, the product is Y^T D^-1 Y
@@ -185,8 +186,9 @@ class AxiBody:
         if self.rigid_index is not None:
             if not self.rigid_mass_kg >= 0:
                 raise ValueError(f"rigid_mass_kg must be >= 0, got {self.rigid_mass_kg!r}")
-            M = M + sp.csr_matrix(([self.rigid_mass_kg / (2 * math.pi)], ([self.rigid_index], [self.rigid_index])),
-                                  shape=(n_q, n_q))
+            M = M + sp.csr_matrix(
+                ([self.rigid_mass_kg / (2 * math.pi)], ([self.rigid_index], [self.rigid_index])), shape=(n_q, n_q)
+            )
         if self.bar is not None:
             nodes = self.bar.elements + 1
             kept = len(self.bar_indices)

@@ -50,11 +50,9 @@ def _check_basis(basis: Any) -> None:
     if not isinstance(basis, Basis):
         raise ValueError(f"basis must be a skfem Basis, got {type(basis).__name__}")
     if not isinstance(basis.mesh, MeshTri):
-        raise ValueError(f"basis must live on a MeshTri in the (r, z) half-plane, got "
-                         f"{type(basis.mesh).__name__}")
+        raise ValueError(f"basis must live on a MeshTri in the (r, z) half-plane, got {type(basis.mesh).__name__}")
     if not isinstance(basis.elem, ElementVector) or basis.elem.dim != 2:
-        raise ValueError("basis must use ElementVector(...) of a triangle element "
-                         "(two components u_r, u_z)")
+        raise ValueError("basis must use ElementVector(...) of a triangle element (two components u_r, u_z)")
     r = basis.mesh.p[0]
     if r.min() < -1e-12 * max(float(np.ptp(r)), np.finfo(float).tiny):
         raise ValueError(f"basis: the mesh must lie in r >= 0, min r = {r.min():g} m")
@@ -94,16 +92,13 @@ def strain(u: Any, r: ArrayLike) -> tuple[NDArray, NDArray, NDArray, NDArray]:
     else:
         value, grad = getattr(u, "value", None), getattr(u, "grad", None)
     if value is None or grad is None:
-        raise ValueError("u must be a DiscreteField or have 'value' (2, ...) and "
-                         "'grad' (2, 2, ...)")
+        raise ValueError("u must be a DiscreteField or have 'value' (2, ...) and 'grad' (2, 2, ...)")
     if np.shape(value)[:1] != (2,) or np.shape(grad)[:2] != (2, 2):
-        raise ValueError(f"u must have two components: value shape {np.shape(value)}, "
-                         f"grad shape {np.shape(grad)}")
+        raise ValueError(f"u must have two components: value shape {np.shape(value)}, grad shape {np.shape(grad)}")
     return grad[0, 0], grad[1, 1], value[0] / r, grad[0, 1] + grad[1, 0]
 
 
-def axisym_stiffness(basis: Basis, youngs_modulus_pa: float,
-                     poisson_ratio: float) -> sp.csr_matrix:
+def axisym_stiffness(basis: Basis, youngs_modulus_pa: float, poisson_ratio: float) -> sp.csr_matrix:
     """Per-radian stiffness matrix of an isotropic linear elastic body of revolution.
 
     K_ij = integral of [lam tr e(phi_j) tr e(phi_i) + 2 mu (e_rr e_rr + e_zz e_zz + e_tt e_tt)
@@ -144,8 +139,9 @@ def _stiffness_matrix(basis: Basis, lam: float, mu: float) -> sp.csr_matrix:
     data = np.empty((nb, nb, nt))
     for j in range(nb):  # the trial function u = phi_j, every test function v = phi_i at once
         urr, uzz, utt, urz = test[j]
-        values = (lam * (urr + uzz + utt) * trace_v
-                  + 2.0 * mu * (urr * vrr + uzz * vzz + utt * vtt) + mu * urz * vrz) * r
+        values = (
+            lam * (urr + uzz + utt) * trace_v + 2.0 * mu * (urr * vrr + uzz * vzz + utt * vtt) + mu * urz * vrz
+        ) * r
         data[j] = np.sum(values * dx, axis=-1)
     dofs = basis.element_dofs  # (local, elements)
     rows = np.tile(dofs, (nb, 1)).ravel()  # entry (j, i, e): row dofs[i, e], column dofs[j, e]
@@ -203,8 +199,7 @@ def _facets(basis: Basis, facets: Any) -> NDArray[np.int64]:
     return idx.astype(np.int64)
 
 
-def axisym_load(basis: Basis, traction: Traction, facets: Any,
-                intorder: int | None = None) -> NDArray[np.float64]:
+def axisym_load(basis: Basis, traction: Traction, facets: Any, intorder: int | None = None) -> NDArray[np.float64]:
     """Per-radian consistent nodal loads of a surface traction, integral of t.v r ds.
 
     Parameters
@@ -240,8 +235,7 @@ def axisym_load(basis: Basis, traction: Traction, facets: Any,
         t = traction(r, z)
         if len(t) != 2:
             raise ValueError("traction must return two components (t_r, t_z)")
-        return (np.broadcast_to(t[0], r.shape) * v[0]
-                + np.broadcast_to(t[1], r.shape) * v[1]) * r
+        return (np.broadcast_to(t[0], r.shape) * v[0] + np.broadcast_to(t[1], r.shape) * v[1]) * r
 
     return np.asarray(asm(form, fbasis), dtype=float)
 
@@ -305,14 +299,12 @@ def component_dofs(basis: Basis, component: int, dofs: Any = None) -> NDArray[np
     else:
         arr = np.asarray(dofs)
         if arr.ndim != 1 or (arr.size and not np.issubdtype(arr.dtype, np.integer)):
-            raise ValueError("dofs must be a DofsView, a boundary name, a predicate, "
-                             "a 1D integer array or None")
+            raise ValueError("dofs must be a DofsView, a boundary name, a predicate, a 1D integer array or None")
         out = arr[np.isin(arr, comp)]
     return np.unique(np.asarray(out, dtype=np.int64))
 
 
-def cross_section_mean_uz(basis: Basis, z: float, radius: float,
-                          n: int = 64) -> sp.csr_matrix:
+def cross_section_mean_uz(basis: Basis, z: float, radius: float, n: int = 64) -> sp.csr_matrix:
     """Row that maps the DOFs to the area-weighted mean of u_z over a disc.
 
     mean = 2 pi int_0^R u_z(r, z) r dr / (pi R^2) = (2 / R^2) int_0^R u_z r dr, evaluated with
@@ -350,5 +342,5 @@ def cross_section_mean_uz(basis: Basis, z: float, radius: float,
     weights = 0.5 * radius * wts * r * 2.0 / radius**2
     points = np.vstack([r, np.full(int(n), float(z))])
     probes = sp.csr_matrix(basis.probes(points))  # rows: n values of u_r, then n of u_z
-    row = sp.csr_matrix(weights[None, :]) @ probes[int(n):]
+    row = sp.csr_matrix(weights[None, :]) @ probes[int(n) :]
     return sp.csr_matrix(row)

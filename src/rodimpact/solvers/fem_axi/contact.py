@@ -57,8 +57,9 @@ class ContactOperator:
         self._chol = cholesky(self.delassus, lower=True)
 
     @classmethod
-    def of(cls, rod: AxiBody, impactor: AxiBody, B_rod: sp.spmatrix, B_imp: sp.spmatrix,
-           gap0: NDArray[np.float64]) -> ContactOperator:
+    def of(
+        cls, rod: AxiBody, impactor: AxiBody, B_rod: sp.spmatrix, B_imp: sp.spmatrix, gap0: NDArray[np.float64]
+    ) -> ContactOperator:
         """G and A for bodies factorised for their step (one solve with c right-hand sides each)."""
         B_rod, B_imp = sp.csr_matrix(B_rod), sp.csr_matrix(B_imp)
         GT_rod = np.ascontiguousarray(rod.solve(np.asfortranarray(B_rod.T.toarray())).T)
@@ -75,11 +76,11 @@ class ContactOperator:
         lam, _ = nnls(self._chol.T, -solve_triangular(self._chol, gap, lower=True), maxiter=50 * len(gap))
         return lam
 
-    def corrections(self, lam: NDArray[np.float64]
-                    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    def corrections(
+        self, lam: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         """G lambda and the loads B^T lambda of the rod and of the impactor (multipliers ``lam``,
         nonzero on at least one candidate)."""
         nonzero = np.flatnonzero(lam)
         lo, hi = nonzero[0], nonzero[-1] + 1
-        return (lam[lo:hi] @ self.GT_rod[lo:hi], lam[lo:hi] @ self.GT_imp[lo:hi],
-                self._Bt[0] @ lam, self._Bt[1] @ lam)
+        return (lam[lo:hi] @ self.GT_rod[lo:hi], lam[lo:hi] @ self.GT_imp[lo:hi], self._Bt[0] @ lam, self._Bt[1] @ lam)

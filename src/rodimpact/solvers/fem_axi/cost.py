@@ -63,7 +63,8 @@ def fem_axi_dofs(case: Mapping[str, Any]) -> int:
     """Upper-side estimate of the DOFs of fem_axi's two meshes (rod and impactor), closed form.
 
     The meshes (:mod:`rodimpact.solvers.fem_axi.meshes`) are fine (a_H / ``elements_across``,
-    a_H the contact radius estimated from the case's law) within ``contact_extent`` a_H of the contact point, graded beyond
+    a_H the contact radius estimated from the case's law) within ``contact_extent`` a_H of the
+    contact point, graded beyond
     at half the distance up to a coarse size (a/4 by a/2 cells in the rod of radius a, R/4
     in the impactor), and coarse elsewhere, over the continuum's length (:mod:`.farbar`; the
     bar beyond adds one DOF per node). Vector P2 elements carry about 4 DOFs per
@@ -90,14 +91,18 @@ def fem_axi_dofs(case: Mapping[str, Any]) -> int:
     z_c = continuum_length(a, length, options.continuum_diameters)
     bar_dofs = 0.0 if z_c is None else (length - z_c) * BAR_ELEMENTS_PER_RADIUS / a + 1.0
     meshed = length if z_c is None else z_c
-    rod = (_refined_triangles(extent, a / 4.0 / fine) * FEM_AXI_TRIANGLES
-           + 2.0 * 4.0 * math.ceil(2.0 * meshed / a)
-           + _film_triangles(problem, fine, options.contact_extent * contact_radius, options.film_layers))
+    rod = (
+        _refined_triangles(extent, a / 4.0 / fine) * FEM_AXI_TRIANGLES
+        + 2.0 * 4.0 * math.ceil(2.0 * meshed / a)
+        + _film_triangles(problem, fine, options.contact_extent * contact_radius, options.film_layers)
+    )
     height = 2.0 if problem.body == "sphere" else min(options.cap_height, 1.0)
     radius = problem.sphere_radius_m
     area = math.pi / 4.0 * (2.0 if problem.body == "sphere" else 1.0)  # R^2
-    impactor = (_refined_triangles(extent, radius * min(height, 1.0) / 4.0 / fine) * FEM_AXI_TRIANGLES
-                + 2.0 * area * 16.0 / min(height, 1.0) ** 2)
+    impactor = (
+        _refined_triangles(extent, radius * min(height, 1.0) / 4.0 / fine) * FEM_AXI_TRIANGLES
+        + 2.0 * area * 16.0 / min(height, 1.0) ** 2
+    )
     per_triangle = 4.0 if options.element == "P2" else 1.0
     return int(math.ceil(per_triangle * (rod + impactor + 2.0 * FEM_AXI_EXTRA_TRIANGLES) + bar_dofs))
 
@@ -113,9 +118,12 @@ def fem_axi_cost(case: Mapping[str, Any], options: FEMAxiOptions) -> Cost:
     span = horizon(problem, options.max_time_factor, contact, max(problem.rod.reflection_period, 0.25 * contact))
     dofs = fem_axi_dofs(case)
     steps = span / step + 1.0
-    return Cost(time_step_s=step, steps=steps,
-                solve_s=SOLVE_S + dofs * (FEM_AXI_SETUP_DOF_S + FEM_AXI_DOF_STEP_S * steps),
-                mem_mib=dofs * FEM_AXI_DOF_BYTES / MIB)
+    return Cost(
+        time_step_s=step,
+        steps=steps,
+        solve_s=SOLVE_S + dofs * (FEM_AXI_SETUP_DOF_S + FEM_AXI_DOF_STEP_S * steps),
+        mem_mib=dofs * FEM_AXI_DOF_BYTES / MIB,
+    )
 
 
 #: The static indentation's candidate columns per contact extent (in contact radii) and element
@@ -131,6 +139,9 @@ def fem_axi_indentation_cost(case: Mapping[str, Any], settings: Mapping[str, Any
     options = FEMAxiOptions.from_settings(settings)
     dofs = fem_axi_dofs({**case, "numerics": {**case["numerics"], "fem_axi": dict(settings)}})
     columns = INDENTATION_COLUMNS * options.contact_extent * options.elements_across
-    return Cost(time_step_s=math.nan, steps=0.0,
-                solve_s=SOLVE_S + dofs * (FEM_AXI_SETUP_DOF_S + FEM_AXI_DOF_STEP_S * columns),
-                mem_mib=dofs * FEM_AXI_DOF_BYTES / MIB)
+    return Cost(
+        time_step_s=math.nan,
+        steps=0.0,
+        solve_s=SOLVE_S + dofs * (FEM_AXI_SETUP_DOF_S + FEM_AXI_DOF_STEP_S * columns),
+        mem_mib=dofs * FEM_AXI_DOF_BYTES / MIB,
+    )

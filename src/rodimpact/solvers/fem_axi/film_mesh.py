@@ -95,8 +95,9 @@ def _distance_to_disc(mesh: MeshTri, radius: float) -> NDArray[np.float64]:
     return np.minimum.reduce([vertex, _distance_to_origin(mesh), _distance_to_origin(shifted)])
 
 
-def _rod_under_film(a: float, length: float, fine: float, extent: float, film_radius: float,
-                    face_spacing: float) -> MeshTri:
+def _rod_under_film(
+    a: float, length: float, fine: float, extent: float, film_radius: float, face_spacing: float
+) -> MeshTri:
     """The rod's mesh refined as ``rod_mesh(layout='refined')`` (the same coarse grid, the same
     target about the origin) and, near the film's disc, to face edges of ``face_spacing``;
     then the end-face vertex nearest to r = film_radius is moved there (along the face)."""
@@ -124,9 +125,16 @@ def _rod_under_film(a: float, length: float, fine: float, extent: float, film_ra
     return MeshTri(p, mesh.t, sort_t=False)
 
 
-def film_rod_mesh(radius_m: float, length_m: float, fine_size_m: float, fine_extent_m: float,
-                  film_radius_m: float, film_thickness_m: float | Sequence[float], layers: int = FILM_LAYERS,
-                  aspect: float = FILM_ASPECT) -> FilmRodMesh:
+def film_rod_mesh(
+    radius_m: float,
+    length_m: float,
+    fine_size_m: float,
+    fine_extent_m: float,
+    film_radius_m: float,
+    film_thickness_m: float | Sequence[float],
+    layers: int = FILM_LAYERS,
+    aspect: float = FILM_ASPECT,
+) -> FilmRodMesh:
     """Mesh of the rod 0 <= r <= a, 0 <= z <= L with layers 0 <= r <= r_f, -H <= z <= 0 on its end.
 
     Parameters
@@ -189,21 +197,44 @@ def film_rod_mesh(radius_m: float, length_m: float, fine_size_m: float, fine_ext
     points = np.hstack([p, new])
     mesh = _oriented(points, np.hstack([rod.t, film_t]))
     q = mesh.p
-    mesh, boundaries = _tagged(mesh, {
-        "axis": q[0] == 0.0, "lateral": q[0] == a, "far": q[1] == length,
-        "end": (q[1] == 0.0) & (q[0] >= film_radius), "film": q[1] == -h,
-        "film_edge": (q[0] == film_radius) & (q[1] <= 0.0)})
+    mesh, boundaries = _tagged(
+        mesh,
+        {
+            "axis": q[0] == 0.0,
+            "lateral": q[0] == a,
+            "far": q[1] == length,
+            "end": (q[1] == 0.0) & (q[0] >= film_radius),
+            "film": q[1] == -h,
+            "film_edge": (q[0] == film_radius) & (q[1] <= 0.0),
+        },
+    )
     n_rod_t = rod.t.shape[1]
     element_layer = np.tile(np.repeat(np.asarray(row_layer), m), 2)
     per_layer = tuple(n_rod_t + np.nonzero(element_layer == i)[0].astype(np.int64) for i in range(len(thicknesses)))
     fine_reached = float(_longest_edges(mesh)[_distance_to_origin(mesh) <= extent].max())
-    log.info("rod + film mesh: %d vertices, %d triangles (%d in %d layer(s), %s elements through, %.3g m in all, "
-             "%d columns out to r = %.3g m); size %.3g m within %.3g m", mesh.nvertices, mesh.t.shape[1],
-             film_t.shape[1], len(thicknesses), counts, h, m, film_radius, fine_reached, extent)
-    return FilmRodMesh(BodyMesh(mesh, boundaries, fine_reached, extent),
-                       film_elements=np.arange(n_rod_t, mesh.t.shape[1], dtype=np.int64),
-                       rod_elements=np.arange(n_rod_t, dtype=np.int64),
-                       film_radius_m=film_radius, film_thickness_m=h, layers=rows, layer_elements=per_layer)
+    log.info(
+        "rod + film mesh: %d vertices, %d triangles (%d in %d layer(s), %s elements through, %.3g m in all, "
+        "%d columns out to r = %.3g m); size %.3g m within %.3g m",
+        mesh.nvertices,
+        mesh.t.shape[1],
+        film_t.shape[1],
+        len(thicknesses),
+        counts,
+        h,
+        m,
+        film_radius,
+        fine_reached,
+        extent,
+    )
+    return FilmRodMesh(
+        BodyMesh(mesh, boundaries, fine_reached, extent),
+        film_elements=np.arange(n_rod_t, mesh.t.shape[1], dtype=np.int64),
+        rod_elements=np.arange(n_rod_t, dtype=np.int64),
+        film_radius_m=film_radius,
+        film_thickness_m=h,
+        layers=rows,
+        layer_elements=per_layer,
+    )
 
 
 def layers_within(mesh: FilmRodMesh, radius_m: float) -> int:

@@ -33,8 +33,9 @@ from rodimpact.solvers.fem_axi.problem import AxiImpact
 __all__ = ["film_contact", "film_rod_matrices"]
 
 
-def film_rod_matrices(basis: Basis, film_mesh: FilmRodMesh, problem: AxiImpact, *,
-                      mass: bool = True) -> tuple[Any, Any]:
+def film_rod_matrices(
+    basis: Basis, film_mesh: FilmRodMesh, problem: AxiImpact, *, mass: bool = True
+) -> tuple[Any, Any]:
     """Per-radian stiffness (N/m) and mass (kg) of the rod and its layers on ``basis``'s DOFs,
     each region assembled with its own material (``problem.rod_material``, each layer of
     ``problem.stack``); ``mass=False``: zeros for the mass (a static solve)."""
@@ -54,8 +55,7 @@ def film_rod_matrices(basis: Basis, film_mesh: FilmRodMesh, problem: AxiImpact, 
     return stiffness.tocsr(), masses.tocsr()
 
 
-def _surface_uz_rows(basis: Basis, body: BodyMesh, radii: NDArray[np.float64], sphere_radius: float
-                     ) -> sp.csr_matrix:
+def _surface_uz_rows(basis: Basis, body: BodyMesh, radii: NDArray[np.float64], sphere_radius: float) -> sp.csr_matrix:
     """u_z of the impactor's surface at radii r (on its near half, z >= -R), shape (k, N):
     the interpolation along the boundary facet whose ends bracket r."""
     mesh = body.mesh
@@ -87,9 +87,9 @@ def _surface_uz_rows(basis: Basis, body: BodyMesh, radii: NDArray[np.float64], s
     return sp.csr_matrix((vals, (rows, cols)), shape=(len(radii), basis.N))
 
 
-def film_contact(rod_body: AxiBody, film_mesh: FilmRodMesh, imp_body: AxiBody, imp: BodyMesh,
-                 sphere_radius_m: float, extent_m: float
-                 ) -> tuple[sp.csr_matrix, sp.csr_matrix, NDArray[np.float64], NDArray[np.float64]]:
+def film_contact(
+    rod_body: AxiBody, film_mesh: FilmRodMesh, imp_body: AxiBody, imp: BodyMesh, sphere_radius_m: float, extent_m: float
+) -> tuple[sp.csr_matrix, sp.csr_matrix, NDArray[np.float64], NDArray[np.float64]]:
     """The contact's candidates with a film: the rod's struck-surface u_z DOFs within
     ``extent_m`` of the axis (and within the impactor's radius).
 

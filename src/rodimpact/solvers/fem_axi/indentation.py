@@ -64,8 +64,9 @@ class Indentation:
     surface_displacement_m: NDArray[np.float64] | None = None
 
 
-def static_indentation(problem: AxiImpact, displacements_m: Sequence[float],
-                       options: FEMAxiOptions | None = None) -> Indentation:
+def static_indentation(
+    problem: AxiImpact, displacements_m: Sequence[float], options: FEMAxiOptions | None = None
+) -> Indentation:
     """Push the rigid back of a ``cap`` impactor by each displacement and solve the contact.
 
     Parameters
@@ -85,8 +86,15 @@ def static_indentation(problem: AxiImpact, displacements_m: Sequence[float],
         raise ValueError("problem: static indentation needs body='cap' and a fixed far end")
     options = FEMAxiOptions() if options is None else options
     model = build_model(problem, options, dynamic=False)  # statics: no mass matrices
-    rod, imp, B_rod, B_imp, gap0, r_c, fine = (model.rod, model.impactor, model.B_rod, model.B_imp, model.gap0,
-                                                model.r_c, model.fine_size_m)
+    rod, imp, B_rod, B_imp, gap0, r_c, fine = (
+        model.rod,
+        model.impactor,
+        model.B_rod,
+        model.B_imp,
+        model.gap0,
+        model.r_c,
+        model.fine_size_m,
+    )
     free = np.arange(imp.n - 1)  # the rigid coordinate W (last) is prescribed
     # the Delassus operator B K^-1 B^T of each body from its factor's elimination tree alone
     # (spd_inverse_rows): no full solve per candidate
@@ -98,8 +106,9 @@ def static_indentation(problem: AxiImpact, displacements_m: Sequence[float],
     if model.film is None:
         surface = face
     else:
-        surface = rod.reduce_rows(cross_section_mean_uz(rod.basis, -model.film.film_thickness_m,
-                                                        model.film.film_radius_m))
+        surface = rod.reduce_rows(
+            cross_section_mean_uz(rod.basis, -model.film.film_thickness_m, model.film.film_radius_m)
+        )
     means = np.asarray(B_rod @ solve_rod(np.column_stack([face.toarray().ravel(), surface.toarray().ravel()]))).T
     # a rigid translation of the whole cap by d closes every gap by d
     forces, radii, moved = [], [], []
@@ -111,5 +120,11 @@ def static_indentation(problem: AxiImpact, displacements_m: Sequence[float],
         moved.append(means @ lam)
     spacing = float(np.min(np.diff(np.unique(r_c)))) if len(r_c) > 1 else fine
     moved_a = np.asarray(moved).reshape(-1, 2)
-    return Indentation(np.asarray(displacements_m, float), np.asarray(forces), np.asarray(radii), spacing,
-                       face_displacement_m=moved_a[:, 0], surface_displacement_m=moved_a[:, 1])
+    return Indentation(
+        np.asarray(displacements_m, float),
+        np.asarray(forces),
+        np.asarray(radii),
+        spacing,
+        face_displacement_m=moved_a[:, 0],
+        surface_displacement_m=moved_a[:, 1],
+    )

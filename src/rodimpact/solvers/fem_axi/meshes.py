@@ -25,8 +25,7 @@ from skfem import MeshTri
 
 from rodimpact.solvers.fem_axi.layers import positive as _positive
 
-__all__ = ["BodyMesh", "rod_mesh", "cap_mesh", "ball_mesh", "surface_nodes",
-           "hertz_mesh_sizes"]
+__all__ = ["BodyMesh", "rod_mesh", "cap_mesh", "ball_mesh", "surface_nodes", "hertz_mesh_sizes"]
 
 log = logging.getLogger(__name__)
 
@@ -61,12 +60,12 @@ class BodyMesh:
     contact_extent_m: float
 
 
-def _fine_sizes(fine_size_m: float, fine_extent_m: float, body_m: float
-                ) -> tuple[float, float]:
+def _fine_sizes(fine_size_m: float, fine_extent_m: float, body_m: float) -> tuple[float, float]:
     fine = _positive("fine_size_m", fine_size_m)
     if fine > body_m:
-        raise ValueError(f"fine_size_m must not exceed the body's smallest dimension "
-                         f"({body_m!r} m), got {fine_size_m!r}")
+        raise ValueError(
+            f"fine_size_m must not exceed the body's smallest dimension ({body_m!r} m), got {fine_size_m!r}"
+        )
     return fine, _positive("fine_extent_m", fine_extent_m)
 
 
@@ -74,8 +73,9 @@ def _ceil(x: float) -> int:  # ceil, forgiving the rounding of an integral quoti
     return math.ceil(x * (1.0 - 1e-12))
 
 
-def _graded(length: float, fine: float, extent: float, coarse: float,
-            ratio: float = GROWTH_RATIO) -> NDArray[np.float64]:
+def _graded(
+    length: float, fine: float, extent: float, coarse: float, ratio: float = GROWTH_RATIO
+) -> NDArray[np.float64]:
     """Coordinates 0 = x_0 < ... < x_n = length: spacing h0 <= fine on [0, extent], then
     min(coarse, h0 g^i) with g <= ratio chosen so that the last one ends at ``length``."""
     if extent >= length:
@@ -88,13 +88,12 @@ def _graded(length: float, fine: float, extent: float, coarse: float,
     powers = np.arange(1, count + 1)
 
     def excess(g: float) -> float:
-        return float(np.minimum(coarse, h0 * g ** powers).sum() - rest)
+        return float(np.minimum(coarse, h0 * g**powers).sum() - rest)
 
     if excess(1.0) >= 0.0:  # too short to grade: the fine spacing throughout
         return np.linspace(0.0, length, _ceil(length / h0) + 1)
     g = brentq(excess, 1.0, ratio, xtol=1e-15) if excess(ratio) > 0.0 else ratio
-    x = np.concatenate([np.linspace(0.0, extent, n0 + 1),
-                        extent + np.cumsum(np.minimum(coarse, h0 * g ** powers))])
+    x = np.concatenate([np.linspace(0.0, extent, n0 + 1), extent + np.cumsum(np.minimum(coarse, h0 * g**powers))])
     x[-1] = length
     return x
 
@@ -112,8 +111,7 @@ def _oriented(p: NDArray[np.float64], t: NDArray[np.int64]) -> MeshTri:
     return MeshTri(np.ascontiguousarray(p, dtype=np.float64), t, sort_t=False)
 
 
-def _tagged(mesh: MeshTri, vertex_sets: dict[str, NDArray[np.bool_]]
-            ) -> tuple[MeshTri, dict[str, np.ndarray]]:
+def _tagged(mesh: MeshTri, vertex_sets: dict[str, NDArray[np.bool_]]) -> tuple[MeshTri, dict[str, np.ndarray]]:
     """Name every boundary facet after the first vertex set that holds both its ends."""
     facets, boundaries = mesh.boundary_facets(), {}
     left = np.ones(facets.size, dtype=bool)
@@ -126,8 +124,14 @@ def _tagged(mesh: MeshTri, vertex_sets: dict[str, NDArray[np.bool_]]
     return mesh.with_boundaries(boundaries), boundaries
 
 
-def rod_mesh(radius_m: float, length_m: float, fine_size_m: float, fine_extent_m: float,
-             coarse_size_m: float | None = None, layout: str = "refined") -> BodyMesh:
+def rod_mesh(
+    radius_m: float,
+    length_m: float,
+    fine_size_m: float,
+    fine_extent_m: float,
+    coarse_size_m: float | None = None,
+    layout: str = "refined",
+) -> BodyMesh:
     """Mesh of the rod 0 <= r <= a, 0 <= z <= L, fine near the struck end's centre.
 
     ``layout="refined"`` (default): a uniform coarse mesh refined locally
@@ -165,8 +169,7 @@ def rod_mesh(radius_m: float, length_m: float, fine_size_m: float, fine_extent_m
     else:
         coarse_r = coarse_z = _positive("coarse_size_m", coarse_size_m)
         if coarse_r < fine:
-            raise ValueError(f"coarse_size_m must be >= fine_size_m ({fine!r} m), "
-                             f"got {coarse_size_m!r}")
+            raise ValueError(f"coarse_size_m must be >= fine_size_m ({fine!r} m), got {coarse_size_m!r}")
     if layout == "refined":
         return _refined_rod(a, length, fine, extent, coarse_r, coarse_z)
     if layout != "tensor":
@@ -174,11 +177,18 @@ def rod_mesh(radius_m: float, length_m: float, fine_size_m: float, fine_extent_m
     r, z = _graded(a, fine, extent, coarse_r), _graded(length, fine, extent, coarse_z)
     base = MeshTri.init_tensor(r, z)
     p = base.p
-    mesh, boundaries = _tagged(_oriented(p, base.t), {
-        "axis": p[0] == 0.0, "lateral": p[0] == a, "end": p[1] == 0.0, "far": p[1] == length})
+    mesh, boundaries = _tagged(
+        _oriented(p, base.t), {"axis": p[0] == 0.0, "lateral": p[0] == a, "end": p[1] == 0.0, "far": p[1] == length}
+    )
     fine_reached = float(max(np.diff(x)[x[1:] <= extent].max() for x in (r, z)))
-    log.info("rod mesh: %d x %d coordinates, %d triangles, spacing %.3g m up to %.3g m",
-             r.size, z.size, mesh.t.shape[1], fine_reached, extent)
+    log.info(
+        "rod mesh: %d x %d coordinates, %d triangles, spacing %.3g m up to %.3g m",
+        r.size,
+        z.size,
+        mesh.t.shape[1],
+        fine_reached,
+        extent,
+    )
     return BodyMesh(mesh, boundaries, fine_reached, extent)
 
 
@@ -189,8 +199,9 @@ def graded_size(mesh: MeshTri, fine: float, extent: float, coarse: float) -> NDA
     return np.where(beyond > 0.0, np.minimum(coarse, fine + SIZE_GRADIENT * beyond), fine)
 
 
-def refine_until(mesh: MeshTri, target: Callable[[MeshTri], NDArray[np.float64]],
-                 max_levels: int) -> tuple[MeshTri, int]:
+def refine_until(
+    mesh: MeshTri, target: Callable[[MeshTri], NDArray[np.float64]], max_levels: int
+) -> tuple[MeshTri, int]:
     """Refine the triangles whose longest edge exceeds ``target(mesh)`` until none does;
     the mesh and the number of refinement passes.
 
@@ -207,25 +218,34 @@ def refine_until(mesh: MeshTri, target: Callable[[MeshTri], NDArray[np.float64]]
     raise RuntimeError("the refinement did not converge")
 
 
-def _refined_rod(a: float, length: float, fine: float, extent: float, coarse_r: float,
-                 coarse_z: float) -> BodyMesh:
+def _refined_rod(a: float, length: float, fine: float, extent: float, coarse_r: float, coarse_z: float) -> BodyMesh:
     """Uniform mesh of cells coarse_r x coarse_z, refined around the origin down to ``fine``
     (longest edges); far from the origin the cells' own diagonal is the target."""
-    mesh = MeshTri.init_tensor(np.linspace(0.0, a, max(1, _ceil(a / coarse_r)) + 1),
-                               np.linspace(0.0, length, max(1, _ceil(length / coarse_z)) + 1))
+    mesh = MeshTri.init_tensor(
+        np.linspace(0.0, a, max(1, _ceil(a / coarse_r)) + 1),
+        np.linspace(0.0, length, max(1, _ceil(length / coarse_z)) + 1),
+    )
     coarse = float(_longest_edges(mesh).max())
     mesh, levels = refine_until(mesh, lambda m: graded_size(m, fine, extent, coarse), 65)
     p = mesh.p
-    mesh, boundaries = _tagged(_oriented(p, mesh.t), {
-        "axis": p[0] == 0.0, "lateral": p[0] == a, "end": p[1] == 0.0, "far": p[1] == length})
+    mesh, boundaries = _tagged(
+        _oriented(p, mesh.t), {"axis": p[0] == 0.0, "lateral": p[0] == a, "end": p[1] == 0.0, "far": p[1] == length}
+    )
     fine_reached = float(_longest_edges(mesh)[_distance_to_origin(mesh) <= extent].max())
-    log.info("rod mesh (refined): %d vertices, %d triangles after %d refinements; size %.3g m "
-             "within %.3g m, coarse %.3g m", mesh.nvertices, mesh.t.shape[1], levels, fine_reached,
-             extent, coarse)
+    log.info(
+        "rod mesh (refined): %d vertices, %d triangles after %d refinements; size %.3g m within %.3g m, coarse %.3g m",
+        mesh.nvertices,
+        mesh.t.shape[1],
+        levels,
+        fine_reached,
+        extent,
+        coarse,
+    )
     return BodyMesh(mesh, boundaries, fine_reached, extent)
 
 
 # --------------------------------------------------------------------- curved bodies
+
 
 def _longest_edges(mesh: MeshTri) -> NDArray[np.float64]:
     p, t = mesh.p, mesh.t
@@ -243,8 +263,7 @@ def _distance_to_origin(mesh: MeshTri) -> NDArray[np.float64]:
     return best
 
 
-def _coarse_points(radius: float, height: float, spacing: float
-                   ) -> tuple[NDArray[np.float64], int, NDArray[np.bool_]]:
+def _coarse_points(radius: float, height: float, spacing: float) -> tuple[NDArray[np.float64], int, NDArray[np.bool_]]:
     """Points of {r >= 0, r^2 + (z + R)^2 <= R^2, z >= -height} about ``spacing`` apart.
 
     Returns the points (shape (2, n), m); the number b of boundary points, which come first
@@ -256,12 +275,15 @@ def _coarse_points(radius: float, height: float, spacing: float
     arc = np.vstack([radius * np.sin(phi), radius * (np.cos(phi) - 1.0)])
     arc[:, -1] = (0.0 if ball else arc[0, -1]), -height
     back_r = np.linspace(arc[0, -1], 0.0, math.ceil(arc[0, -1] / spacing) + 1)[1:]
-    back = np.vstack([back_r, np.full_like(back_r, -height)])[:, :0 if ball else None]
+    back = np.vstack([back_r, np.full_like(back_r, -height)])[:, : 0 if ball else None]
     axis_z = np.linspace(-height, 0.0, max(2, math.ceil(height / spacing)) + 1)[1:-1]
     fixed = np.hstack([arc, back, np.vstack([np.zeros_like(axis_z), axis_z])])
     rows = np.arange(-height + 0.433 * spacing, 0.0, spacing * math.sqrt(3) / 2)
-    lattice = [(r, np.full_like(r, z)) for i, z in enumerate(rows)
-               for r in [np.arange(spacing * (0.5 + 0.5 * (i % 2)), radius, spacing)]]
+    lattice = [
+        (r, np.full_like(r, z))
+        for i, z in enumerate(rows)
+        for r in [np.arange(spacing * (0.5 + 0.5 * (i % 2)), radius, spacing)]
+    ]
     r, z = (np.concatenate(c) for c in zip(*lattice))
     keep = np.minimum.reduce([r, radius - np.hypot(r, z + radius), z + height]) >= spacing / 2
     points = np.hstack([fixed, np.vstack([r[keep], z[keep]])])
@@ -274,8 +296,7 @@ def _delaunay(points: NDArray[np.float64]) -> NDArray[np.int64]:
     return t[:, np.abs(_area2(points, t)) > 1e-12 * np.ptp(points, axis=1).max() ** 2]
 
 
-def _coarse_mesh(radius: float, height: float, spacing: float
-                 ) -> tuple[MeshTri, NDArray[np.bool_]]:
+def _coarse_mesh(radius: float, height: float, spacing: float) -> tuple[MeshTri, NDArray[np.bool_]]:
     """Delaunay mesh of the point set after 8 sweeps of Laplacian smoothing of the interior
     points (the region is convex, so averages of neighbours stay inside); checks that its
     boundary is the closed polygon through the boundary points. Returns it, the sphere mask."""
@@ -296,8 +317,9 @@ def _coarse_mesh(radius: float, height: float, spacing: float
     return mesh, on_sphere
 
 
-def _refined(mesh: MeshTri, marked: NDArray[np.int64], on_sphere: NDArray[np.bool_],
-             radius: float) -> tuple[MeshTri, NDArray[np.bool_]]:
+def _refined(
+    mesh: MeshTri, marked: NDArray[np.int64], on_sphere: NDArray[np.bool_], radius: float
+) -> tuple[MeshTri, NDArray[np.bool_]]:
     """``mesh.refined(marked)``, with the new vertices of the sphere projected onto it.
 
     A new vertex lies on the sphere iff it is the midpoint of a boundary facet whose ends
@@ -322,8 +344,7 @@ def _refined(mesh: MeshTri, marked: NDArray[np.int64], on_sphere: NDArray[np.boo
     return _oriented(p, fine.t), flags
 
 
-def _curved_body(radius: float, height: float, fine_size_m: float,
-                 fine_extent_m: float) -> BodyMesh:
+def _curved_body(radius: float, height: float, fine_size_m: float, fine_extent_m: float) -> BodyMesh:
     """Coarse mesh sized so that k halvings bring the triangles near the origin just below
     ``fine``, refined until every longest edge is within the target size (fine within the
     extent, + SIZE_GRADIENT * distance beyond, <= min(R, height)/4) and every chord of the
@@ -337,8 +358,7 @@ def _curved_body(radius: float, height: float, fine_size_m: float,
     mesh, on_sphere = _coarse_mesh(radius, height, coarse / 1.35 * 0.99 * coarse / longest)
     for levels in range(65):  # noqa: B007 (the count is logged after the loop)
         beyond = np.maximum(_distance_to_origin(mesh) - extent, 0.0)
-        target = np.where(beyond > 0.0, np.minimum(coarse, fine + SIZE_GRADIENT * beyond),
-                          min(fine, coarse))
+        target = np.where(beyond > 0.0, np.minimum(coarse, fine + SIZE_GRADIENT * beyond), min(fine, coarse))
         bf = mesh.boundary_facets()
         chord = np.hypot(*(mesh.p[:, mesh.facets[0, bf]] - mesh.p[:, mesh.facets[1, bf]]))
         long = bf[on_sphere[mesh.facets[:, bf]].all(0) & (chord > SURFACE_CHORD * radius)]
@@ -351,14 +371,22 @@ def _curved_body(radius: float, height: float, fine_size_m: float,
     back = {"back": mesh.p[1] == -height} if height < 2 * radius else {}
     mesh, boundaries = _tagged(mesh, {"axis": mesh.p[0] == 0.0, **back, "surface": on_sphere})
     fine_reached = float(_longest_edges(mesh)[_distance_to_origin(mesh) <= extent].max())
-    log.info("R = %.4g m, height %.4g m: %d vertices, %d triangles after %d refinements; "
-             "size %.3g m within %.3g m, coarse %.3g m", radius, height, mesh.nvertices,
-             mesh.t.shape[1], levels, fine_reached, extent, coarse)
+    log.info(
+        "R = %.4g m, height %.4g m: %d vertices, %d triangles after %d refinements; "
+        "size %.3g m within %.3g m, coarse %.3g m",
+        radius,
+        height,
+        mesh.nvertices,
+        mesh.t.shape[1],
+        levels,
+        fine_reached,
+        extent,
+        coarse,
+    )
     return BodyMesh(mesh, boundaries, fine_reached, extent)
 
 
-def cap_mesh(sphere_radius_m: float, height_m: float, fine_size_m: float,
-             fine_extent_m: float) -> BodyMesh:
+def cap_mesh(sphere_radius_m: float, height_m: float, fine_size_m: float, fine_extent_m: float) -> BodyMesh:
     """Mesh of the spherical cap {r >= 0, r^2 + (z + R)^2 <= R^2, z >= -height}.
 
     A hemisphere for height = R. Longest edges: at most ``fine_size_m`` within
@@ -385,8 +413,10 @@ def cap_mesh(sphere_radius_m: float, height_m: float, fine_size_m: float,
     radius = _positive("sphere_radius_m", sphere_radius_m)
     height = _positive("height_m", height_m)
     if height >= 2 * radius:
-        raise ValueError(f"height_m must be below 2 * sphere_radius_m = {2 * radius!r} m "
-                         f"(use ball_mesh for the whole ball), got {height_m!r}")
+        raise ValueError(
+            f"height_m must be below 2 * sphere_radius_m = {2 * radius!r} m "
+            f"(use ball_mesh for the whole ball), got {height_m!r}"
+        )
     return _curved_body(radius, height, fine_size_m, fine_extent_m)
 
 
@@ -421,8 +451,7 @@ def surface_nodes(body: BodyMesh, name: str, max_r: float | None = None) -> np.n
     return nodes[np.lexsort((dist, r))]
 
 
-def hertz_mesh_sizes(contact_radius_m: float, elements_across: int = 10
-                     ) -> tuple[float, float]:
+def hertz_mesh_sizes(contact_radius_m: float, elements_across: int = 10) -> tuple[float, float]:
     """Mesh sizes for a Hertz contact of radius a.
 
     Parameters

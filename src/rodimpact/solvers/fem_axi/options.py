@@ -18,28 +18,44 @@ FILM_LAYERS = 4
 class FEMAxiOptions(SteppingOptions):
     """Numerics of ``fem_axi``: axisymmetric continuum of rod and impactor, frictionless unilateral contact."""
 
-    DESCRIPTION: ClassVar[str] = ("Numerics of fem_axi, the axisymmetric continuum model of rod and impactor with "
-                                  "frictionless unilateral contact (Lagrange multipliers).")
+    DESCRIPTION: ClassVar[str] = (
+        "Numerics of fem_axi, the axisymmetric continuum model of rod and impactor with "
+        "frictionless unilateral contact (Lagrange multipliers)."
+    )
 
     steps_per_contact: int | None = setting(
-        300, "Time steps per contact time on a rigid rod, when dt_s is null.", kind=int, nullable=True, minimum=20)
+        300, "Time steps per contact time on a rigid rod, when dt_s is null.", kind=int, nullable=True, minimum=20
+    )
     element: str = setting("P2", "Lagrange element of both bodies' triangles.", kind=str, choices=("P1", "P2"))
     elements_across: int = setting(
-        10, "Elements across the largest contact radius, estimated from the contact law before meshing.",
-        kind=int, minimum=2)
+        10,
+        "Elements across the largest contact radius, estimated from the contact law before meshing.",
+        kind=int,
+        minimum=2,
+    )
     contact_extent: float = setting(
-        1.5, "Radius of the fine mesh and of the candidate contact zone, in estimated contact radii.",
-        exclusive_minimum=1)
+        1.5,
+        "Radius of the fine mesh and of the candidate contact zone, in estimated contact radii.",
+        exclusive_minimum=1,
+    )
     continuum_diameters: float | None = setting(
-        5.0, "Length of the rod modelled as a continuum from its struck end, in rod diameters; beyond it "
+        5.0,
+        "Length of the rod modelled as a continuum from its struck end, in rod diameters; beyond it "
         "the rod is a 1-D bar joined to the continuum's last section (plane sections, uniaxial stress), on a rod "
         "at least 10 such continua long. Null: the whole rod is a continuum.",
-        nullable=True, minimum=1)
+        nullable=True,
+        minimum=1,
+    )
     film_layers: int = setting(
-        FILM_LAYERS, "Elements through the thickest layer of a film or stack on the struck end; every other layer gets "
-        "as many as make its elements at most as high, at least one.", kind=int, minimum=1)
+        FILM_LAYERS,
+        "Elements through the thickest layer of a film or stack on the struck end; every other layer gets "
+        "as many as make its elements at most as high, at least one.",
+        kind=int,
+        minimum=1,
+    )
     cap_height: float = setting(
-        1.0, "Impactor body 'cap' only: height of the elastic cap, in sphere radii.", exclusive_minimum=0, maximum=1)
+        1.0, "Impactor body 'cap' only: height of the elastic cap, in sphere radii.", exclusive_minimum=0, maximum=1
+    )
 
     def __post_init__(self) -> None:
         super().__post_init__()

@@ -82,10 +82,15 @@ class AxiImpact:
         imp_mat, rod_mat = Material.from_mapping(imp["material"]), Material.from_mapping(rod["material"])
         contact = case.get("contact")
         return cls(
-            mass_kg=float(imp["mass_kg"]), velocity_m_s=float(imp["velocity_m_s"]),
-            sphere_radius_m=float(imp["radius_m"]), impactor_material=imp_mat, body=imp.get("body", "cap"),
-            rod_radius_m=math.sqrt(float(rod["area_m2"]) / math.pi), rod_length_m=float(rod["length_m"]),
-            rod_material=rod_mat, far_end=rod.get("far_end", "fixed"),
+            mass_kg=float(imp["mass_kg"]),
+            velocity_m_s=float(imp["velocity_m_s"]),
+            sphere_radius_m=float(imp["radius_m"]),
+            impactor_material=imp_mat,
+            body=imp.get("body", "cap"),
+            rod_radius_m=math.sqrt(float(rod["area_m2"]) / math.pi),
+            rod_length_m=float(rod["length_m"]),
+            rod_material=rod_mat,
+            far_end=rod.get("far_end", "fixed"),
             contact=build_law(contact, float(imp["radius_m"]), imp_mat, rod_mat, estimate=estimate),
             stack=Stack.of(contact),
         )

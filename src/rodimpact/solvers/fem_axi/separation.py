@@ -116,8 +116,9 @@ class BodyBound:
             static = np.einsum("ij,ji->i", dense, spd_solver(K)(dense.T))
             weights, mass = np.zeros(body.n), 0.0
         margin = COMPLIANCE_MARGIN * np.abs(static)
-        return cls(free, weights, mass, sign, static + margin, np.maximum(static - one_step, 0.0) + margin,
-                   ones, K @ ones)
+        return cls(
+            free, weights, mass, sign, static + margin, np.maximum(static - one_step, 0.0) + margin, ones, K @ ones
+        )
 
     def motion(self, body: AxiBody) -> tuple[float, float, float, float]:
         """X (m), V (m/s), the internal energy E_int and the energy E (J per radian) of the
@@ -128,8 +129,9 @@ class BodyBound:
             return 0.0, 0.0, energy, energy
         x, velocity = float(self.weights @ body.q), float(self.weights @ body.v)
         rel_v, rel_q = body.v - velocity * self.ones, body.q - x * self.ones
-        internal = 0.5 * float(rel_v @ (body.Mv - velocity * self.mass * self.weights)
-                               + rel_q @ (body.Kq - x * self.stiff_ones))
+        internal = 0.5 * float(
+            rel_v @ (body.Mv - velocity * self.mass * self.weights) + rel_q @ (body.Kq - x * self.stiff_ones)
+        )
         return x, velocity, max(internal, 0.0), energy
 
     def fast_energy(self, body: AxiBody) -> float:
@@ -143,8 +145,9 @@ class BodyBound:
         the energy E (J per radian): the smaller of the two bounds, the energies inflated by
         ENERGY_MARGIN of E_int and of E."""
         grow = (1.0 + ENERGY_MARGIN) * internal + ENERGY_MARGIN * energy
-        return np.minimum(np.sqrt(2.0 * grow * self.static),
-                          np.sqrt(2.0 * (grow + (1.0 + ENERGY_MARGIN) * fast) * self.dynamic))
+        return np.minimum(
+            np.sqrt(2.0 * grow * self.static), np.sqrt(2.0 * (grow + (1.0 + ENERGY_MARGIN) * fast) * self.dynamic)
+        )
 
 
 @dataclass(frozen=True)
@@ -197,8 +200,11 @@ class SeparationBound:
     @classmethod
     def of(cls, rod: AxiBody, impactor: AxiBody, contact: ContactOperator) -> SeparationBound:
         """The constants of both bodies for the contact's candidates (one factorisation of each stiffness)."""
-        return cls(contact.gap0, BodyBound.of(rod, contact.B_rod, contact.GT_rod),
-                   BodyBound.of(impactor, contact.B_imp, contact.GT_imp))
+        return cls(
+            contact.gap0,
+            BodyBound.of(rod, contact.B_rod, contact.GT_rod),
+            BodyBound.of(impactor, contact.B_imp, contact.GT_imp),
+        )
 
     def flight(self, rod: AxiBody, impactor: AxiBody) -> Flight:
         """The free flight from the present state (which a step without contact force reached)."""

@@ -127,9 +127,12 @@ def build_model(problem: AxiImpact, options: FEMAxiOptions, *, dynamic: bool = T
     scales = problem.scales()
     a_contact = scales.contact_radius_m
     if options.elements_across < RECOMMENDED_ELEMENTS_ACROSS:
-        log.warning("elements_across=%d: fewer than %d elements across the largest contact radius "
-                    "(a convergence-study level, not a result)", options.elements_across,
-                    RECOMMENDED_ELEMENTS_ACROSS)
+        log.warning(
+            "elements_across=%d: fewer than %d elements across the largest contact radius "
+            "(a convergence-study level, not a result)",
+            options.elements_across,
+            RECOMMENDED_ELEMENTS_ACROSS,
+        )
     fine = a_contact / options.elements_across
     extent = options.contact_extent * a_contact
     R = problem.sphere_radius_m
@@ -139,35 +142,56 @@ def build_model(problem: AxiImpact, options: FEMAxiOptions, *, dynamic: bool = T
     if problem.stack is None:
         rod = rod_mesh(problem.rod_radius_m, meshed_length, fine, extent)
     else:
-        film_mesh = film_rod_mesh(problem.rod_radius_m, meshed_length, fine, extent, problem.film_radius_m,
-                                  [layer.thickness_m for layer in problem.stack.layers], options.film_layers)
+        film_mesh = film_rod_mesh(
+            problem.rod_radius_m,
+            meshed_length,
+            fine,
+            extent,
+            problem.film_radius_m,
+            [layer.thickness_m for layer in problem.stack.layers],
+            options.film_layers,
+        )
         rod = film_mesh.body
     rod_basis = _basis(rod.mesh, options.element)
     removed = axis_dofs(rod_basis)
     far = rod.boundaries["far"]
     bar, joint = None, np.empty(0, dtype=np.int64)
     if z_c is not None:
-        bar = FarBar(start_m=z_c, length_m=problem.rod_length_m, radius_m=problem.rod_radius_m,
-                     youngs_modulus_pa=problem.rod_material.youngs_modulus_pa,
-                     density_kg_m3=problem.rod_material.density_kg_m3, fixed=problem.far_end == "fixed")
+        bar = FarBar(
+            start_m=z_c,
+            length_m=problem.rod_length_m,
+            radius_m=problem.rod_radius_m,
+            youngs_modulus_pa=problem.rod_material.youngs_modulus_pa,
+            density_kg_m3=problem.rod_material.density_kg_m3,
+            fixed=problem.far_end == "fixed",
+        )
         joint = dofs_of(rod_basis, far, 1)
     elif problem.far_end == "fixed":
         removed = np.union1d(removed, np.union1d(dofs_of(rod_basis, far, 0), dofs_of(rod_basis, far, 1)))
     if film_mesh is None:
-        rod_body = AxiBody(rod_basis, axisym_stiffness(rod_basis, problem.rod_material.youngs_modulus_pa,
-                                                       problem.rod_material.poisson_ratio),
-                           _mass(rod_basis, problem.rod_material.density_kg_m3, dynamic), removed,
-                           bar=bar, joint=joint)
+        rod_body = AxiBody(
+            rod_basis,
+            axisym_stiffness(rod_basis, problem.rod_material.youngs_modulus_pa, problem.rod_material.poisson_ratio),
+            _mass(rod_basis, problem.rod_material.density_kg_m3, dynamic),
+            removed,
+            bar=bar,
+            joint=joint,
+        )
     else:
-        rod_body = AxiBody(rod_basis, *film_rod_matrices(rod_basis, film_mesh, problem, mass=dynamic), removed,
-                           bar=bar, joint=joint)
+        rod_body = AxiBody(
+            rod_basis, *film_rod_matrices(rod_basis, film_mesh, problem, mass=dynamic), removed, bar=bar, joint=joint
+        )
     mat = problem.impactor_material
     if problem.body == "sphere":
         imp = ball_mesh(R, fine, extent)
         imp_basis = _basis(imp.mesh, options.element)
         density = problem.mass_kg / _volume(imp_basis)  # the meshed ball weighs exactly m
-        imp_body = AxiBody(imp_basis, axisym_stiffness(imp_basis, mat.youngs_modulus_pa, mat.poisson_ratio),
-                           _mass(imp_basis, density, dynamic), axis_dofs(imp_basis))
+        imp_body = AxiBody(
+            imp_basis,
+            axisym_stiffness(imp_basis, mat.youngs_modulus_pa, mat.poisson_ratio),
+            _mass(imp_basis, density, dynamic),
+            axis_dofs(imp_basis),
+        )
     else:
         height = options.cap_height * R
         imp = cap_mesh(R, height, fine, extent)
@@ -175,16 +199,32 @@ def build_model(problem: AxiImpact, options: FEMAxiOptions, *, dynamic: bool = T
         back = imp.boundaries["back"]
         cap_mass = mat.density_kg_m3 * _volume(imp_basis)
         if cap_mass >= problem.mass_kg:
-            raise OptionError("cap_height", f"={options.cap_height}: the elastic cap ({cap_mass:.3g} kg) outweighs "
-                                            f"the impactor ({problem.mass_kg:.3g} kg); use a smaller cap_height")
-        imp_body = AxiBody(imp_basis, axisym_stiffness(imp_basis, mat.youngs_modulus_pa, mat.poisson_ratio),
-                           _mass(imp_basis, mat.density_kg_m3, dynamic),
-                           np.union1d(axis_dofs(imp_basis), dofs_of(imp_basis, back, 0)),
-                           rigid=dofs_of(imp_basis, back, 1), rigid_mass_kg=problem.mass_kg - cap_mass)
+            raise OptionError(
+                "cap_height",
+                f"={options.cap_height}: the elastic cap ({cap_mass:.3g} kg) outweighs "
+                f"the impactor ({problem.mass_kg:.3g} kg); use a smaller cap_height",
+            )
+        imp_body = AxiBody(
+            imp_basis,
+            axisym_stiffness(imp_basis, mat.youngs_modulus_pa, mat.poisson_ratio),
+            _mass(imp_basis, mat.density_kg_m3, dynamic),
+            np.union1d(axis_dofs(imp_basis), dofs_of(imp_basis, back, 0)),
+            rigid=dofs_of(imp_basis, back, 1),
+            rigid_mass_kg=problem.mass_kg - cap_mass,
+        )
     if film_mesh is not None:
         B_rod, B_imp, gap0, r_c = film_contact(rod_body, film_mesh, imp_body, imp, R, extent)
-        return AxiModel(rod=rod_body, impactor=imp_body, B_rod=B_rod, B_imp=B_imp, gap0=gap0, r_c=r_c,
-                        scales=scales, fine_size_m=fine, film=film_mesh)
+        return AxiModel(
+            rod=rod_body,
+            impactor=imp_body,
+            B_rod=B_rod,
+            B_imp=B_imp,
+            gap0=gap0,
+            r_c=r_c,
+            scales=scales,
+            fine_size_m=fine,
+            film=film_mesh,
+        )
     # candidate contact nodes: the impactor's surface u_z DOFs within the extent
     surface_uz = dofs_of(imp_basis, imp.boundaries["surface"], 1)
     locs = imp_basis.doflocs[:, surface_uz]
@@ -193,14 +233,23 @@ def build_model(problem: AxiImpact, options: FEMAxiOptions, *, dynamic: bool = T
     surface_uz, locs = surface_uz[keep], locs[:, keep]
     order = np.argsort(locs[0])
     surface_uz, locs = surface_uz[order], locs[:, order]
-    pick = sp.csr_matrix((np.ones(len(surface_uz)), (np.arange(len(surface_uz)), surface_uz)),
-                         shape=(len(surface_uz), imp_basis.N))
+    pick = sp.csr_matrix(
+        (np.ones(len(surface_uz)), (np.arange(len(surface_uz)), surface_uz)), shape=(len(surface_uz), imp_basis.N)
+    )
     B_imp = -imp_body.reduce_rows(pick)
     B_rod = rod_body.uz_probe_rows(np.vstack([locs[0], np.zeros(len(locs[0]))]))
     # the rod face is z = 0; the sphere's surface at radius r lies at z = -(R - sqrt(R^2 - r^2))
     gap0 = R - np.sqrt(R**2 - locs[0] ** 2)
-    return AxiModel(rod=rod_body, impactor=imp_body, B_rod=B_rod, B_imp=B_imp, gap0=gap0, r_c=locs[0],
-                    scales=scales, fine_size_m=fine)
+    return AxiModel(
+        rod=rod_body,
+        impactor=imp_body,
+        B_rod=B_rod,
+        B_imp=B_imp,
+        gap0=gap0,
+        r_c=locs[0],
+        scales=scales,
+        fine_size_m=fine,
+    )
 
 
 def _crossing(previous: float, last: float, h: float) -> float:
@@ -212,8 +261,9 @@ def _crossing(previous: float, last: float, h: float) -> float:
     return min(h, y1 / (y0 - y1) * h)
 
 
-def solve_fem_axi(problem: AxiImpact, options: FEMAxiOptions | None = None,
-                  stations: Sequence[float] = ()) -> ImpactResult:
+def solve_fem_axi(
+    problem: AxiImpact, options: FEMAxiOptions | None = None, stations: Sequence[float] = ()
+) -> ImpactResult:
     """Solve the impact with the axisymmetric continuum model.
 
     Parameters
@@ -252,14 +302,18 @@ def solve_fem_axi(problem: AxiImpact, options: FEMAxiOptions | None = None,
     length = problem.rod_length_m
     face = rod.section_mean_uz_row(0.0, problem.rod_radius_m)
     delta = STATION_HALF_SPAN * length
-    rows = [rod.section_mean_uz_row(z, problem.rod_radius_m)
-            for s in stations for z in (s * length, max(s * length - delta, 0.0), min(s * length + delta, length))]
+    rows = [
+        rod.section_mean_uz_row(z, problem.rod_radius_m)
+        for s in stations
+        for z in (s * length, max(s * length - delta, 0.0), min(s * length + delta, length))
+    ]
     probes = sp.vstack(rows).tocsr() if rows else None
     mean_weights = imp.momentum_weights / (imp.total_mass_kg / (2 * math.pi))
 
     c_rod = math.sqrt(problem.rod_material.youngs_modulus_pa / problem.rod_material.density_kg_m3)
-    spring = math.pi * math.sqrt(problem.mass_kg * length / (problem.rod_material.youngs_modulus_pa
-                                                             * math.pi * problem.rod_radius_m**2))
+    spring = math.pi * math.sqrt(
+        problem.mass_kg * length / (problem.rod_material.youngs_modulus_pa * math.pi * problem.rod_radius_m**2)
+    )
     t_max = options.max_time_factor * (t_contact + spring + 2 * length / c_rod)
     hist = _History()
 
@@ -313,60 +367,106 @@ def solve_fem_axi(problem: AxiImpact, options: FEMAxiOptions | None = None,
                 bound = bound or SeparationBound.of(rod, imp, contact)
                 flight = bound.flight(rod, imp)
             if flight.holds(rod, imp):
-                status, message = "completed", (f"{len(ends)} contact(s); no further contact possible "
-                                                f"(energy bound, {t - ends[-1]:.3g} s after the last)")
+                status, message = (
+                    "completed",
+                    (
+                        f"{len(ends)} contact(s); no further contact possible "
+                        f"(energy bound, {t - ends[-1]:.3g} s after the last)"
+                    ),
+                )
                 break
         limit = limit_reached(starts, ends, t, t_max, options)
         if limit:
             status, message = limit
             break
-    return _result(problem, model, hist, tuple(float(s) for s in stations),
-                   Outcome(status, message, _time.perf_counter() - started), h, delta)
+    return _result(
+        problem,
+        model,
+        hist,
+        tuple(float(s) for s in stations),
+        Outcome(status, message, _time.perf_counter() - started),
+        h,
+        delta,
+    )
 
 
-def _result(problem: AxiImpact, model: AxiModel, hist: _History, stations: tuple[float, ...],
-            outcome: Outcome, h: float, delta: float) -> ImpactResult:
+def _result(
+    problem: AxiImpact,
+    model: AxiModel,
+    hist: _History,
+    stations: tuple[float, ...],
+    outcome: Outcome,
+    h: float,
+    delta: float,
+) -> ImpactResult:
     rod, imp, length = model.rod, model.impactor, problem.rod_length_m
     nodes = hist.nodes()
     kin_i, str_i = np.asarray(hist.kin_i), np.asarray(hist.str_i)
     kin_r, str_r = np.asarray(hist.kin_r), np.asarray(hist.str_r)
     radius = np.asarray(hist.radius)
     if len(model.r_c) and radius.max() >= model.r_c.max():
-        log.warning("the contact reached the edge of the candidate zone (r = %.3g m): raise contact_extent",
-                    float(model.r_c.max()))
+        log.warning(
+            "the contact reached the edge of the candidate zone (r = %.3g m): raise contact_extent",
+            float(model.r_c.max()),
+        )
     series = {
-        "contact_radius": (radius, "m", "radius of the outermost candidate node in contact (the impactor's; "
-                                        "the film's with a film)"),
+        "contact_radius": (
+            radius,
+            "m",
+            "radius of the outermost candidate node in contact (the impactor's; the film's with a film)",
+        ),
         "impactor_kinetic_energy": (kin_i, "J", "kinetic energy of the impactor (elastic part and rigid part)"),
-        "contact_energy": (str_i, "J", "strain energy of the impactor (holds what a contact law lumps into the contact)"),
+        "contact_energy": (
+            str_i,
+            "J",
+            "strain energy of the impactor (holds what a contact law lumps into the contact)",
+        ),
         "rod_energy": (kin_r + str_r, "J", "energy in the rod (kinetic + strain)"),
         "rod_kinetic_energy": (kin_r, "J", "kinetic energy of the rod"),
         "rod_strain_energy": (str_r, "J", "strain energy of the rod"),
     }
-    extra: dict[str, Any] = {"rod_dofs": int(rod.n), "impactor_dofs": int(imp.n),
-                             "rod_elements": int(rod.basis.mesh.t.shape[1]),
-                             "impactor_elements": int(imp.basis.mesh.t.shape[1]),
-                             "fine_size_m": float(model.fine_size_m),
-                             "estimated_contact_radius_m": float(model.scales.contact_radius_m),
-                             "max_contact_radius_m": float(radius.max()), "n_lcp_solves": int(hist.n_lcp),
-                             "impactor_mass_kg": float(imp.total_mass_kg),
-                             "continuum_length_m": float(rod.bar.start_m if rod.bar else problem.rod_length_m),
-                             "bar_elements": int(rod.bar.elements if rod.bar else 0)}
+    extra: dict[str, Any] = {
+        "rod_dofs": int(rod.n),
+        "impactor_dofs": int(imp.n),
+        "rod_elements": int(rod.basis.mesh.t.shape[1]),
+        "impactor_elements": int(imp.basis.mesh.t.shape[1]),
+        "fine_size_m": float(model.fine_size_m),
+        "estimated_contact_radius_m": float(model.scales.contact_radius_m),
+        "max_contact_radius_m": float(radius.max()),
+        "n_lcp_solves": int(hist.n_lcp),
+        "impactor_mass_kg": float(imp.total_mass_kg),
+        "continuum_length_m": float(rod.bar.start_m if rod.bar else problem.rod_length_m),
+        "bar_elements": int(rod.bar.elements if rod.bar else 0),
+    }
     if model.film is not None:
         film = model.film
-        extra.update(film_thickness_m=float(film.film_thickness_m), film_radius_m=float(film.film_radius_m),
-                     film_elements=int(film.film_elements.size),
-                     film_elements_through_thickness=layers_within(film, film.body.contact_extent_m))
+        extra.update(
+            film_thickness_m=float(film.film_thickness_m),
+            film_radius_m=float(film.film_radius_m),
+            film_elements=int(film.film_elements.size),
+            film_elements_through_thickness=layers_within(film, film.body.contact_extent_m),
+        )
         if len(film.layer_elements) > 1:
             extra["stack_layers"] = len(film.layer_elements)
     if stations:
         values = np.asarray(hist.stations).reshape(len(nodes.time), len(stations), 3)
         series["station_displacement"] = (values[:, :, 0], "m", "cross-section mean axial displacement at station_x_m")
-        series["station_strain"] = ((values[:, :, 2] - values[:, :, 1]) / (2.0 * delta), "1",
-                                    "cross-section mean axial strain at station_x_m (negative in compression)")
+        series["station_strain"] = (
+            (values[:, :, 2] - values[:, :, 1]) / (2.0 * delta),
+            "1",
+            "cross-section mean axial strain at station_x_m (negative in compression)",
+        )
         extra["station_x_m"] = np.asarray([s * length for s in stations])
     # nodes enter the contact one at a time: ripples far smaller than the physical maxima
-    return hist.result(nodes, outcome, scheme="fem_axi-newmark-lcp", dt_s=h,
-                       energy_error=energy_error(kin_i, str_i, kin_r, str_r),
-                       rod_energy_J=float(kin_r[-1] + str_r[-1]), n_events=len(hist.ends),
-                       extra=extra, extra_series=series, min_prominence=PEAK_PROMINENCE * nodes.force.max())
+    return hist.result(
+        nodes,
+        outcome,
+        scheme="fem_axi-newmark-lcp",
+        dt_s=h,
+        energy_error=energy_error(kin_i, str_i, kin_r, str_r),
+        rod_energy_J=float(kin_r[-1] + str_r[-1]),
+        n_events=len(hist.ends),
+        extra=extra,
+        extra_series=series,
+        min_prominence=PEAK_PROMINENCE * nodes.force.max(),
+    )

@@ -48,7 +48,11 @@ def sem_cost(case: Mapping[str, Any], options: SEMOptions | PaperSEMOptions) -> 
     commensurate = options.dt_s is None or CommensurateGrid.of(step, period, -1, True) is not None
     rounds = 1.0 + (0.5 * span / period if math.isfinite(period) and not commensurate else 0.0)
     stations = len(case.get("stations", ()))
-    return Cost(time_step_s=step, steps=stored,
-                solve_s=SOLVE_S + work * stored * (SEM_STEP_S + SEM_REFLECTION_S * rounds),
-                mem_mib=stored * (SEM_STEP_BYTES + STATION_STEP_BYTES * stations) / MIB,
-                steps_needed=needed, step_limit=float(options.max_steps))
+    return Cost(
+        time_step_s=step,
+        steps=stored,
+        solve_s=SOLVE_S + work * stored * (SEM_STEP_S + SEM_REFLECTION_S * rounds),
+        mem_mib=stored * (SEM_STEP_BYTES + STATION_STEP_BYTES * stations) / MIB,
+        steps_needed=needed,
+        step_limit=float(options.max_steps),
+    )

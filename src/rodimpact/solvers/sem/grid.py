@@ -83,8 +83,16 @@ class CommensurateGrid:
             n = round(period / step)
             if n < 1 or abs(n * step - period) > COMMENSURATE_RTOL * period:
                 return None
-            return cls(step, n, 1 if n == 1 else 0, 1.0, 0.5 * step if linear else step,
-                       0.5 * step if linear else 0.0, 2.0 * sign, n)
+            return cls(
+                step,
+                n,
+                1 if n == 1 else 0,
+                1.0,
+                0.5 * step if linear else step,
+                0.5 * step if linear else 0.0,
+                2.0 * sign,
+                n,
+            )
         m = round(step / period)
         if abs(m * period - step) > COMMENSURATE_RTOL * step:
             return None

@@ -22,8 +22,10 @@ class _SEMCommon(SteppingOptions):
     """Settings both SEM schemes have."""
 
     energy_tolerance: float = setting(
-        0.01, "A run whose energy balance is off by more than this fraction of the impact energy fails.",
-        exclusive_minimum=0)
+        0.01,
+        "A run whose energy balance is off by more than this fraction of the impact energy fails.",
+        exclusive_minimum=0,
+    )
     max_steps: int = setting(5_000_000, "Step budget of one run; a run that needs more fails.", kind=int, minimum=10)
 
     scheme: ClassVar[str] = ""
@@ -44,17 +46,27 @@ class _SEMCommon(SteppingOptions):
 class SEMOptions(_SEMCommon):
     """Numerics of ``sem``: the implicit scheme (piecewise-linear force, second order)."""
 
-    DESCRIPTION: ClassVar[str] = ("Numerics of sem, the semi-analytical method with the derived unit-impulse "
-                                  "responses and the implicit (second-order) scheme.")
+    DESCRIPTION: ClassVar[str] = (
+        "Numerics of sem, the semi-analytical method with the derived unit-impulse "
+        "responses and the implicit (second-order) scheme."
+    )
     scheme: ClassVar[str] = "implicit"
 
     steps_per_contact: int | None = setting(
-        None, "Time steps per contact time on a rigid rod, when dt_s is null; null: the step is chosen "
+        None,
+        "Time steps per contact time on a rigid rod, when dt_s is null; null: the step is chosen "
         "from the case's time scales for tolerance and checked by step doubling.",
-        kind=int, nullable=True, minimum=10)
+        kind=int,
+        nullable=True,
+        minimum=10,
+    )
     tolerance: float = setting(
-        1e-6, "Relative error aimed at, and checked by step doubling, on the first contact time and its "
-        "largest force, when dt_s and steps_per_contact are null.", exclusive_minimum=0, exclusive_maximum=1)
+        1e-6,
+        "Relative error aimed at, and checked by step doubling, on the first contact time and its "
+        "largest force, when dt_s and steps_per_contact are null.",
+        exclusive_minimum=0,
+        exclusive_maximum=1,
+    )
 
     @property
     def automatic_step(self) -> bool:
@@ -70,22 +82,32 @@ class SEMOptions(_SEMCommon):
 class PaperSEMOptions(_SEMCommon):
     """Numerics of ``sem_paper``: the paper's explicit scheme (force lagged one step, first order)."""
 
-    DESCRIPTION: ClassVar[str] = ("Numerics of sem_paper, the paper's explicit scheme that lags the force by one "
-                                  "step (docs/paper-notes.md); it needs finer steps, hence the larger default.")
+    DESCRIPTION: ClassVar[str] = (
+        "Numerics of sem_paper, the paper's explicit scheme that lags the force by one "
+        "step (docs/paper-notes.md); it needs finer steps, hence the larger default."
+    )
     scheme: ClassVar[str] = "paper"
 
     steps_per_contact: int | None = setting(
-        20000, "Time steps per contact time on a rigid rod, when dt_s is null (the scheme has no "
-        "automatic step: one of the two must be given).", kind=int, nullable=True, minimum=10)
+        20000,
+        "Time steps per contact time on a rigid rod, when dt_s is null (the scheme has no "
+        "automatic step: one of the two must be given).",
+        kind=int,
+        nullable=True,
+        minimum=10,
+    )
     allow_unstable: bool = setting(
-        False, "Run a step beyond the scheme's stability limit 2 Z / k_c (to see the instability) "
-        "instead of refusing it.", kind=bool)
+        False,
+        "Run a step beyond the scheme's stability limit 2 Z / k_c (to see the instability) instead of refusing it.",
+        kind=bool,
+    )
 
     def __post_init__(self) -> None:
         super().__post_init__()
         if self.dt_s is None and self.steps_per_contact is None:
-            raise OptionError("steps_per_contact", "must be given when dt_s is null (the paper scheme has no "
-                                                   "automatic step)")
+            raise OptionError(
+                "steps_per_contact", "must be given when dt_s is null (the paper scheme has no automatic step)"
+            )
 
     def check(self, problem: ImpactProblem) -> None:
         """Refuse a step beyond the scheme's stability limit (unless ``allow_unstable``)."""

@@ -22,8 +22,9 @@ class RootNotConvergedError(RuntimeError):
     """The iteration did not meet its tolerance within ``maxiter`` steps."""
 
 
-def brent_root(f: Callable[[float], float], a: float, b: float, *, xtol: float, rtol: float,
-               maxiter: int = 100) -> float:
+def brent_root(
+    f: Callable[[float], float], a: float, b: float, *, xtol: float, rtol: float, maxiter: int = 100
+) -> float:
     """A zero of ``f`` in the bracket [a, b].
 
     Parameters

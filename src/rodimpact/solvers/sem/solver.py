@@ -58,8 +58,12 @@ _CONVERGING = 0.5
 _FIRST_STEP_FACTOR = 2.0
 
 
-def solve_sem(problem: ImpactProblem, options: SEMOptions | PaperSEMOptions | None = None,
-              stations: Sequence[float] = (), field: FieldGrid | None = None) -> ImpactResult:
+def solve_sem(
+    problem: ImpactProblem,
+    options: SEMOptions | PaperSEMOptions | None = None,
+    stations: Sequence[float] = (),
+    field: FieldGrid | None = None,
+) -> ImpactResult:
     """Solve the SEM contact problem.
 
     Parameters
@@ -112,8 +116,9 @@ def solve_sem(problem: ImpactProblem, options: SEMOptions | PaperSEMOptions | No
     return result if field is None else _with_field(result, problem, options, field)
 
 
-def _with_field(result: ImpactResult, problem: ImpactProblem, options: SEMOptions | PaperSEMOptions,
-                grid: FieldGrid) -> ImpactResult:
+def _with_field(
+    result: ImpactResult, problem: ImpactProblem, options: SEMOptions | PaperSEMOptions, grid: FieldGrid
+) -> ImpactResult:
     """The result with its strain field: d'Alembert's solution driven by the run's force (its
     nodes, with the scheme's own interpolation); zero force after the run's last node."""
     rod = problem.rod
@@ -127,8 +132,9 @@ def _with_field(result: ImpactResult, problem: ImpactProblem, options: SEMOption
     return dataclasses.replace(result, field=field, extra={**result.extra, "wave_speed_m_s": rod.wave_speed})
 
 
-def _automatic(problem: ImpactProblem, options: SEMOptions, h: float, stations: tuple[float, ...],
-               started: float) -> ImpactResult:
+def _automatic(
+    problem: ImpactProblem, options: SEMOptions, h: float, stations: tuple[float, ...], started: float
+) -> ImpactResult:
     """The implicit scheme with its step chosen for ``options.tolerance``, from the first guess ``h``.
 
     The first candidate is :data:`_FIRST_STEP_FACTOR` times the guess (whose error model
@@ -138,8 +144,8 @@ def _automatic(problem: ImpactProblem, options: SEMOptions, h: float, stations: 
     meets the tolerance is then finished: the check costs the coarser run's first contact.
     A candidate that misses the tolerance is replaced by the step the estimate predicts,
     with a margin, between 1/4 and 1/2 of it; when a finer step does not shrink the estimate as
-    order 2 says, the whole runs are compared instead (:func:`_whole_runs`). Every step is commensurate with the wave round trip (constant cost per
-    step).
+    order 2 says, the whole runs are compared instead (:func:`_whole_runs`). Every step is
+    commensurate with the wave round trip (constant cost per step).
     """
     period = problem.rod.reflection_period
     h = commensurate_step(_FIRST_STEP_FACTOR * h, period)
@@ -161,24 +167,50 @@ def _automatic(problem: ImpactProblem, options: SEMOptions, h: float, stations: 
         previous = estimate
         factor = min(0.5, max(_MIN_FACTOR, _SAFETY * math.sqrt(options.tolerance / estimate)))
         h_new = commensurate_step(fine.st.h * factor, period)
-        log.info("SEM auto step %.4g s: error estimate %.2g > tolerance %.2g, next step %.4g s", fine.st.h,
-                 estimate, options.tolerance, h_new)
+        log.info(
+            "SEM auto step %.4g s: error estimate %.2g > tolerance %.2g, next step %.4g s",
+            fine.st.h,
+            estimate,
+            options.tolerance,
+            h_new,
+        )
         coarse, fine = fine, SEMRun(problem, options, h_new)
     h = fine.st.h
-    extra = {"step_choice": "auto", "tolerance": options.tolerance, "error_estimate": estimate,
-             "error_estimate_basis": "Richardson (order 2) between two steps: first contact time and its largest force",
-             "n_steps_error_check": checks}
+    extra = {
+        "step_choice": "auto",
+        "tolerance": options.tolerance,
+        "error_estimate": estimate,
+        "error_estimate_basis": "Richardson (order 2) between two steps: first contact time and its largest force",
+        "n_steps_error_check": checks,
+    }
     if estimate > options.tolerance:
-        return _with_extra(fine.finish(stations, started, extra), {}, status="failed", message=(
-            f"automatic step: error estimate {estimate:.3g} still above tolerance {options.tolerance:.3g} "
-            f"after {_MAX_REFINEMENTS} refinements (dt_s={h:.4g} s)"))
+        return _with_extra(
+            fine.finish(stations, started, extra),
+            {},
+            status="failed",
+            message=(
+                f"automatic step: error estimate {estimate:.3g} still above tolerance {options.tolerance:.3g} "
+                f"after {_MAX_REFINEMENTS} refinements (dt_s={h:.4g} s)"
+            ),
+        )
     result = fine.finish(stations, started, extra)
-    return _with_extra(result, {}, message=f"{result.message}; step {h:.4g} s chosen for tolerance "
-                       f"{options.tolerance:.3g} (estimated error {estimate:.2g})")
+    return _with_extra(
+        result,
+        {},
+        message=f"{result.message}; step {h:.4g} s chosen for tolerance "
+        f"{options.tolerance:.3g} (estimated error {estimate:.2g})",
+    )
 
 
-def _whole_runs(problem: ImpactProblem, options: SEMOptions, coarse: SEMRun, fine: SEMRun,
-                stations: tuple[float, ...], started: float, checks: int) -> ImpactResult:
+def _whole_runs(
+    problem: ImpactProblem,
+    options: SEMOptions,
+    coarse: SEMRun,
+    fine: SEMRun,
+    stations: tuple[float, ...],
+    started: float,
+    checks: int,
+) -> ImpactResult:
     """The automatic step judged on whole runs: both runs finished, their contact time (first
     contact to last) and their first contact's largest force compared, the step halved until
     the estimate meets the tolerance."""
@@ -192,27 +224,47 @@ def _whole_runs(problem: ImpactProblem, options: SEMOptions, coarse: SEMRun, fin
         if estimate <= options.tolerance or refinement == _MAX_REFINEMENTS:
             break
         h_new = commensurate_step(0.5 * h, period)
-        log.info("SEM auto step %.4g s: whole-run error estimate %.2g > tolerance %.2g, next step %.4g s", h,
-                 estimate, options.tolerance, h_new)
+        log.info(
+            "SEM auto step %.4g s: whole-run error estimate %.2g > tolerance %.2g, next step %.4g s",
+            h,
+            estimate,
+            options.tolerance,
+            h_new,
+        )
         checks += coarse_result.n_steps
         coarse_result, ratio, h = fine_result, h / h_new, h_new
         fine_result = SEMRun(problem, options, h).finish(stations, started, {})
     checks += coarse_result.n_steps
-    extra = {"step_choice": "auto", "tolerance": options.tolerance, "error_estimate": estimate,
-             "error_estimate_basis": "Richardson (order 2) between two steps: whole-run contact time and the first "
-                                     "contact's largest force (the first contact's end was ill-conditioned)",
-             "n_steps_error_check": checks}
+    extra = {
+        "step_choice": "auto",
+        "tolerance": options.tolerance,
+        "error_estimate": estimate,
+        "error_estimate_basis": "Richardson (order 2) between two steps: whole-run contact time and the first "
+        "contact's largest force (the first contact's end was ill-conditioned)",
+        "n_steps_error_check": checks,
+    }
     if estimate > options.tolerance:
-        return _with_extra(fine_result, extra, status="failed", message=(
-            f"automatic step: error estimate {estimate:.3g} still above tolerance {options.tolerance:.3g} "
-            f"after {_MAX_REFINEMENTS} halvings (dt_s={h:.4g} s)"))
-    return _with_extra(fine_result, extra, message=f"{fine_result.message}; step {h:.4g} s chosen for tolerance "
-                       f"{options.tolerance:.3g} (estimated error {estimate:.2g})")
+        return _with_extra(
+            fine_result,
+            extra,
+            status="failed",
+            message=(
+                f"automatic step: error estimate {estimate:.3g} still above tolerance {options.tolerance:.3g} "
+                f"after {_MAX_REFINEMENTS} halvings (dt_s={h:.4g} s)"
+            ),
+        )
+    return _with_extra(
+        fine_result,
+        extra,
+        message=f"{fine_result.message}; step {h:.4g} s chosen for tolerance "
+        f"{options.tolerance:.3g} (estimated error {estimate:.2g})",
+    )
 
 
 def _whole_run_estimate(fine: ImpactResult, coarse: ImpactResult, ratio: float) -> float:
     """Richardson error estimate (order 2) of the fine run's contact time and its first
     contact's largest force, from a run at ``ratio`` times its step."""
+
     def measures(result: ImpactResult) -> tuple[float, float]:
         maxima = first_contact_maxima(result.peak_time_s, result.peak_force_N, result.contact_end_s)
         return result.contact_time_s, float(np.max(maxima, initial=np.max(result.contact_force)))
@@ -228,12 +280,17 @@ def _richardson(fine: tuple[float, float], coarse: tuple[float, float], ratio: f
     return max(tc, peak) / (ratio**2 - 1.0)
 
 
-def _with_extra(result: ImpactResult, extra: dict, status: str | None = None,
-                message: str | None = None) -> ImpactResult:
+def _with_extra(
+    result: ImpactResult, extra: dict, status: str | None = None, message: str | None = None
+) -> ImpactResult:
     status = result.status if status is None else status
-    return dataclasses.replace(result, extra={**result.extra, **extra}, status=status,
-                               success=status != "failed",
-                               message=result.message if message is None else message)
+    return dataclasses.replace(
+        result,
+        extra={**result.extra, **extra},
+        status=status,
+        success=status != "failed",
+        message=result.message if message is None else message,
+    )
 
 
 def _check_stations(stations: Sequence[float], problem: ImpactProblem) -> tuple[float, ...]:
@@ -243,5 +300,3 @@ def _check_stations(stations: Sequence[float], problem: ImpactProblem) -> tuple[
     if stations and not math.isfinite(problem.rod.length_m):
         raise ValueError("stations need a rod of finite length")
     return stations
-
-

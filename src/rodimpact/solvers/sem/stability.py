@@ -166,12 +166,17 @@ def check_paper_step(problem: ImpactProblem, options: Any, h: float) -> None:
     if h <= limit:
         return
     alpha = problem.rigid_contact.max_approach_m
-    message = (f"dt_s={h:.4g} s exceeds the paper scheme's stability limit 2 Z / k_c = {limit:.4g} s "
-               f"(rod impedance Z = {problem.rod.impedance:.4g} kg/s, contact stiffness k_c = dP/dalpha "
-               f"= {problem.contact.stiffness(alpha):.4g} N/m at the rigid-rod approach {alpha:.4g} m)")
+    message = (
+        f"dt_s={h:.4g} s exceeds the paper scheme's stability limit 2 Z / k_c = {limit:.4g} s "
+        f"(rod impedance Z = {problem.rod.impedance:.4g} kg/s, contact stiffness k_c = dP/dalpha "
+        f"= {problem.contact.stiffness(alpha):.4g} N/m at the rigid-rod approach {alpha:.4g} m)"
+    )
     if not options.allow_unstable:
         needed = math.ceil(problem.rigid_contact.contact_time_s / limit)
         field = "dt_s" if options.dt_s is not None else "steps_per_contact"
-        raise UnstableStepError(field, f"{message}; take dt_s <= {limit:.4g} s (steps_per_contact >= {needed}), "
-                                       "or set allow_unstable: true to run it anyway")
+        raise UnstableStepError(
+            field,
+            f"{message}; take dt_s <= {limit:.4g} s (steps_per_contact >= {needed}), "
+            "or set allow_unstable: true to run it anyway",
+        )
     log.warning("%s; running anyway (allow_unstable)", message)

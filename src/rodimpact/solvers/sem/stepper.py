@@ -44,8 +44,7 @@ class _Stepper(StepHistory):
         rod = problem.rod
         grid = CommensurateGrid.of(h, rod.reflection_period, rod.reflection_sign, self.implicit)
         self.hist = ForceHistory(rod, linear=self.implicit, grid=grid)
-        super().__init__(t=self.hist.t, force=self.hist.P, x=[0.0], w=[problem.velocity_m_s], u_end=[0.0],
-                         alpha=[0.0])
+        super().__init__(t=self.hist.t, force=self.hist.P, x=[0.0], w=[problem.velocity_m_s], u_end=[0.0], alpha=[0.0])
         self.in_contact = True
         self.n_events = 0
 
@@ -53,8 +52,7 @@ class _Stepper(StepHistory):
     def _impactor(self, h: float, p_new: float) -> tuple[float, float]:
         x, v, p = self.x[-1], self.w[-1], self.hist.P[-1]
         if self.implicit:
-            return (x + v * h - h * h * (p / 3.0 + p_new / 6.0) / self.m,
-                    v - 0.5 * h * (p + p_new) / self.m)
+            return (x + v * h - h * h * (p / 3.0 + p_new / 6.0) / self.m, v - 0.5 * h * (p + p_new) / self.m)
         return x + v * h - 0.5 * h * h * p / self.m, v - h * p / self.m
 
     def _free_approach(self, h: float) -> float:
@@ -246,8 +244,12 @@ class SEMRun:
         stepped = False
         while True:
             if stepped:
-                if not (fast and st.in_contact and st.hist.on_grid
-                        and contact_steps(st, self.t_max, self.force_bound, options.max_steps)):
+                if not (
+                    fast
+                    and st.in_contact
+                    and st.hist.on_grid
+                    and contact_steps(st, self.t_max, self.force_bound, options.max_steps)
+                ):
                     st.step()
             stepped = True
             if len(st.ends) > self.checked_end and not st.in_contact:
@@ -262,20 +264,29 @@ class SEMRun:
                 self.outcome = limit
                 return limit
             if st.hist.P[-1] > self.force_bound:
-                self.outcome = "failed", (
-                    f"diverged: the force {st.hist.P[-1]:.4g} N exceeds 10 times the rigid-rod "
-                    f"{st.law.label or st.law.name} force {problem.rigid_contact.peak_force_N:.4g} N, which "
-                    f"bounds it (energy); the step dt_s={h:.4g} s is unstable")
+                self.outcome = (
+                    "failed",
+                    (
+                        f"diverged: the force {st.hist.P[-1]:.4g} N exceeds 10 times the rigid-rod "
+                        f"{st.law.label or st.law.name} force {problem.rigid_contact.peak_force_N:.4g} N, which "
+                        f"bounds it (energy); the step dt_s={h:.4g} s is unstable"
+                    ),
+                )
                 return self.outcome
             if len(st.hist.t) > options.max_steps:
-                self.outcome = ("truncated" if st.ends else "failed"), (
-                    f"step budget max_steps={options.max_steps} spent at t={st.hist.t[-1]:.6g} s with "
-                    f"dt_s={h:.4g} s" + ("" if st.ends else " before the first contact ended"))
+                self.outcome = (
+                    ("truncated" if st.ends else "failed"),
+                    (
+                        f"step budget max_steps={options.max_steps} spent at t={st.hist.t[-1]:.6g} s with "
+                        f"dt_s={h:.4g} s" + ("" if st.ends else " before the first contact ended")
+                    ),
+                )
                 return self.outcome
 
 
-def run_fixed_step(problem: ImpactProblem, options: Any, h: float, stations: tuple[float, ...],
-                   started: float, extra: dict) -> ImpactResult:
+def run_fixed_step(
+    problem: ImpactProblem, options: Any, h: float, stations: tuple[float, ...], started: float, extra: dict
+) -> ImpactResult:
     """One run at the fixed step ``h``."""
     return SEMRun(problem, options, h).finish(stations, started, extra)
 
@@ -284,7 +295,7 @@ def _histories(st: _Stepper, nodes: Nodes, stations: tuple[float, ...], rod_ener
     """Station histories (d'Alembert) and energies as extra series; station positions."""
     t, alpha = nodes.time, nodes.alpha
     series = {
-        "impactor_kinetic_energy": (0.5 * st.m * nodes.w ** 2, "J", "kinetic energy of the impactor"),
+        "impactor_kinetic_energy": (0.5 * st.m * nodes.w**2, "J", "kinetic energy of the impactor"),
         "contact_energy": (st.law.energy(alpha), "J", "energy stored in the contact, int_0^alpha P (the contact law)"),
         "rod_energy": (rod_energy, "J", "energy in the rod: work done on it by the contact force"),
     }
@@ -296,11 +307,15 @@ def _histories(st: _Stepper, nodes: Nodes, stations: tuple[float, ...], rod_ener
         length = st.problem.rod.length_m
         xs = [s * length for s in stations]
         series["station_displacement"] = (
-            np.column_stack([st.hist.displacement_at(x, t) for x in xs]), "m",
-            "axial displacement of the cross-sections at station_x_m (d'Alembert, from the contact force)")
+            np.column_stack([st.hist.displacement_at(x, t) for x in xs]),
+            "m",
+            "axial displacement of the cross-sections at station_x_m (d'Alembert, from the contact force)",
+        )
         series["station_strain"] = (
-            np.column_stack([st.hist.strain_at(x, t) for x in xs]), "1",
-            "axial strain du/dx at station_x_m (negative in compression; d'Alembert)")
+            np.column_stack([st.hist.strain_at(x, t) for x in xs]),
+            "1",
+            "axial strain du/dx at station_x_m (negative in compression; d'Alembert)",
+        )
         extra["station_x_m"] = np.asarray(xs)
     return series, extra
 
@@ -308,13 +323,18 @@ def _histories(st: _Stepper, nodes: Nodes, stations: tuple[float, ...], rod_ener
 def _scales(problem: ImpactProblem) -> dict[str, float]:
     """The case's scales, stored so that presentation never recomputes physics."""
     rigid = problem.rigid_contact
-    return {**problem.contact.summary(), "rod_impedance_kg_s": problem.rod.impedance,
-            "rigid_contact_time_s": rigid.contact_time_s, "rigid_contact_force_N": rigid.peak_force_N,
-            "paper_step_limit_s": paper_step_limit(problem)}
+    return {
+        **problem.contact.summary(),
+        "rod_impedance_kg_s": problem.rod.impedance,
+        "rigid_contact_time_s": rigid.contact_time_s,
+        "rigid_contact_force_N": rigid.peak_force_N,
+        "paper_step_limit_s": paper_step_limit(problem),
+    }
 
 
-def _result(st: _Stepper, outcome: Outcome, stations: tuple[float, ...] = (),
-            extra_summary: dict | None = None) -> ImpactResult:
+def _result(
+    st: _Stepper, outcome: Outcome, stations: tuple[float, ...] = (), extra_summary: dict | None = None
+) -> ImpactResult:
     """The run's result. Its energy balance is the work done on the rod, with the scheme's own
     force representation, against the impactor's loss; a run fails on a force or balance that
     is not finite and, beyond ``energy_tolerance``, on the balance itself."""
@@ -336,15 +356,40 @@ def _result(st: _Stepper, outcome: Outcome, stations: tuple[float, ...] = (),
         status, message = "failed", "non-finite force or energy balance (the scheme diverged)"
     elif status != "failed" and abs(energy_error) > st.options.energy_tolerance:
         kind = "gained" if energy_error < 0 else "lost"
-        status, message = "failed", (
-            f"energy balance off: {abs(energy_error):.3g} of the impact energy {kind}, beyond "
-            f"energy_tolerance={st.options.energy_tolerance:.3g}"
-            + (f"; the force zig-zags step to step over {zigzag} steps (amplitude {sawtooth:.2f}): "
-               "unstable step" if zigzag >= ZIGZAG_UNSTABLE else ""))
-    log.info("SEM %s: %s (%s), %d steps, contact time %.6g s", st.options.scheme, status, message,
-             len(nodes.time) - 1, (st.ends[0] - st.starts[0]) if st.ends else math.nan)
-    return st.result(nodes, Outcome(status, message, outcome.wall_time_s), scheme=st.options.scheme, dt_s=st.h,
-                     energy_error=float(energy_error), rod_energy_J=rod_energy, n_events=st.n_events,
-                     extra={**extra, "sawtooth_amplitude": sawtooth, "zigzag_steps": zigzag, **_scales(problem),
-                            **(extra_summary or {})},
-                     extra_series=series)
+        status, message = (
+            "failed",
+            (
+                f"energy balance off: {abs(energy_error):.3g} of the impact energy {kind}, beyond "
+                f"energy_tolerance={st.options.energy_tolerance:.3g}"
+                + (
+                    f"; the force zig-zags step to step over {zigzag} steps (amplitude {sawtooth:.2f}): unstable step"
+                    if zigzag >= ZIGZAG_UNSTABLE
+                    else ""
+                )
+            ),
+        )
+    log.info(
+        "SEM %s: %s (%s), %d steps, contact time %.6g s",
+        st.options.scheme,
+        status,
+        message,
+        len(nodes.time) - 1,
+        (st.ends[0] - st.starts[0]) if st.ends else math.nan,
+    )
+    return st.result(
+        nodes,
+        Outcome(status, message, outcome.wall_time_s),
+        scheme=st.options.scheme,
+        dt_s=st.h,
+        energy_error=float(energy_error),
+        rod_energy_J=rod_energy,
+        n_events=st.n_events,
+        extra={
+            **extra,
+            "sawtooth_amplitude": sawtooth,
+            "zigzag_steps": zigzag,
+            **_scales(problem),
+            **(extra_summary or {}),
+        },
+        extra_series=series,
+    )
