@@ -15,6 +15,8 @@
 #   make stability     only the stress cases and the stability map -> results/tables/stability.csv
 #   make report        make paper, then the self-contained HTML report -> results/report.html
 #                      (every table and figure with its caption; the benchmarks too if they exist)
+#   make browser       install Debian's chromium and chromium-driver when missing (as root): the
+#                      report's tests in make test run with them and skip without them
 #   make report-check  open results/report.html in headless Chromium at 1400 x 900, save the first
 #                      screen as results/report_screenshot.png, and fail unless the report's title
 #                      is on it (installs Debian's chromium and chromium-driver when missing)
@@ -28,7 +30,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-from-lock
 CORES  ?= 2
 
-.PHONY: paper test test-cluster bench convergence convergence-separate stability report report-check readme-images provenance env clean distclean
+.PHONY: paper test test-cluster browser bench convergence convergence-separate stability report report-check readme-images provenance env clean distclean
 
 $(STAMP): environment.lock pyproject.toml
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info[:2] == (3, 11) else "rodimpact needs Python 3.11 (environment.lock is for 3.11), found " + sys.version.split()[0])'
@@ -76,12 +78,16 @@ report: paper
 	$(BIN)/snakemake --report results/report.html all $(wildcard results/benchmarks/sem.csv results/benchmarks/fem.csv \
 		results/tables/work_precision_separate_orders.csv)
 
-# Checks the report as it is (make report builds it); chromium and its driver from Debian's packages.
-report-check: $(STAMP)
+# Debian's chromium and chromedriver, for make report-check and the report's tests (as root;
+# CI runs it before make test, so that those tests run instead of skipping).
+browser:
 	@if [ ! -x /usr/bin/chromium ] || [ ! -x /usr/bin/chromedriver ]; then \
 		apt-get install -y chromium chromium-driver || \
 		{ apt-get update && apt-get install -y chromium chromium-driver; }; \
 	fi
+
+# Checks the report as it is (make report builds it); chromium and its driver from Debian's packages.
+report-check: $(STAMP) browser
 	$(BIN)/python -m rodimpact.tools.report_check results/report.html --screenshot results/report_screenshot.png
 
 # The figures README.md embeds: copies of the build's PNGs, committed with the README.
