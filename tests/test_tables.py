@@ -20,7 +20,7 @@ import pandas as pd
 import pytest
 
 from rodimpact.present import table_views
-from rodimpact.present.columns import Column, column, headers_with_units, method_header
+from rodimpact.present.columns import Column, column, headers_with_units, method_header, words_only
 from rodimpact.present.table_formats import (
     LATEX_CHAR_PT,
     MAX_COLUMNS,
@@ -562,11 +562,30 @@ def test_table2_of_four_methods_splits_within_a_page() -> None:
 
 
 def test_table2_markdown_has_every_column_in_words(table2: dict) -> None:
+    """Every column with a value, each once: the case id gives way to its ball's (the row's)."""
+    frame = table2["frame"]
     header = table2["md"].splitlines()[2]
     cells = [c.strip() for c in header.strip("|").split("|")]
-    assert cells == [column(c).header for c in table2["frame"].columns]
+    empty = [c for c in frame.columns if frame[c].isna().all()]
+    assert cells == [column(c).header for c in words_only(frame.columns, empty)]
     assert "Measured (µs)" in cells and not any("_" in c for c in cells)
-    assert "ball_3.16mm" in table2["md"]
+    assert "ball_3.16mm" in table2["md"] and "Case" not in cells
+
+
+def test_a_table_for_people_says_each_thing_once_in_words() -> None:
+    """An id with its words in another column gives way to it, under the id's header; an id
+    another column says is left out; a column of method or law ids is shown in their words."""
+    names = ["case_id", "row", "method", "method_label", "contact_law", "quantity", "quantity_words", "measured"]
+    assert words_only(names) == ["row", "method_label", "quantity_words", "measured"]
+    assert words_only(["case_id", "method", "note"], empty=["note"]) == ["case_id", "method"]
+    assert column("method_label").header == column("method").header == "Method"
+    assert column("quantity_words").header == "Quantity"
+    assert column("method").text("fem_axi") == "FEM, axisymmetric continuum"
+    assert column("contact_law").text("hertz_film") == "Hertz with a thin film (approximation)"
+    assert column("method").text("my_method") == "my_method"  # an id it does not know: as it is
+    frame = pd.DataFrame({"case_id": ["a"], "row": ["a"], "method": ["sem"], "method_label": ["SEM, Hertz"]})
+    panel = panels(frame, "t", ["case_id", "row", "method"], ["method_label"])[0]
+    assert panel.columns == ("row", "method_label")
 
 
 def test_the_width_estimate_counts_the_widest_line() -> None:

@@ -17,12 +17,13 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Iterable
-from dataclasses import dataclass
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
+from rodimpact.contact.laws import LAWS
 from rodimpact.solvers.registry import METHODS
 
 __all__ = [
@@ -34,6 +35,7 @@ __all__ = [
     "column",
     "headers_with_units",
     "method_header",
+    "words_only",
 ]
 
 
@@ -50,11 +52,15 @@ class Column:
     fmt : str
         A format spec for a number (``".2f"``: two decimals); empty for a text, a flag or an
         integer, shown as they are (a flag as yes or no).
+    words : mapping, optional
+        An id -> its words, for a column of ids (a method, a contact law): a table for people
+        shows the words; an id not in it is shown as it is.
     """
 
     label: str
     unit: str = ""
     fmt: str = ".2f"
+    words: Mapping[str, str] | None = field(default=None, compare=False, hash=False)
 
     @property
     def header(self) -> str:
@@ -68,6 +74,8 @@ class Column:
             return "–"
         if isinstance(value, (bool, np.bool_)):
             return "yes" if value else "no"
+        if self.words and isinstance(value, str):
+            return self.words.get(value, value)
         if self.fmt and isinstance(value, (int, float, np.integer, np.floating)):
             return format(float(value), self.fmt)
         return str(value)
@@ -107,20 +115,30 @@ ROLE_WORDS = {
 _TEXT = ""
 _ORDINALS = ("1st", "2nd", "3rd")
 
+#: Columns that name in words what another column names by its id: a table for people shows the
+#: words only (:func:`words_only`), under the id's header; the CSV keeps both.
+WORDS_FOR = {"method": "method_label", "quantity": "quantity_words"}
+#: Columns another column already says in words: the case id (its ball and its reading have
+#: their own columns), the contact law's id (the method's words name the law).
+SAID_BY = {"case_id": ("row",), "contact_law": ("method_label",)}
+
 #: The fixed columns.
 COLUMNS: dict[str, Column] = {
     # what a row is
     "case_id": Column("Case", fmt=_TEXT),
     "row": Column("Ball", fmt=_TEXT),
     "variant": Column("Reading", fmt=_TEXT),
-    "method": Column("Method", fmt=_TEXT),
+    "method": Column("Method", fmt=_TEXT, words={name: spec.label for name, spec in METHODS.items()}),
     "sweep": Column("Sweep", fmt=_TEXT),
     "point": Column("Point", fmt=_TEXT),
     "quantity": Column("Quantity", fmt=_TEXT),
+    # the same in words (the CSV keeps both; a table for people shows these, under the same header)
+    "method_label": Column("Method", fmt=_TEXT),
+    "quantity_words": Column("Quantity", fmt=_TEXT),
     "film": Column("Film", fmt=_TEXT),
-    "contact_law": Column("Contact law", fmt=_TEXT),
+    "contact_law": Column("Contact law", fmt=_TEXT, words={name: law.label for name, law in LAWS.items()}),
     "law": Column("Law", fmt=_TEXT),
-    "paper_method": Column("Paper's method", fmt=_TEXT),
+    "paper_method": Column("Paper's method", fmt=_TEXT, words={"sem": "the paper's SEM", "fem": "the paper's FEM"}),
     "n_cases": Column("Cases", fmt=_TEXT),
     # a comparison's measured and computed values, each in its row's unit (column "unit")
     "measured": Column("Measured", fmt=".5g"),
@@ -268,3 +286,17 @@ def column(name: str) -> Column:
 def headers_with_units(columns: Iterable[str]) -> dict[str, str]:
     """Column -> its header in words with its unit: ``measured_us`` -> ``Measured (µs)``."""
     return {name: column(name).header for name in columns}
+
+
+def words_only(names: Iterable[str], empty: Iterable[str] = ()) -> list[str]:
+    """The columns a table for people shows, of ``names``: each thing once, in words.
+
+    An id with a column of its words (:data:`WORDS_FOR`) gives way to that column, an id that
+    another column already says (:data:`SAID_BY`) is left out, and so is a column in
+    ``empty`` (no value in any row). The order of ``names`` is kept.
+    """
+    names = list(names)
+    present, blank = set(names), set(empty)
+    dropped = {n for n, words in WORDS_FOR.items() if words in present}
+    dropped |= {n for n, others in SAID_BY.items() if any(o in present for o in others)}
+    return [n for n in names if n not in dropped and n not in blank]

@@ -17,11 +17,11 @@ from __future__ import annotations
 
 import html
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import pandas as pd
 
-from rodimpact.present.columns import LATEX_UNITS, Column, column
+from rodimpact.present.columns import LATEX_UNITS, SAID_BY, WORDS_FOR, Column, column, words_only
 
 __all__ = [
     "LATEX_CHAR_PT",
@@ -87,7 +87,7 @@ class Panel:
         """The column ``name`` as this panel heads it."""
         spec = column(name)
         if self.drop and name.endswith("_error_pct") and spec.label.endswith(self.drop):
-            spec = Column(spec.label[: -len(self.drop)], spec.unit, spec.fmt)
+            spec = replace(spec, label=spec.label[: -len(self.drop)])
         return spec
 
 
@@ -134,8 +134,12 @@ def panels(
             ):
                 out.append(Panel(panel.title, panel.columns, panel.label, panel.latex_caption, panel.drop, rows))
         return out
+    key, values = _in_words(key, frame), _in_words(values, frame)
     key = [c for c in key if c in frame.columns]
     values = [c for c in values if c in frame.columns and c not in key]
+    shown = {*key, *values}
+    key = [c for c in key if not any(o in shown for o in SAID_BY.get(c, ()))]
+    values = [c for c in values if not any(o in shown for o in SAID_BY.get(c, ()))]
     room = max_columns - len(key)
     if room < 1:
         raise ValueError(f"{title!r}: {len(key)} key columns leave no room in {max_columns}")
@@ -154,6 +158,17 @@ def panels(
         )
         for i, chunk in enumerate(chunks, start=1)
     ]
+
+
+def _in_words(names: Sequence[str], frame: pd.DataFrame) -> list[str]:
+    """``names`` with each id that has a column of its words in ``frame`` replaced by it, once."""
+    out: list[str] = []
+    for name in names:
+        words = WORDS_FOR.get(name)
+        name = words if words and words in frame.columns else name
+        if name not in out:
+            out.append(name)
+    return out
 
 
 def _numeric(frame: pd.DataFrame, name: str) -> bool:
@@ -306,9 +321,13 @@ def latex_tables(frame: pd.DataFrame, shown: Sequence[Panel]) -> str:
 
 
 def markdown_table(frame: pd.DataFrame) -> str:
-    """Every column of the frame, headers in words with units, each column in its format."""
+    """The frame's columns for people (:func:`~rodimpact.present.columns.words_only`: each thing
+    once, in words, no column without a value), headers in words with units, each column in its
+    format."""
     if frame.columns.empty:
         return "The table has no rows."
+    empty = [name for name in frame.columns if len(frame) and frame[name].isna().all()]
+    frame = frame[words_only(frame.columns, empty)]
     specs = [column(name) for name in frame.columns]
     rows = [[spec.text(v) for spec, v in zip(specs, values)] for values in frame.itertuples(index=False)]
     cells = pd.DataFrame(rows, columns=[spec.header for spec in specs])
