@@ -17,6 +17,9 @@ report: "workflow/report/workflow.rst"
 
 
 include: "workflow/rules/common.smk"
+include: "workflow/rules/common_studies.smk"
+include: "workflow/rules/common_sensor.smk"
+include: "workflow/rules/common_compare.smk"
 include: "workflow/rules/resources.smk"
 include: "workflow/rules/cases.smk"
 include: "workflow/rules/indentation.smk"

@@ -107,6 +107,14 @@ def test_the_layers_hold_every_package_once():
     assert sum(len(rank) for rank in LAYERS) == len(RANK)
 
 
+def test_the_package_docstring_names_the_layers_in_order():
+    """src/rodimpact/__init__.py lists the layers as this test's LAYERS, lowest first."""
+    text = ast.get_docstring(ast.parse((PACKAGE / "__init__.py").read_text(encoding="utf-8"))) or ""
+    items = [part for part in re.split(r"\n(?=\d+\. )|\n\n", text) if re.match(r"\d+\. ", part)]
+    ranks = [frozenset(re.findall(r":mod:`rodimpact\.(\w+)`", item)) for item in items]
+    assert tuple(ranks) == LAYERS
+
+
 def _named_modules(init: Path) -> set[str]:
     """The module names ``init``'s docstring names as ``:mod:`.name```."""
     doc = ast.get_docstring(ast.parse(init.read_text(encoding="utf-8"))) or ""

@@ -102,7 +102,7 @@ def test_every_submitted_rule_is_in_a_group_the_slurm_profile_sizes() -> None:
             name = re.match(r"\s*(\w*):", block).group(1) or re.search(r'name:\s*\n\s*f"(\w+?)_?\{', block).group(1)
             if "script:" not in block or name in ungrouped:
                 continue
-            declared = re.search(r"^\s+group: (\w+)$", block, re.M)
+            declared = re.search(r"^\s+group:\s+(\w+)\s*$", block, re.M)  # its value on the line or the next
             if declared is None:
                 missing.append(f"{path.name}: {name}")
             elif declared.group(1) not in groups:

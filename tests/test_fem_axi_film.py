@@ -13,11 +13,12 @@ from rodimpact.contact.hertz import hertz_constant
 from rodimpact.contact.laws import build_law
 from rodimpact.contact.stack import Stack
 from rodimpact.model.materials import Material
+from rodimpact.solvers.fem_axi.aximodel import build_model
 from rodimpact.solvers.fem_axi.film_mesh import FILM_LAYERS, film_rod_mesh
 from rodimpact.solvers.fem_axi.indentation import static_indentation
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact
-from rodimpact.solvers.fem_axi.solver import build_model, solve_fem_axi
+from rodimpact.solvers.fem_axi.solver import solve_fem_axi
 
 from helpers.paper import ALUMINIUM, STEEL
 

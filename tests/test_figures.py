@@ -40,7 +40,7 @@ from rodimpact.present.forces import export_forces  # noqa: E402
 from rodimpact.present.sensor_figures import plot_sensor_fit  # noqa: E402
 from rodimpact.present.sensor_tables import sensor_fit_frame  # noqa: E402
 from rodimpact.present.study_figures import order_text, quantity_words  # noqa: E402
-from rodimpact.present.table2_figures import SECOND_CONTACT_LABEL, short_source  # noqa: E402
+from rodimpact.present.table2_drawing import SECOND_CONTACT_LABEL, short_source  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
 from rodimpact.storage.bands import BAND_PARAMETERS, CaseBand, write_band  # noqa: E402
 from rodimpact.storage.runs import read_summary  # noqa: E402

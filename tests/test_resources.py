@@ -176,9 +176,9 @@ def test_resources_are_not_solver_code():
 
 def test_dof_bound_covers_the_meshes(model):
     """The closed-form DOF bound against the meshes fem_axi builds (coarse, so quick)."""
+    from rodimpact.solvers.fem_axi.aximodel import build_model as _build
     from rodimpact.solvers.fem_axi.options import FEMAxiOptions
     from rodimpact.solvers.fem_axi.problem import AxiImpact
-    from rodimpact.solvers.fem_axi.solver import build_model as _build
 
     for case in (
         with_numerics(model, "fem_axi", **COARSE_AXI),

@@ -2,7 +2,8 @@
 before any job.
 
 What lives here: :mod:`.load` (read, check and resolve config.yaml, materials and case files:
-:func:`~rodimpact.config.load.load_project`), :mod:`.yamlfile` (reading one YAML document,
+:func:`~rodimpact.config.load.load_project`), :mod:`.builder` (the case files resolved into
+checked cases, one file at a time), :mod:`.yamlfile` (reading one YAML document,
 aliases bounded), :mod:`.schema` (JSON-schema checks and merging), :mod:`.project`
 (:class:`~rodimpact.config.project.Project` and :class:`~rodimpact.config.project.ConfigError`),
 :mod:`.bodies` (a case's materials and contact block), :mod:`.measured` (a case's measured force

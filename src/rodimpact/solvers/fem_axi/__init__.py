@@ -1,16 +1,17 @@
 """``fem_axi``: the axisymmetric continuum of rod and impactor with real (unilateral) contact.
 
 What lives here: :mod:`.problem` (the geometry of both bodies and the scales), :mod:`.options`
-(the settings), :mod:`.meshes` (meshes in the (r, z) half-plane), :mod:`.film_mesh` (the rod
-with a bonded film disc on its struck end), :mod:`.layers` (how a film or stack is divided
-through its thickness, without the mesher's imports), :mod:`.film_model` (the film's region and its
-contact nodes), :mod:`.axisym` (the
-r-weighted elasticity forms), :mod:`.axibody` (one body's Newmark operators),
+(the settings), :mod:`.meshes` (meshes in the (r, z) half-plane), :mod:`.mesh_geometry` (their
+geometry and refinement helpers), :mod:`.film_mesh` (the rod with a bonded film disc on its
+struck end), :mod:`.layers` (how a film or stack is divided through its thickness, without the
+mesher's imports), :mod:`.film_model` (the film's region and its contact nodes), :mod:`.axisym`
+(the r-weighted elasticity forms), :mod:`.axibody` (one body's Newmark operators),
 :mod:`.farbar` (the rod beyond a few diameters as a 1-D bar joined to the continuum),
-:mod:`.contact` (the candidate gaps, G = K_eff^-1 B^T and the contact LCP),
-:mod:`.separation` (the end test: the energy bound that no contact can follow),
-:mod:`.solver` (:func:`~rodimpact.solvers.fem_axi.solver.solve_fem_axi`), :mod:`.cost` (its
-cost model) and :mod:`.indentation` (the static indentation check).
+:mod:`.contact` (the candidate gaps, G = K_eff^-1 B^T and the contact LCP), :mod:`.separation`
+(the end test: the energy bound that no contact can follow), :mod:`.aximodel` (the model
+assembled: both bodies and the contact's candidates), :mod:`.solver`
+(:func:`~rodimpact.solvers.fem_axi.solver.solve_fem_axi`), :mod:`.cost` (its cost model) and
+:mod:`.indentation` (the static indentation check).
 
 What it may import: :mod:`rodimpact.contact` (for the scales and the film's description
 only: the continuum resolves the contact, and the film, itself), :mod:`rodimpact.model`,

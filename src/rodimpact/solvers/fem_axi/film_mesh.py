@@ -36,9 +36,8 @@ from numpy.typing import NDArray
 from skfem import MeshTri
 
 from rodimpact.solvers.fem_axi.layers import FILM_ASPECT, layer_elements
-from rodimpact.solvers.fem_axi.meshes import (
+from rodimpact.solvers.fem_axi.mesh_geometry import (
     SIZE_GRADIENT,
-    BodyMesh,
     _area2,
     _ceil,
     _distance_to_origin,
@@ -50,6 +49,7 @@ from rodimpact.solvers.fem_axi.meshes import (
     graded_size,
     refine_until,
 )
+from rodimpact.solvers.fem_axi.meshes import BodyMesh
 from rodimpact.solvers.fem_axi.options import FILM_LAYERS
 
 __all__ = ["FILM_ASPECT", "FILM_LAYERS", "FilmRodMesh", "film_rod_mesh", "layer_elements", "layers_within"]

@@ -1,0 +1,166 @@
+"""The workflow's figures drawn from stored runs (and the band files and force fits beside
+them): Fig. 2, Fig. 4, contact time against ball mass per reading, the contact force with and
+without the film, the force's closed form; each with its provenance in the files and a sidecar.
+
+The figure modules (matplotlib) are imported by the functions that draw, so that importing this
+module does not load them.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+from rodimpact.present.artifact_common import _by_variant, _one_case, _save_figure
+from rodimpact.present.film_tables import (
+    film_band_frame,
+    readings_frame,
+    table2_panels,
+    write_provenance_with_files,
+)
+from rodimpact.present.sensor_tables import sensor_band_frame
+from rodimpact.present.tables import load_records, sweep_results_frame
+from rodimpact.storage.bands import read_band
+from rodimpact.storage.runs import read_run
+from rodimpact.storage.sidecar import provenance_record
+
+__all__ = ["make_fig2", "make_fig4", "make_fig_film_force", "make_fig_force_fit", "make_fig_readings"]
+
+
+def make_fig2(runs: Sequence[str | Path], *, pdf: str | Path, png: str | Path, provenance: str | Path) -> None:
+    """Fig. 2: contact force against time for one case, every method stored."""
+    from rodimpact.present.figures import plot_contact_force
+
+    records = [read_run(p) for p in runs]
+    case = _one_case(records, "Fig. 2")
+    fig = plot_contact_force(records, title=f"Contact force, case {case!r} (Fig. 2 of the paper)")
+    _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance, title="Fig. 2: contact force against time")
+
+
+def make_fig4(
+    runs: Sequence[str | Path], fraction: float, *, pdf: str | Path, png: str | Path, provenance: str | Path
+) -> None:
+    """Fig. 4: displacement of the cross-section at ``fraction`` of the rod length, every
+    stored run of one case that recorded stations."""
+    from rodimpact.present.figures import plot_station_displacement
+
+    records = [read_run(p) for p in runs]
+    records = [r for r in records if "station_displacement" in r.series]
+    case = _one_case(records, "Fig. 4 (runs with station histories)")
+    fig = plot_station_displacement(
+        records,
+        fraction,
+        title=(f"Displacement at {fraction:g} of the rod length, case {case!r} (Fig. 4 of the paper)"),
+    )
+    _save_figure(
+        fig,
+        records,
+        pdf=pdf,
+        png=png,
+        provenance=provenance,
+        title="Fig. 4: displacement of a cross-section of the rod against time",
+    )
+
+
+def make_fig_readings(
+    runs: Sequence[str | Path],
+    variants: Sequence[str],
+    *,
+    pdf: str | Path,
+    png: str | Path,
+    provenance: str | Path,
+    sweep_runs: Sequence[str | Path] = (),
+    film_variants: Sequence[str] = (),
+    band_files: Sequence[str | Path] = (),
+    descriptions: Mapping[str, str] | None = None,
+    sensors: Mapping[str, bool] | None = None,
+    sensor_band_files: Sequence[str | Path] = (),
+    title: str,
+) -> None:
+    """Contact time against ball mass, one panel per rod, with the sweeps' curves; the readings
+    with the film (``film_variants``) on the panel of their rod, with their bands (``band_files``).
+
+    ``descriptions`` (variant -> the reading in words, the case file's ``description``) title
+    the panels; the measured points are grouped by their source, and the runs with more than
+    one contact ringed, both read from the runs. ``sensors`` (variant -> calibrated by the
+    continuum) are the readings with the sensor as built, drawn on their rod's panel with the
+    bands of ``sensor_band_files``. ``title``: the set in words (its ``compare.title``)."""
+    from rodimpact.present.figures import save_figure
+    from rodimpact.present.table2_figures import plot_table2_contact_time
+
+    records, frames = _by_variant(runs, variants)
+    sweeps = load_records(sweep_runs)
+    readings = readings_frame(records)
+    bands = film_band_frame(dict(read_band(p) for p in band_files), {r.case_id: r.config for r in records})
+    sources = {r.case_id: str((r.config.get("measured") or {}).get("source", "")) for r in records}
+    contacts = {(r.case_id, r.method): int(r.summary.get("n_contacts", 1)) for r in records}
+    sensors = dict(sensors or {})
+    sensor_bands = sensor_band_frame(
+        [(v, b) for p in sensor_band_files for v, group in [read_band(p)] for b in group],
+        {r.case_id: r.config for r in records},
+    )
+    fig = plot_table2_contact_time(
+        frames,
+        sweep_results_frame(sweeps),
+        panels=table2_panels(readings, [*film_variants, *sensors]),
+        readings=readings,
+        bands=bands,
+        descriptions=descriptions,
+        sources=sources,
+        contacts=contacts,
+        sensors=sensors,
+        sensor_bands=sensor_bands,
+        set_title=title,
+    )
+    artifacts = [pdf, png]
+    save_figure(
+        fig,
+        pdf=pdf,
+        png=png,
+        provenance=provenance_record([*records, *sweeps], artifacts),
+        title=f"{title}: contact time against ball mass",
+    )
+    write_provenance_with_files(
+        provenance, [*records, *sweeps], artifacts, {"band": band_files, "sensor band": sensor_band_files}
+    )
+
+
+def make_fig_film_force(
+    runs: Sequence[str | Path], rows: Sequence[str], *, pdf: str | Path, png: str | Path, provenance: str | Path
+) -> None:
+    """The contact force with and without the film, one panel per row of ``rows``."""
+    from rodimpact.present.film_figures import plot_film_force
+
+    records = [read_run(p) for p in runs]
+    rod = records[0].config["rod"]
+    fig = plot_film_force(
+        records,
+        rows,
+        title=(
+            f"Contact force with and without the sensor film, rod radius {1000 * rod['radius_m']:g} mm, "
+            f"length {1000 * rod['length_m']:g} mm"
+        ),
+    )
+    _save_figure(
+        fig, records, pdf=pdf, png=png, provenance=provenance, title="Contact force with and without the sensor film"
+    )
+
+
+def make_fig_force_fit(
+    runs: Sequence[str | Path], jsons: Sequence[str | Path], *, pdf: str | Path, png: str | Path, provenance: str | Path
+) -> None:
+    """The exported closed forms (``jsons``, one per run) over the computed forces of one case,
+    and their errors."""
+    from rodimpact.present.figures import plot_force_fits
+    from rodimpact.present.forces import read_force_json
+
+    records = [read_run(p) for p in runs]
+    case = _one_case(records, "the force's closed form")
+    fig = plot_force_fits(
+        records,
+        [read_force_json(p) for p in jsons],
+        title=f"Contact force and its Chebyshev closed form, case {case!r}",
+    )
+    _save_figure(
+        fig, records, pdf=pdf, png=png, provenance=provenance, title="Contact force and its Chebyshev closed form"
+    )

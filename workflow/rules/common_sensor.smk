@@ -1,0 +1,118 @@
+# The sensor's helpers (sensor.smk, tables.smk, figures.smk): its readings, bands and fit, the
+# film's tables and figure, the readings' targets. Included after common.smk.
+
+# The sensor as built (sensor.smk): the readings config["sensor"] names, checked by the
+# configuration (rodimpact.config.checks.check_sensor), and their cases' band files.
+SENSOR = config.get("sensor", {})
+SENSOR_FIT = SENSOR.get("fit")
+SRC_SENSOR = sources("rodimpact.jobs.sensor_band", "rodimpact.jobs.logs")
+SRC_SENSOR_TABLES = sources("rodimpact.present.sensor_artifacts", "rodimpact.jobs.logs")
+
+
+def _sensor_readings():
+    """Reading -> whether its cases get the whole band (else the fit's grid only); the
+    configuration checked them (rodimpact.config.checks.check_sensor)."""
+    readings = {v: True for v in SENSOR.get("band", [])}
+    for v in [SENSOR_FIT["reading"], *SENSOR_FIT.get("apply_to", [])] if SENSOR_FIT else []:
+        readings.setdefault(v, False)
+    return readings
+
+
+SENSOR_READINGS = _sensor_readings()
+SENSOR_READING_OF = {c["id"]: v for v in SENSOR_READINGS for c in PROJECT.cases.values() if c.get("variant") == v}
+SENSOR_GRID = {f"{SENSOR_FIT['layer']}: thickness_m": SENSOR_FIT["thickness_grid_m"]} if SENSOR_FIT else {}
+# the readings the fit reads: the one it is fitted on and those it is applied to
+SENSOR_FIT_READINGS = [SENSOR_FIT["reading"], *SENSOR_FIT.get("apply_to", [])] if SENSOR_FIT else []
+
+
+def sensor_variants(set_name):
+    """A set's readings with the sensor as built (a stack on the rod) -> whether their law is
+    calibrated by the continuum: its figure draws them on their rod's panel."""
+    return {
+        v: curve_rule_of(reading_cases(v)[0]) == "indentation"
+        for v in READING_SETS[set_name]
+        if all((c.get("contact") or {}).get("stack") for c in reading_cases(v))
+    }
+
+
+def sensor_band_files(variants):
+    """The band files of every case of the given readings (one directory per reading, by the rule sensor_band)."""
+    return [
+        f"results/studies/sensor_band/{reading}/{case}.h5"
+        for v in variants
+        for case, reading in SENSOR_READING_OF.items()
+        if reading == v
+    ]
+
+
+def sensor_band_dirs(variants):
+    """The directories of the given readings' bands (rule sensor_band's outputs)."""
+    return sorted({os.path.dirname(f) for f in sensor_band_files(variants)})
+
+
+def sensor_targets():
+    """The sensor's tables, when the configuration asks for them and their readings are built."""
+    targets = []
+    if not all(v in READING_SET_OF for v in SENSOR_READINGS):
+        return targets
+    if any(SENSOR_READINGS.values()):
+        targets += expand("results/tables/sensor_band.{ext}", ext=["csv", "md", "provenance.json"])
+    if SENSOR_FIT:
+        targets += expand("results/tables/sensor_fit.{ext}", ext=["csv", "md", "json", "provenance.json"])
+        targets += expand("results/figures/sensor_fit.{ext}", ext=["pdf", "png", "provenance.json"])
+    return targets
+
+
+# The sensor film (tables.smk, figures.smk): config["sensor"]'s film_table (one rod's readings by
+# role, results/tables/{set}_film.*) and film_force (rows on readings, results/figures/film_force.*),
+# when their readings are built; the cases whose law the continuum calibrates (one indentation
+# curve each, results/tables/film_indentation.*).
+FILM_TABLE = SENSOR.get("film_table") or {}
+FILM_TABLE_SETS = (
+    sorted({READING_SET_OF[v] for v in FILM_TABLE.values()})
+    if all(v in READING_SET_OF for v in FILM_TABLE.values())
+    else []
+)
+FILM_FORCE = SENSOR.get("film_force") or {}
+# its runs: each row on each reading, by each of the methods the case runs
+FILM_FORCE_RUNS = (
+    [
+        runs_of([case])[case["methods"].index(method)]
+        for case in (
+            PROJECT.cases[f"{row}-{variant}"]
+            for row in FILM_FORCE.get("rows", [])
+            for variant in FILM_FORCE.get("variants", [])
+        )
+        for method in FILM_FORCE["methods"]
+        if method in case["methods"]
+    ]
+    if all(v in READING_SET_OF for v in FILM_FORCE.get("variants", []))
+    else []
+)
+CALIBRATED_CASES = [
+    c["id"] for name in READING_SETS for c in PROJECT.cases_in(name) if curve_rule_of(c) == "indentation"
+]
+
+
+def readings_targets():
+    """Every reading set's tables and figure; the film's and the continuum's curves, where built."""
+    targets = []
+    for name, variants in READING_SETS.items():
+        targets += expand(
+            "results/tables/{set}_{variant}.{ext}",
+            set=name,
+            variant=variants,
+            ext=["csv", "md", "tex", "provenance.json"],
+        )
+        targets += expand("results/tables/{set}_variants.{ext}", set=name, ext=["csv", "md", "provenance.json"])
+        targets += expand("results/figures/{set}_contact_time.{ext}", set=name, ext=["pdf", "png"])
+    targets += expand("results/studies/film_band_{variant}.h5", variant=FILM_VARIANTS)
+    tables = [
+        *(f"{name}_film" for name in FILM_TABLE_SETS),
+        *(["film_band"] if FILM_VARIANTS else []),
+        *(["film_indentation"] if CALIBRATED_CASES else []),
+    ]
+    targets += expand("results/tables/{name}.{ext}", name=tables, ext=["csv", "md", "provenance.json"])
+    if FILM_FORCE_RUNS:
+        targets += expand("results/figures/film_force.{ext}", ext=["pdf", "png"])
+    return targets

@@ -1,0 +1,105 @@
+# The studies' helpers (studies.smk, sweeps.smk): the error-against-run-time levels, the stress
+# runs and the stability map, the sweeps' points. Included after common.smk, whose names it uses.
+
+WORK_PRECISION = config.get("work_precision", {})
+STABILITY = config.get("stability", {})
+MAP = STABILITY.get("map", {})
+MAP_POINTS = map_point_names(MAP) if MAP else []
+# The stress runs: each set's cases by each method some case of it lists, and the references
+# (one directory per set and method, one file per case, by the rule solve_stress)
+STRESS_DIRS = {
+    (name, m): f"results/stress/{name}/{m}"
+    for name in STABILITY.get("sets", [])
+    for m in METHOD_REGISTRY
+    if any(m in c["methods"] for c in PROJECT.cases_in(name))
+}
+STRESS_RUNS = [
+    f"results/stress/{name}/{m}/{c['id']}.h5"
+    for name in STABILITY.get("sets", [])
+    for c in PROJECT.cases_in(name)
+    for m in c["methods"]
+]
+STRESS_REFERENCES = [
+    f"results/stress/{name}/reference/{c['id']}.h5"
+    for name in STABILITY.get("sets", [])
+    for c in PROJECT.cases_in(name)
+]
+# The cases that ask for the strain over the rod (output strain_field): each gets its wave map
+# (waves.smk), and only they.
+WAVE_CASES = [case_id for case_id, case in PROJECT.cases.items() if FIELD_OUTPUT in case["outputs"]]
+
+
+def sweep_level(method, level):
+    """Numerics overrides of one level of the method's work-precision sweep."""
+    levels = WORK_PRECISION.get("methods", {}).get(method, {}).get("levels", [])
+    if not 0 <= level < len(levels):
+        refuse(f"no level {level} in the work-precision sweep of {method!r}; its levels: 0 to {len(levels) - 1}")
+    return dict(levels[level])
+
+
+def swept_on(case_id):
+    """The methods the work-precision study sweeps on a case (rodimpact.config.checks.swept_methods)."""
+    if case_id not in PROJECT.cases:
+        refuse(f"unknown case {case_id!r}; known: {', '.join(PROJECT.cases)}")
+    return swept_methods(WORK_PRECISION, case_id, PROJECT.cases[case_id])
+
+
+def sweep_case(case_id, method, level):
+    """The case of one sweep level (the method need not be among the case's own, but the study
+    must sweep it on the case)."""
+    if method not in swept_on(case_id):
+        refuse(
+            f"the work-precision study does not sweep {method!r} on case {case_id!r}; it sweeps "
+            f"{', '.join(swept_on(case_id))}"
+        )
+    return level_case(PROJECT.cases[case_id], method, config["numerics"], sweep_level(method, level))
+
+
+def _swept(cases=None, methods=None):
+    """(case, method, levels) of every method the study sweeps on each of ``cases`` (default: the
+    default build's), of ``methods`` only when given."""
+    cases = WORK_PRECISION.get("cases", []) if cases is None else cases
+    swept = WORK_PRECISION.get("methods", {})
+    return [(c, m, len(swept[m]["levels"])) for c in cases for m in swept_on(c) if methods is None or m in methods]
+
+
+def level_dirs(cases=None, methods=None):
+    """The directories of the work-precision levels (one job each: rule solve_levels) of
+    :func:`_swept`'s cases and methods."""
+    return [f"results/convergence/{c}/{m}" for c, m, _ in _swept(cases, methods)]
+
+
+def sweep_runs(cases=None, methods=None):
+    """HDF5 files of every level of :func:`_swept`'s cases and methods."""
+    return [f"results/convergence/{c}/{m}/level{k}.h5" for c, m, count in _swept(cases, methods) for k in range(count)]
+
+
+# The sweep's cases too slow for the default build (a level over a minute): their own target.
+WORK_PRECISION_SEPARATE = WORK_PRECISION.get("separate") or {}
+
+
+# One Paramspace per sweep case: its grid, and the names of its points (one file each); and each
+# point's values by its name (the Paramspace's rows are the grid's points, in order).
+SWEEPS = {
+    case_id: Paramspace(sweep_frame(case["sweep"]), filename_params="*", single_wildcard="sweep_point")
+    for case_id, case in PROJECT.sweeps.items()
+}
+SWEEP_POINTS = {
+    case_id: dict(zip(space.instance_patterns, sweep_points(PROJECT.sweeps[case_id]["sweep"])))
+    for case_id, space in SWEEPS.items()
+}
+
+
+def sweep_point_dirs(sweep_cases):
+    """The directories of the given sweep cases' points, one per method (one job each: rule solve_sweep)."""
+    return [f"results/sweeps/{c['id']}/{m}" for c in sweep_cases for m in c["sweep"]["methods"]]
+
+
+def sweep_point_runs(sweep_cases):
+    """HDF5 files of every point and method of the given sweep cases."""
+    return [
+        f"results/sweeps/{c['id']}/{m}/{point}.h5"
+        for c in sweep_cases
+        for m in c["sweep"]["methods"]
+        for point in SWEEPS[c["id"]].instance_patterns
+    ]
