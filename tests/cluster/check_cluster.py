@@ -59,7 +59,7 @@ sys.path[:0] = [str(HERE), str(HERE.parent)]  # this folder's modules, and tests
 
 import yte  # noqa: E402 (after the path set-up above)
 from compare import TIMING_COLUMNS, VOLATILE_ATTRIBUTES, VOLATILE_CONFIG_ENTRIES, compare_builds  # noqa: E402
-from local_slurm import LocalSlurm, SlurmError, install  # noqa: E402
+from local_slurm import NODE_CONF_LINK, LocalSlurm, SlurmError, install  # noqa: E402
 from timing import CLUSTER_CSV, BuildTiming, job_count, recorded_build, write_cluster_csv  # noqa: E402
 
 from helpers.copies import DOTTEST, clone_built, copy_dottest, reuse_refusal  # noqa: E402
@@ -509,6 +509,36 @@ def reference_build(pristine: Path, scratch: Path) -> tuple[Path, BuildTiming | 
 # --------------------------------------------------------------------------------------------
 
 
+#: How long SLURM's client may take to give up when no cluster is configured, s. With a
+#: configuration that names a controller no longer running, ``scontrol`` waits for its message
+#: timeout (9 s measured here), and so does every snakemake start: the executor plugin runs
+#: ``scontrol show config`` when snakemake imports it (docs/cluster.md, "What the SLURM plugin
+#: costs at every start").
+NO_CLUSTER_S = 2.0
+
+
+def check_no_trace(report: Report) -> None:
+    """After the daemons stopped: the machine as it was. No configuration of the test cluster is
+    left where SLURM's client looks without ``SLURM_CONF`` (``/etc/slurm/slurm.conf``, the
+    configless ``/run/slurm/conf``), so ``scontrol show config`` gives up at once, and a plain
+    ``snakemake --version`` pays nothing for the cluster that was."""
+    env = {k: v for k, v in os.environ.items() if k != "SLURM_CONF"}
+    report.check(not NODE_CONF_LINK.exists(), "no trace: the configless link is gone", str(NODE_CONF_LINK))
+    started = time.monotonic()
+    subprocess.run(["scontrol", "show", "config"], env=env, capture_output=True, check=False, timeout=60)
+    scontrol_s = time.monotonic() - started
+    started = time.monotonic()
+    subprocess.run([sys.executable, "-m", "snakemake", "--version"], env=env, capture_output=True, check=False)
+    version_s = time.monotonic() - started
+    report.check(
+        scontrol_s < NO_CLUSTER_S,
+        f"no trace: SLURM's client finds no cluster at once (scontrol show config {scontrol_s:.1f} s, "
+        f"snakemake --version {version_s:.1f} s)",
+        f"scontrol show config took {scontrol_s:.1f} s, more than {NO_CLUSTER_S} s: a configuration names a "
+        "controller that no longer runs",
+    )
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run every check (see the module docstring); 0 when all pass, else 1."""
     parser = argparse.ArgumentParser(
@@ -554,6 +584,7 @@ def main(argv: list[str] | None = None) -> int:
             )
             check_cluster_runs(cluster, pristine, scratch, reference, local, report)
         say("daemons stopped")
+        check_no_trace(report)
     except (SlurmError, subprocess.CalledProcessError, AssertionError) as error:
         report.failures.append(f"{type(error).__name__}: {error}")
         say(f"FAIL {type(error).__name__}: {error}")
