@@ -19,7 +19,7 @@ import pytest
 
 from rodimpact.plumbing.locks import LOCK_DIR, RUNS_DIR, release_stale_lock, runs_snakemake
 from rodimpact.plumbing.plan_cache import CACHE_FILE, code_fingerprint
-from rodimpact.plumbing.targets import command_line_targets
+from rodimpact.plumbing.targets import command_line_targets, untargeted_set_message
 
 REPO = Path(__file__).resolve().parents[1]
 DRY_RUN_TIMEOUT_S = 300
@@ -190,3 +190,17 @@ def test_a_dry_run_leaves_the_plan_cache(tmp_path: Path) -> None:
         stored = pickle.load(handle)
     assert stored["fingerprint"] == code_fingerprint(REPO / "src")
     assert len(stored["projects"]) == 1 and stored["estimates"]
+
+
+def test_a_target_of_a_set_not_built_names_the_set_and_where_to_add_it():
+    """compare_mylab.csv of a declared set left out of targets.sets: one line naming the set, its
+    case file and targets.sets; a set name inside another word does not match."""
+    untargeted = {"mylab": "config/cases/mylab.yaml", "lab": "config/cases/lab.yaml"}
+    message = untargeted_set_message("results/tables/compare_mylab.csv", untargeted, "config/config.yaml")
+    assert message == (
+        "'results/tables/compare_mylab.csv' is of case set 'mylab' (config/cases/mylab.yaml), which is not in "
+        "targets.sets of config/config.yaml: add it there to build its tables and figures"
+    )
+    assert "case set 'lab'" in untargeted_set_message("results/forces/lab/b1/sem.csv", untargeted, "c.yaml")
+    assert untargeted_set_message("results/tables/compare_table2.csv", untargeted, "c.yaml") is None
+    assert untargeted_set_message("results/tables/compare_mylabel.csv", {"mylab": "x.yaml"}, "c.yaml") is None

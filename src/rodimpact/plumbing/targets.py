@@ -32,10 +32,11 @@ If snakemake's internals change
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+import re
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 
-__all__ = ["MAX_LISTED", "command_line_targets", "plain_pattern", "unknown_target_message"]
+__all__ = ["MAX_LISTED", "command_line_targets", "plain_pattern", "unknown_target_message", "untargeted_set_message"]
 
 #: Most patterns a message lists (then "and N more").
 MAX_LISTED = 12
@@ -140,3 +141,32 @@ def unknown_target_message(
     names = ", ".join(sorted(rule_names)[:MAX_LISTED])
     more = f" and {len(rule_names) - MAX_LISTED} more" if len(rule_names) > MAX_LISTED else ""
     return f"no rule makes {target!r} and no rule has that name; rules: {names}{more} (files under results/)"
+
+
+def untargeted_set_message(target: str, untargeted: Mapping[str, str], config_file: str) -> str | None:
+    """One line for a target that names a case set the configuration does not build.
+
+    Parameters
+    ----------
+    target : str
+        The requested file (``results/tables/compare_mylab.csv``).
+    untargeted : mapping
+        Each case set that is not in ``targets.sets`` -> the case file that declares it.
+    config_file : str
+        The global configuration, where ``targets.sets`` is.
+
+    Returns
+    -------
+    str or None
+        ``'<target>' is of case set '<set>' (<case file>), which is not in targets.sets of
+        <config file>: add it there to build its tables and figures``; None when the target
+        names no such set (a name as a path part, or after an underscore, before a dot, an
+        underscore or a slash: ``compare_mylab.csv``, ``forces/mylab/``).
+    """
+    for name, source in sorted(untargeted.items(), key=lambda item: -len(item[0])):
+        if re.search(rf"(^|[/_]){re.escape(name)}([./_]|$)", target):
+            return (
+                f"{target!r} is of case set {name!r} ({source}), which is not in targets.sets of {config_file}: "
+                "add it there to build its tables and figures"
+            )
+    return None
