@@ -206,8 +206,11 @@ def table2(shipped_project, tmp_path_factory: pytest.TempPathFactory) -> dict:
 
 
 @pytest.fixture(scope="module")
-def table2_figure(table2, tmp_path_factory: pytest.TempPathFactory):
+def table2_figures(table2, tmp_path_factory: pytest.TempPathFactory):
+    """The headline figure and its companion, as make_fig_readings draws them."""
     kept = []
+    folder = tmp_path_factory.mktemp("fig")
+    out, companion = outputs(folder, "table2_contact_time"), outputs(folder, "table2_contact_time_readings")
     real = figures.save_figure
     figures.save_figure = lambda fig, **kwargs: (kept.append(fig), real(fig, **kwargs))
     try:
@@ -221,13 +224,44 @@ def table2_figure(table2, tmp_path_factory: pytest.TempPathFactory):
             sensors=SENSORS,
             sensor_band_files=table2["sensor_bands"],
             title="Table 2",
-            **(out := outputs(tmp_path_factory.mktemp("fig"), "table2_contact_time")),
+            **out,
+            **{f"companion_{k}": v for k, v in companion.items()},
         )
     finally:
         figures.save_figure = real
-    (fig,) = kept
-    fig.outputs = out
-    return fig
+    headline, readings = kept
+    headline.outputs, readings.outputs = out, companion
+    return headline, readings
+
+
+@pytest.fixture(scope="module")
+def table2_figure(table2_figures):
+    """The companion: every reading of the rod, the paper's numbers and the approximations."""
+    return table2_figures[1]
+
+
+@pytest.fixture(scope="module")
+def table2_headline(table2_figures):
+    """The headline: the text's rod, with the sensor as built."""
+    return table2_figures[0]
+
+
+def test_the_headline_is_the_texts_rod_with_the_sensor_and_the_models_without_it(table2_headline, table2) -> None:
+    """One panel, the text's rod; the measurements, the sensor as built (the continuum's points,
+    the calibrated SEM, the band) and the models without it; no approximation and no published
+    number; at most 8 legend entries."""
+    assert_journal_ready(table2_headline)
+    assert all(table2_headline.outputs[kind].stat().st_size > 10_000 for kind in ("pdf", "png"))
+    words = table2["descriptions"]
+    assert set(_panels(table2_headline)) == {words["r10_l30"]}
+    labels = _legend_labels(table2_headline)
+    assert len(labels) <= 8, labels
+    assert not any("approximation" in label or "the paper's" in label for label in labels), labels
+    assert any(label.startswith("measured") for label in labels)
+    assert any(METHOD_LABELS["fem_axi"] in label and "sensor as built" in label for label in labels)
+    assert any("calibrated by the continuum" in label for label in labels)
+    assert any("band" in label and "continuum" in label for label in labels)
+    assert f"{METHOD_LABELS['sem']}, no film" in labels  # the models without the sensor
 
 
 def _panels(fig) -> dict:
@@ -241,11 +275,9 @@ def test_table2_figure_is_journal_ready_and_titled_in_words(table2_figure, table
     words = table2["descriptions"]
     assert set(_panels(table2_figure)) == {words[v] for v in READINGS if not v.endswith("_film")}
     (text,) = [ax.get_title() for ax in table2_figure.axes if ax.get_title().startswith(words["r10_l30"])]
-    # the film and the sensor readings drawn on the panel they extend, each said once
-    # (wrapped to the panel's width: compared word by word)
-    assert " ".join(text.split()).endswith(
-        "without the sensor, and with the sensor as built (cyan) and the film alone (red)"
-    ), text
+    # the film reading drawn on the panel it extends, said once (the sensor as built on this rod is
+    # the headline's); wrapped to the panel's width: compared word by word
+    assert " ".join(text.split()).endswith("without the sensor, and with the film alone (red)"), text
 
 
 def test_table2_panels_form_a_grid_by_radius_and_length(table2_figure, table2) -> None:
@@ -300,17 +332,20 @@ def test_table2_measured_points_by_source_and_the_papers_points(table2_figure, t
     (own,) = [line for line in panel.lines if line.get_label() == f"measured ({short_source(OWN[1])})"]
     assert list(own.get_ydata()) == [50.0]
     configs = [r.config for r in map(read_summary, table2["runs"]) if r.config["variant"] == "r10_l30"]
-    for family in ("fem", "sem"):
-        (line,) = [line for line in panel.lines if line.get_label() == f"the paper's {family.upper()} (its Table 2)"]
+    paper = [line for line in panel.lines if line.get_label() == "the paper's FEM (up) and SEM (down), its Table 2"]
+    for family, marker in (("fem", "^"), ("sem", "v")):
+        (line,) = [line for line in paper if line.get_marker() == marker]
         expected = sorted(c["published"][family]["contact_time_us"] for c in configs)
         assert sorted(v for v in line.get_ydata() if np.isfinite(v)) == pytest.approx(expected)
 
 
-def test_every_prediction_drawn_names_its_model(table2_figure) -> None:
+@pytest.mark.parametrize("which", ["headline", "companion"])
+def test_every_prediction_drawn_names_its_model(table2_figures, which) -> None:
     """Each line and band of a model in the Table 2 figure says which model it is in the legend:
     a method and how it takes the contact (no film, the film as a thin layer, the sensor as built,
     calibrated by the continuum), or the paper's; the thin-layer law is labelled an approximation,
     and the sensor's band as the continuum's."""
+    table2_figure = table2_figures[0 if which == "headline" else 1]
     models = [*METHOD_LABELS.values(), "the paper's"]
     contact = ("no film", "thin layer", "sensor as built")
     labels = _legend_labels(table2_figure)
@@ -327,6 +362,9 @@ def test_every_prediction_drawn_names_its_model(table2_figure) -> None:
         if "thin layer" in label and "band" not in label and "sweep" not in label:
             assert "approximation" in label, label
     sensor = [label for label in predictions if "sensor as built" in label]
+    if which == "companion":
+        assert any("approximation" in label for label in predictions)  # the thin layer is here
+        return
     assert any(METHOD_LABELS["fem_axi"] in label for label in sensor)  # the continuum, the headline
     assert any("calibrated by the continuum" in label for label in sensor)
     assert any("band" in label and "continuum" in label for label in sensor)

@@ -355,7 +355,14 @@ def test_table2_figure_draws_the_film_on_its_rod(store: dict) -> None:
     visible = [ax for ax in fig.axes if ax.get_visible()]
     assert len(visible) == 1 and "µs" in visible[0].get_ylabel() and "g" in visible[0].get_xlabel()
     labels = [" ".join(t.get_text().split()) for t in fig.legends[0].get_texts()]  # unwrapped
-    assert any("film as a thin layer" in label and "3 GPa" in label for label in labels), labels
-    assert any("2 to 4 GPa" in label for label in labels) and any("band" in label for label in labels), labels
+    # the rows and the sweep at the nominal 3 GPa are one model, one entry; the bars and the shade
+    # of the moduli 2 to 4 GPa are its ranges, one entry
+    model = "SEM, implicit scheme, film as a thin layer (approximation, too soft)"
+    assert model in labels and any("band" in label and "approximation" in label for label in labels), labels
+    (line,) = [line for line in visible[0].lines if line.get_label() == model and line.get_linestyle() == "-"]
+    assert list(line.get_ydata()) == [36.0, 110.0]  # the sweep at the nominal modulus
+    (shade,) = visible[0].collections[:1]
+    (path,) = shade.get_paths()
+    assert path.vertices[:, 1].min() == pytest.approx(34.0) and path.vertices[:, 1].max() == pytest.approx(120.0)
     low, high = visible[0].get_ylim()
     assert 0 < low <= 30.0 and high >= 120.0  # the band of the lightest ball and the sweep are inside

@@ -105,7 +105,9 @@ def readings_targets():
             ext=["csv", "md", "tex", "provenance.json"],
         )
         targets += expand("results/tables/{set}_variants.{ext}", set=name, ext=["csv", "md", "provenance.json"])
-        targets += expand("results/figures/{set}_contact_time.{ext}", set=name, ext=["pdf", "png"])
+        targets += expand(
+            "results/figures/{set}_contact_time{part}.{ext}", set=name, part=["", "_readings"], ext=["pdf", "png"]
+        )
     targets += expand("results/studies/film_band_{variant}.h5", variant=FILM_VARIANTS)
     tables = [
         *(f"{name}_film" for name in FILM_TABLE_SETS),

@@ -69,6 +69,9 @@ def make_fig_readings(
     pdf: str | Path,
     png: str | Path,
     provenance: str | Path,
+    companion_pdf: str | Path,
+    companion_png: str | Path,
+    companion_provenance: str | Path,
     sweep_runs: Sequence[str | Path] = (),
     film_variants: Sequence[str] = (),
     band_files: Sequence[str | Path] = (),
@@ -77,8 +80,18 @@ def make_fig_readings(
     sensor_band_files: Sequence[str | Path] = (),
     title: str,
 ) -> None:
-    """Contact time against ball mass, one panel per rod, with the sweeps' curves; the readings
-    with the film (``film_variants``) on the panel of their rod, with their bands (``band_files``).
+    """Contact time against ball mass: the headline figure and its companion, one story each.
+
+    The headline (``pdf``, ``png``) is the rod the sensor was built on: one panel per rod with
+    a reading of the sensor as built (``sensors``), with the measurements, the sensor as built
+    (the continuum's points, the calibrated SEM's line and rows, the band over the sourced
+    ranges) and the models without the sensor; no approximation, and no published result. Where
+    the set has no such reading, every rod without its approximations. The companion
+    (``companion_pdf``, ``companion_png``) is every rod, one panel each, with the sweeps' curves,
+    the published results, and every approximation: the readings with the thin-layer film
+    (``film_variants``) on the panel of their rod, with their bands (``band_files``), and the
+    readings of the sensor as built that the headline does not show. The headline's rod is the
+    one whose sensor as built has its band (``sensor_band_files``), else every rod with one.
 
     ``descriptions`` (variant -> the reading in words, the case file's ``description``) title
     the panels; the measured points are grouped by their source, and the runs with more than
@@ -99,10 +112,8 @@ def make_fig_readings(
         [(v, b) for p in sensor_band_files for v, group in [read_band(p)] for b in group],
         {r.case_id: r.config for r in records},
     )
-    fig = plot_table2_contact_time(
-        frames,
-        sweep_results_frame(sweeps),
-        panels=table2_panels(readings, [*film_variants, *sensors]),
+    results = sweep_results_frame(sweeps)
+    common = dict(
         readings=readings,
         bands=bands,
         descriptions=descriptions,
@@ -112,17 +123,43 @@ def make_fig_readings(
         sensor_bands=sensor_bands,
         set_title=title,
     )
-    artifacts = [pdf, png]
-    save_figure(
-        fig,
-        pdf=pdf,
-        png=png,
-        provenance=provenance_record([*records, *sweeps], artifacts),
-        title=f"{title}: contact time against ball mass",
+    # the headline's rod: the one whose sensor as built has its band (else any with the sensor)
+    with_sensor = {
+        rod: [v for v in drawn if v in sensors] for rod, drawn in table2_panels(readings, list(sensors)).items()
+    }
+    banded = set() if sensor_bands.empty else set(sensor_bands["variant"])
+    headline = (
+        {rod: drawn for rod, drawn in with_sensor.items() if banded & set(drawn)}
+        or {rod: drawn for rod, drawn in with_sensor.items() if drawn}
+        or {rod: [] for rod in with_sensor}
     )
-    write_provenance_with_files(
-        provenance, [*records, *sweeps], artifacts, {"band": band_files, "sensor band": sensor_band_files}
+    shown = {v for drawn in headline.values() for v in drawn}
+    # the companion: every rod, with the approximations and the sensor readings the headline leaves
+    companion = table2_panels(readings, [*film_variants, *(v for v in sensors if v not in shown)])
+    figures = (
+        (
+            plot_table2_contact_time(frames, results, panels=headline, published=False, **common),
+            pdf,
+            png,
+            provenance,
+            f"{title}: contact time against ball mass, the sensor as built",
+        ),
+        (
+            plot_table2_contact_time(frames, results, panels=companion, **common),
+            companion_pdf,
+            companion_png,
+            companion_provenance,
+            f"{title}: contact time against ball mass, every reading and approximation",
+        ),
     )
+    for fig, fig_pdf, fig_png, fig_provenance, fig_title in figures:
+        artifacts = [fig_pdf, fig_png]
+        save_figure(
+            fig, pdf=fig_pdf, png=fig_png, provenance=provenance_record([*records, *sweeps], artifacts), title=fig_title
+        )
+        write_provenance_with_files(
+            fig_provenance, [*records, *sweeps], artifacts, {"band": band_files, "sensor band": sensor_band_files}
+        )
 
 
 def make_fig_film_force(

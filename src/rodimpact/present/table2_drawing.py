@@ -106,7 +106,8 @@ def _film_sweep(ax: matplotlib.axes.Axes, curves: pd.DataFrame, nominal_pa: floa
         "-",
         lw=1.2,
         color="tab:red",
-        label=f"{METHOD_LABELS.get(method, method)}, film as a thin layer: sweep at film modulus {nominal / 1e9:g} GPa",
+        # the film rows' model: one legend entry for the rows and the line (:func:`_film_overlay`)
+        label=f"{METHOD_LABELS.get(method, method)}, film as a thin layer (approximation, too soft)",
     )
     _rings(ax, line["mass_g"], line["contact_time_us"], _many_contacts(line))
     if len(moduli) > 1:
@@ -121,8 +122,13 @@ def _film_sweep(ax: matplotlib.axes.Axes, curves: pd.DataFrame, nominal_pa: floa
             color="tab:red",
             alpha=0.15,
             lw=0,
-            label=f"film modulus {moduli[0] / 1e9:g} to {moduli[-1] / 1e9:g} GPa",
+            label=FILM_RANGES_LABEL,
         )
+
+
+#: The film's ranges, as one legend entry: each row's band over the film constants' ranges (bars)
+#: and the sweep's band over the film's modulus (shade).
+FILM_RANGES_LABEL = "film as a thin layer: band over its constants' ranges (approximation; bars: all, shade: modulus)"
 
 
 def _film_overlay(
@@ -162,7 +168,7 @@ def _film_overlay(
                 ecolor="darkred",
                 elinewidth=1.2,
                 capsize=3,
-                label="film as a thin layer: band over the film constants' ranges (approximation)",
+                label=FILM_RANGES_LABEL,
             )
 
 
@@ -206,10 +212,17 @@ def _sensor_overlay(
                 lw=1.6,
                 color=SENSOR_COLOR,
                 zorder=5,
-                label=f"{label}: sweep over {len(sweep)} ball sizes",
+                label=f"{label} (line: {len(sweep)} ball sizes; dots: the rows)",
             )
+            # the rows on the line: one legend entry for both
             ax.plot(
-                frame["mass_g"], frame["sem_us"], "o", ms=4, color=SENSOR_COLOR, zorder=6, label=f"{label}: the rows"
+                frame["mass_g"],
+                frame["sem_us"],
+                "o",
+                ms=4,
+                color=SENSOR_COLOR,
+                zorder=6,
+                label=f"{label} (line: {len(sweep)} ball sizes; dots: the rows)",
             )
         else:
             ordered = frame.sort_values("mass_g")
@@ -237,9 +250,10 @@ def _rows(
     sources: Mapping[str, str],
     contacts: Mapping[tuple[str, str], int],
     set_title: str,
+    published: bool = True,
 ) -> None:
     """A reading's rows: measured (one marker per source), the paper's FEM and SEM where the
-    cases declare them, ours."""
+    cases declare them (and ``published``), ours."""
     mass = frame["mass_g"]
     measured = frame.assign(_source=[sources.get(c, "") for c in frame["case_id"]])
     measured = measured[np.isfinite(measured["measured_us"].to_numpy(float))]
@@ -253,12 +267,12 @@ def _rows(
             color="k",
             ms=6,
             ls="none",
-            zorder=4,
+            zorder=7,  # above every model: what was measured is never hidden
             label=f"measured ({short_source(source)})" if source else "measured",
         )
     for family, marker, colour in (("fem", "^", "tab:gray"), ("sem", "v", "tab:brown")):
         column = f"published_{family}_us"
-        if column in frame and frame[column].notna().any():
+        if published and column in frame and frame[column].notna().any():
             ax.plot(
                 mass,
                 frame[column],
@@ -266,7 +280,7 @@ def _rows(
                 mfc="none",
                 color=colour,
                 ls="none",
-                label=f"the paper's {family.upper()} (its {set_title})",
+                label=f"the paper's FEM (up) and SEM (down), its {set_title}",
             )
     for method in METHOD_ORDER:
         if f"{method}_us" in frame:

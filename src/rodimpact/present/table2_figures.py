@@ -101,6 +101,13 @@ def _limits(
     return (x0, x1), ((ys.min() / _TIME_MARGIN, ys.max() * _TIME_MARGIN) if len(ys) else (1.0, 1e3))
 
 
+def _look(handle: Any) -> tuple:
+    """What tells two legend handles of one label apart: their kind, marker and line style."""
+    marker = handle.get_marker() if hasattr(handle, "get_marker") else None
+    style = handle.get_linestyle() if hasattr(handle, "get_linestyle") else None
+    return (type(handle).__name__, repr(marker), repr(style))  # a collection's styles are a list
+
+
 def _log_ticks(ax: matplotlib.axes.Axes) -> None:
     """Numbers at 1, 2, 5 x 10^k (mass) and 1, 2, 3, 5 x 10^k (time), written plainly."""
     plain = matplotlib.ticker.FuncFormatter(lambda value, _: f"{value:g}")
@@ -124,6 +131,7 @@ def plot_table2_contact_time(
     sensors: Mapping[str, bool] | None = None,
     sensor_bands: pd.DataFrame | None = None,
     set_title: str,
+    published: bool = True,
 ) -> matplotlib.figure.Figure:
     """Contact time against ball mass per rod: measured, published and ours, with the film.
 
@@ -161,6 +169,8 @@ def plot_table2_contact_time(
         runs, or the calibrated SEM's line (its sweep in ``sweeps`` under the reading's variant,
         else a line through its rows) with the bands of ``sensor_bands``
         (:func:`rodimpact.present.sensor_tables.sensor_band_frame`).
+    published : bool
+        Whether the published results the cases declare are drawn (the paper's FEM and SEM).
     """
     panels = {v: () for v in frames} if panels is None else dict(panels)
     descriptions, sources, contacts = dict(descriptions or {}), dict(sources or {}), dict(contacts or {})
@@ -184,7 +194,7 @@ def plot_table2_contact_time(
             ax.set_visible(False)
             continue
         drawn.append(ax)
-        _rows(ax, frames[variant], sources, contacts, set_title)
+        _rows(ax, frames[variant], sources, contacts, set_title, published)
         _sweep_curves(ax, variant, sweeps)
         for film in panels[variant]:
             if film in sensors:
@@ -212,10 +222,15 @@ def plot_table2_contact_time(
         if row:
             row[0].set_ylabel("contact time (µs)")
             row[0].yaxis.set_tick_params(labelleft=True)
-    handles: dict[str, Any] = {}
+    # one entry per label; the artists of one label that look different (a model's rows and its
+    # line, a band's bars and its shade) drawn on top of each other in it
+    looks: dict[str, dict[tuple, Any]] = {}
     for ax in drawn:
         for handle, label in zip(*ax.get_legend_handles_labels()):
-            handles.setdefault(label, handle)
+            looks.setdefault(label, {}).setdefault(_look(handle), handle)
+    handles = {
+        label: tuple(kinds.values()) if len(kinds) > 1 else next(iter(kinds.values())) for label, kinds in looks.items()
+    }
     ncol = 2 if cols > 1 else 1
     # each legend column holds its share of the figure's width, less the marker: wrap to it
     width = int((_PANEL_WIDTH_IN * cols / ncol - 0.6) / (_CHAR_EM * _LEGEND_PT / 72.0))
