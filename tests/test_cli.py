@@ -73,9 +73,11 @@ def test_pyproject_declares_the_direct_dependencies_and_the_command() -> None:
     pinned = [
         line.split("#")[0].strip() for line in (ROOT / "requirements.in").read_text(encoding="utf-8").splitlines()
     ]
-    tools = {"pytest", "setuptools", "wheel", "setuptools-scm"}  # tests and the build backend, not runtime
+    checks = {"pytest", "ruff", "snakefmt"}  # make test's: the test extra
+    tools = {*checks, "setuptools", "wheel", "setuptools-scm"}  # and the build backend: not runtime
     runtime = [p for p in pinned if p and re.split(r"[=<>]", p)[0] not in tools]
     assert project["dependencies"] == runtime
+    assert project["optional-dependencies"]["test"] == [p for p in pinned if p and re.split(r"[=<>]", p)[0] in checks]
     assert project["scripts"]["rodimpact"] == "rodimpact.tools.cli:main"
 
 
