@@ -67,13 +67,19 @@ def plot_film_force(records: Sequence[RunRecord], rows: Sequence[str], title: st
             t_us = 1e6 * (np.asarray(rec.series["time"], float) - start_s)
             film = film_words(rec.config)
             spec = METHODS.get(rec.method)
+            # a method that takes the contact from a law takes the film as a thin layer: an approximation
+            words = (
+                f"{film}, thin-layer law: an approximation"
+                if film == "with film" and spec and spec.contact == "law"
+                else film
+            )
             ax.plot(
                 t_us,
                 rec.series["contact_force"],
                 FILM_STYLES[film == "with film"],
                 lw=1.3,
                 color=spec.color if spec else None,
-                label=f"{METHOD_LABELS.get(rec.method, rec.method)} ({film}): "
+                label=f"{METHOD_LABELS.get(rec.method, rec.method)} ({words}): "
                 f"{1e6 * float(rec.summary['contact_time_s']):.1f} µs",
             )
             ends = np.atleast_1d(rec.summary.get("contact_end_s", [rec.summary["contact_time_s"]]))
