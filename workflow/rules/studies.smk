@@ -47,9 +47,10 @@ rule work_precision_table:
 
 if WORK_PRECISION_SEPARATE:
 
-    rule work_precision_separate_table:
-        """The same table and orders for the sweep's separate cases (levels over a minute each),
-        with their methods only: outside rule all (make convergence-separate)."""
+    # The same table and orders for the sweep's separate cases (levels over a minute each), with
+    # their methods only: outside rule all (make convergence-separate). The rule above, its
+    # script, group and resources; its own levels, files and report entry.
+    use rule work_precision_table as work_precision_separate_table with:
         input:
             levels=level_dirs(WORK_PRECISION_SEPARATE["cases"], WORK_PRECISION_SEPARATE["methods"]),
         output:
@@ -66,13 +67,6 @@ if WORK_PRECISION_SEPARATE:
             provenance="results/tables/work_precision_separate.provenance.json",
         log:
             "logs/tables/work_precision_separate.log",
-        group:
-            GROUP_TABLES
-        conda:
-            "../envs/rodimpact.yaml"
-        threads: 1
-        resources:
-            **PRESENTATION_RESOURCES,
         params:
             code=SRC_PRESENT,
             runs=sweep_runs(WORK_PRECISION_SEPARATE["cases"], WORK_PRECISION_SEPARATE["methods"]),
@@ -80,8 +74,6 @@ if WORK_PRECISION_SEPARATE:
             fit_levels=WORK_PRECISION.get("fit_levels", 4),
             arrival_window=WORK_PRECISION.get("arrival_window"),
             per_case=WORK_PRECISION.get("per_case", {}),
-        script:
-            "../scripts/work_precision.py"
 
 
 rule work_precision_figure:

@@ -122,6 +122,19 @@ WORDS_FOR = {"method": "method_label", "quantity": "quantity_words"}
 #: their own columns), the contact law's id (the method's words name the law).
 SAID_BY = {"case_id": ("row",), "contact_law": ("method_label",)}
 
+#: The error quantities of the error-against-run-time study, in words (a table's ``quantity``).
+STUDY_QUANTITY_WORDS = {
+    "contact_time": "contact time",
+    "history_l2": "force history, L2 norm",
+    "history_max": "force history, max norm",
+    **{
+        f"max_{k}": f"{ordinal} force maximum"
+        for k, ordinal in enumerate(
+            ("first", "second", "third", "fourth", "fifth", "sixth", "seventh", "eighth", "ninth"), start=1
+        )
+    },
+}
+
 #: The fixed columns.
 COLUMNS: dict[str, Column] = {
     # what a row is
@@ -131,7 +144,7 @@ COLUMNS: dict[str, Column] = {
     "method": Column("Method", fmt=_TEXT, words={name: spec.label for name, spec in METHODS.items()}),
     "sweep": Column("Sweep", fmt=_TEXT),
     "point": Column("Point", fmt=_TEXT),
-    "quantity": Column("Quantity", fmt=_TEXT),
+    "quantity": Column("Quantity", fmt=_TEXT, words=STUDY_QUANTITY_WORDS),
     # the same in words (the CSV keeps both; a table for people shows these, under the same header)
     "method_label": Column("Method", fmt=_TEXT),
     "quantity_words": Column("Quantity", fmt=_TEXT),
