@@ -548,3 +548,13 @@ def test_the_checker_catches_a_legend_off_the_canvas_a_label_without_unit_and_id
     with pytest.raises(AssertionError):
         assert_journal_ready(fig)
     plt.close(fig)
+
+
+@pytest.mark.parametrize("which", ["headline", "companion"])
+def test_no_panel_of_the_table2_figures_has_more_than_8_legend_entries(table2_figures, which) -> None:
+    """What one panel draws, counted as the legend shows it (one entry per label)."""
+    figure = table2_figures[0 if which == "headline" else 1]
+    for title, ax in _panels(figure).items():
+        labels = {a.get_label() for a in [*ax.lines, *ax.containers, *ax.collections]}
+        labels = {label for label in labels if not label.startswith("_")}
+        assert len(labels) <= 8, (title, sorted(labels))

@@ -89,9 +89,9 @@ def make_fig_readings(
     the set has no such reading, every rod without its approximations. The companion
     (``companion_pdf``, ``companion_png``) is every rod, one panel each, with the sweeps' curves,
     the published results, and every approximation: the readings with the thin-layer film
-    (``film_variants``) on the panel of their rod, with their bands (``band_files``), and the
-    readings of the sensor as built that the headline does not show. The headline's rod is the
-    one whose sensor as built has its band (``sensor_band_files``), else every rod with one.
+    (``film_variants``) on the panel of their rod, with their bands (``band_files``). The
+    headline's rod is the one whose sensor as built has its band (``sensor_band_files``), else
+    every rod with one.
 
     ``descriptions`` (variant -> the reading in words, the case file's ``description``) title
     the panels; the measured points are grouped by their source, and the runs with more than
@@ -133,9 +133,9 @@ def make_fig_readings(
         or {rod: drawn for rod, drawn in with_sensor.items() if drawn}
         or {rod: [] for rod in with_sensor}
     )
-    shown = {v for drawn in headline.values() for v in drawn}
-    # the companion: every rod, with the approximations and the sensor readings the headline leaves
-    companion = table2_panels(readings, [*film_variants, *(v for v in sensors if v not in shown)])
+    # the companion: every rod, with the approximations (the sensor as built on another rod is in
+    # the set's comparison figure, compare_{set})
+    companion = table2_panels(readings, film_variants)
     figures = (
         (
             plot_table2_contact_time(frames, results, panels=headline, published=False, **common),
