@@ -2,7 +2,7 @@
 configuration check that loads no solver.
 
 The layers, lowest first (a package may import its own modules and the layers below it):
-settings < contact < model < analysis < solvers < (config, storage) < present < jobs < plumbing < tools.
+(settings, inputs) < contact < model < analysis < solvers < (config, storage) < present < jobs < plumbing < tools.
 config and storage share a rank: siblings, neither imports the other. Every import counts,
 inside functions too, read from the source with :mod:`ast`.
 """
@@ -21,7 +21,7 @@ PACKAGE = SRC / "rodimpact"
 LAYERS: tuple[frozenset[str], ...] = tuple(
     frozenset(rank)
     for rank in (
-        {"settings"},
+        {"settings", "inputs"},
         {"contact"},
         {"model"},
         {"analysis"},

@@ -43,7 +43,9 @@ def test_units_from_the_header_or_declared_and_the_offset(tmp_path: Path) -> Non
     [
         ("missing.csv", None, {}, "file", "no such file"),
         ("noheader.csv", "0,1\n1,2\n", {}, "file", "header"),
-        ("unit.csv", "time_fortnight,force_N\n", {}, "time_unit", "unknown unit 'fortnight'"),
+        # a unit the header gives is the header's fault: its file, line and column
+        ("unit.csv", "time_fortnight,force_N\n", {}, "file", "unit.csv line 1, column 1: unknown unit 'fortnight'"),
+        ("lbf.csv", "time_s,force_lbf\n", {}, "file", "line 1, column 2: unknown unit 'lbf'"),
         ("nounit.csv", "time,force_N\n", {}, "time_unit", "names no unit"),
         ("clash.csv", "time_s,force_N\n", {"force_unit": "kN"}, "force_unit", "contradicts"),
         (
@@ -117,3 +119,54 @@ def test_a_longer_contact_is_seen_in_the_norms_and_the_contact_time() -> None:
     diff = _pulse(fine) - _pulse(fine + shift, 55e-6)
     expected = math.sqrt(np.trapezoid(diff**2, fine) / np.trapezoid(_pulse(fine, 55e-6) ** 2, fine))
     assert result.l2_error == pytest.approx(expected, rel=1e-3)
+
+
+def test_a_fifo_a_directory_and_a_dangling_link_are_refused_without_a_read(tmp_path: Path) -> None:
+    """A FIFO would block a read for ever: it is refused by what it is, at once."""
+    import os
+
+    fifo = tmp_path / "pipe.csv"
+    os.mkfifo(fifo)
+    for path, words in (
+        (fifo, "is a FIFO (named pipe), not a regular file"),
+        (tmp_path, "is a directory, not a regular file"),
+    ):
+        with pytest.raises(HistoryError) as caught:
+            read_force_history(path, {})
+        assert caught.value.field == "file" and words in caught.value.reason, caught.value.reason
+    dangling = tmp_path / "gone.csv"
+    dangling.symlink_to(tmp_path / "nowhere.csv")
+    with pytest.raises(HistoryError) as caught:
+        read_force_history(dangling, {})
+    assert "no such file (a link to nowhere)" in caught.value.reason
+
+
+def test_a_bad_byte_and_a_huge_cell_are_named_by_line_and_column(tmp_path: Path) -> None:
+    latin = tmp_path / "latin.csv"
+    latin.write_bytes(b"time_s,force_N\n0,1\n1,2\n2,caf\xe9\n")
+    with pytest.raises(HistoryError) as caught:
+        read_force_history(latin, {})
+    assert caught.value.reason == "latin.csv: is not utf-8: byte 0xe9 at line 4, column 6"
+    huge = _write(tmp_path / "huge.csv", "time_s,force_N\n0," + "1" * 200_000 + "\n")
+    with pytest.raises(HistoryError) as caught:
+        read_force_history(huge, {})
+    assert caught.value.reason == (
+        "huge.csv line 2: a line of 200002 characters, more than the 256 a row of two numbers takes"
+    )
+    wide = _write(tmp_path / "wide.csv", "time_s,force_N\n0," + "1" * 100 + "\n")
+    with pytest.raises(HistoryError) as caught:
+        read_force_history(wide, {})
+    assert caught.value.reason == (
+        "wide.csv line 2, column 2: a cell of 100 characters, more than the 64 a number or a header takes"
+    )
+    assert len(str(caught.value)) < 200
+
+
+def test_a_file_over_the_size_limit_is_refused_by_its_size(tmp_path: Path, monkeypatch) -> None:
+    import rodimpact.analysis.measured as measured
+
+    monkeypatch.setattr(measured, "MAX_HISTORY_BYTES", 100)
+    big = _write(tmp_path / "big.csv", "time_s,force_N\n" + "".join(f"{t},1\n" for t in range(40)))
+    with pytest.raises(HistoryError) as caught:
+        read_force_history(big, {})
+    assert caught.value.field == "file" and "more than the 100 allowed" in caught.value.reason

@@ -59,6 +59,33 @@ def test_the_project_key_follows_entries_that_are_no_readable_file(root: Path, m
     assert project_key(CONFIG, root) != key
 
 
+def test_a_fifo_in_the_configuration_is_keyed_without_a_read(root: Path) -> None:
+    """A FIFO named like a case file (or a history) would block a read for ever: the key marks
+    what it is and reads nothing (the test would hang otherwise: an alarm stops it)."""
+    import os
+    import signal
+
+    key = project_key(CONFIG, root)
+    os.mkfifo(root / "config" / "cases" / "pipe.yaml")
+    signal.alarm(20)
+    try:
+        assert project_key(CONFIG, root) != key
+    finally:
+        signal.alarm(0)
+
+
+def test_a_link_that_now_leads_elsewhere_with_the_same_bytes_changes_the_key(root: Path, tmp_path: Path) -> None:
+    """A history replaced by a link to a copy outside the case file's directory: the same bytes,
+    but the loader must check where it leads again, so the key changes."""
+    history = next((root / "config" / "cases").rglob("*.csv"))
+    key = project_key(CONFIG, root)
+    outside = tmp_path / "outside.csv"
+    outside.write_bytes(history.read_bytes())
+    history.unlink()
+    history.symlink_to(outside)
+    assert project_key(CONFIG, root) != key
+
+
 def test_a_project_is_loaded_once_and_kept(root: Path, tmp_path: Path) -> None:
     path = tmp_path / "cache" / "plan.pickle"
     loads = []

@@ -6,6 +6,7 @@ Each test works in a fresh, shrunk copy of the project (``helpers.copies.copy_pr
 
 from __future__ import annotations
 
+import shutil
 from pathlib import Path
 
 import pytest
@@ -104,3 +105,40 @@ def test_failing_solver_leaves_no_file(tmp_path: Path) -> None:
     leftovers = [p.name for p in run_dir.iterdir()] if run_dir.exists() else []
     assert not [name for name in leftovers if ".tmp" in name], leftovers
     assert leftovers == [], leftovers
+
+
+# --------------------------------------------------------------------------------------------
+# files a case points to, read safely
+# --------------------------------------------------------------------------------------------
+
+
+def test_a_fifo_for_a_case_file_is_one_line_not_a_hang(tmp_path: Path) -> None:
+    """A FIFO named like a case file blocked planning for ever (a read waits for a writer): it is
+    refused in one line naming the file and what it is."""
+    import os
+
+    project = copy_project(tmp_path / "project")
+    os.mkfifo(project / "config/cases/pipe.yaml")
+    run = snakemake(project, "-n", timeout=120)
+    assert run.returncode != 0, run.describe()
+    lines = [line for line in run.output.splitlines() if line.strip()]
+    assert lines[-1] == (
+        "rodimpact: invalid configuration: config/cases/pipe.yaml: is a FIFO (named pipe), not a regular file"
+    ), run.output
+
+
+def test_a_history_linked_outside_is_refused_with_and_without_the_plan_cache(tmp_path: Path) -> None:
+    """A history replaced by a link to a copy of its bytes outside the case file's directory:
+    refused in one line whether or not a plan cache of the same bytes exists."""
+    project = copy_project(tmp_path / "project")
+    assert snakemake(project, "-n", timeout=120).returncode == 0  # the cache of the shipped files
+    history = project / "config/cases/example/ball_10mm.synthetic.csv"
+    outside = tmp_path / "elsewhere.csv"
+    outside.write_bytes(history.read_bytes())
+    history.unlink()
+    history.symlink_to(outside)
+    for _ in ("with the cache", "without it"):
+        run = snakemake(project, "-n", timeout=120)
+        assert run.returncode != 0, run.describe()
+        assert "lies outside the directory of its case file" in run.output, run.output
+        shutil.rmtree(project / ".snakemake" / "rodimpact", ignore_errors=True)

@@ -6,7 +6,9 @@ collision of an elastic rod with a rigid impactor", from configuration alone.
 The layers, lowest first; a package imports its own modules and the layers below it, never
 one above (``tests/test_architecture.py`` checks every import, and that this list is its own):
 
-1. :mod:`rodimpact.settings`: options declared once, as dataclass fields with doc, unit, bounds;
+1. :mod:`rodimpact.settings` and :mod:`rodimpact.inputs` (siblings): options declared once, as
+   dataclass fields with doc, unit, bounds; a user's files read safely (regular files only,
+   bounded, decoded);
 2. :mod:`rodimpact.contact`: the contact laws, one module each behind one interface;
 3. :mod:`rodimpact.model`: the impact problem, the rod's and the impactor's responses;
 4. :mod:`rodimpact.analysis`: signals, sweeps, convergence and comparisons of results;

@@ -13,7 +13,8 @@ file, read and checked), :mod:`.history_compare` (a computed force against a mea
 alignment, error norms, contact times read at a threshold) and :mod:`.records` (what the analyses
 read of a stored run).
 
-What it may import: :mod:`rodimpact.contact`, :mod:`rodimpact.model`, numpy, scipy,
-pandas. Stored runs are read by duck typing (any object with ``config``, ``summary``,
-``series``), so nothing here imports the storage or the solvers.
+What it may import: :mod:`rodimpact.contact`, :mod:`rodimpact.model`, :mod:`rodimpact.inputs`
+(a measured record read safely), numpy, scipy, pandas. Stored runs are read by duck typing
+(any object with ``config``, ``summary``, ``series``), so nothing here imports the storage or
+the solvers.
 """

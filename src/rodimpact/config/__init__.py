@@ -13,6 +13,7 @@ against its case) and :mod:`.plausible` (each run's scales and cost before any j
 What it may import: :mod:`rodimpact.solvers.registry`, :mod:`rodimpact.solvers.field` and the
 options classes (the methods and their settings, never a solver), :mod:`rodimpact.analysis`
 (sweeps and study cases), :mod:`rodimpact.model`, :mod:`rodimpact.contact.laws` (the laws'
-names), jsonschema and PyYAML. Not :mod:`rodimpact.storage` (a sibling at the same layer), not
-h5py, scikit-fem or matplotlib: the configuration check runs when snakemake plans, and in every job.
+names), :mod:`rodimpact.inputs` (every file read safely), jsonschema and PyYAML. Not
+:mod:`rodimpact.storage` (a sibling at the same layer), not h5py, scikit-fem or matplotlib: the
+configuration check runs when snakemake plans, and in every job.
 """

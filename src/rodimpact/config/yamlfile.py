@@ -16,7 +16,9 @@ from typing import Any
 
 import yaml
 
-__all__ = ["MAX_EXPANDED_NODES", "YamlError", "read_yaml"]
+from rodimpact.inputs.files import InputFileError, read_text
+
+__all__ = ["MAX_EXPANDED_NODES", "MAX_YAML_BYTES", "YamlError", "read_yaml"]
 
 
 class YamlError(ValueError):
@@ -31,6 +33,8 @@ _MERGE_TAG = "tag:yaml.org,2002:merge"
 #: Most nodes a document may expand to, its aliases followed (a case file has a few thousand):
 #: a document of a few nested aliases (the "billion laughs") is refused before it is built.
 MAX_EXPANDED_NODES = 200_000
+#: The largest YAML file read, bytes (a case file of a thousand cases is under 1 MB).
+MAX_YAML_BYTES = 16 * 1024 * 1024
 
 
 class _Loader(getattr(yaml, "CSafeLoader", yaml.SafeLoader)):  # libyaml's parser when available
@@ -67,7 +71,12 @@ def read_yaml(path: Path) -> Any:
     YamlError
         If the text is not valid YAML or a mapping repeats a key.
     """
-    text = Path(path).read_text(encoding="utf-8")
+    try:
+        text = read_text(path, limit=MAX_YAML_BYTES)
+    except InputFileError as error:
+        if error.kind == "missing":
+            raise FileNotFoundError(error.reason) from None
+        raise YamlError(error.reason, Path(path)) from None
     try:
         loader = _Loader(text)
         try:

@@ -9,6 +9,6 @@ snakemake runs), :mod:`.locks` (snakemake's lock left by a killed run, released)
 and :mod:`.sources` (the package files a rule runs, from the static import graph, and their digest).
 
 What it may import: everything below it (:mod:`rodimpact.jobs` and the layers under it; it uses
-only :mod:`rodimpact.storage.atomic`), and snakemake's command-line parser, inside
+only :mod:`rodimpact.storage.atomic` and :mod:`rodimpact.inputs.files`), and snakemake's command-line parser, inside
 :func:`~rodimpact.plumbing.targets.command_line_targets` only. Not :mod:`rodimpact.tools`.
 """

@@ -47,12 +47,14 @@ import fcntl
 import hashlib
 import json
 import logging
+import os
 import pickle
 import sys
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any, TypeVar
 
+from rodimpact.inputs.files import InputFileError, read_bytes, regular_file
 from rodimpact.storage.atomic import atomic_output
 
 __all__ = ["CACHE_FILE", "PlanCache", "code_fingerprint", "project_key"]
@@ -79,15 +81,18 @@ def _digest(*parts: bytes) -> str:
 
 
 def _entry_bytes(path: Path) -> bytes:
-    """What the loader would find at ``path``: a file's contents, else a marker of what it is
-    (a directory, a dangling link, an unreadable file), so that an entry that is no readable
-    file (``config/cases/x.yaml/``, a directory) changes the key as a file would."""
-    if path.is_dir():
-        return b"directory"
+    """What the loader would find at ``path``, read as it reads (:mod:`rodimpact.inputs.files`):
+    a regular file's contents, and where a link leads; else a marker of what it is (a
+    directory, a FIFO, a dangling link, a file too large), never a read of it. An entry that is
+    no readable file changes the key as a file would, and so does a link that now leads
+    elsewhere with the same bytes: the loader then checks where it leads."""
     try:
-        return b"file:" + path.read_bytes()
-    except OSError as error:  # a dangling link, no permission, a special file
-        return f"unreadable:{type(error).__name__}".encode()
+        data = read_bytes(path)
+        resolved = regular_file(path)
+    except InputFileError as error:
+        return f"{error.kind}:{error.reason}".encode()
+    target = b"" if str(resolved) == os.path.abspath(path) else b"link:" + str(resolved).encode()
+    return target + b"file:" + data
 
 
 def _tree_bytes(path: Path, pattern: str = "*") -> list[bytes]:
