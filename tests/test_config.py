@@ -924,6 +924,23 @@ def test_yml_case_file_is_refused_by_name(project_dir: Path) -> None:
     )
 
 
+def test_a_case_file_in_a_subdirectory_is_refused_by_name(project_dir: Path) -> None:
+    """config/cases/sub/x.yaml (with a negative mass, say) was ignored without a word."""
+    (project_dir / "config/cases/sub").mkdir()
+    shutil.copy(project_dir / MODEL, project_dir / "config/cases/sub/x.yaml")
+    assert error_of(project_dir) == (
+        "config/cases/sub/x.yaml: a case file in a subdirectory is not read; move it to config/cases/ "
+        "(only config/cases/*.yaml are case files)"
+    )
+
+
+def test_a_case_file_that_is_a_fifo_is_refused_without_a_read(project_dir: Path) -> None:
+    import os
+
+    os.mkfifo(project_dir / "config/cases/pipe.yaml")
+    assert error_of(project_dir) == "config/cases/pipe.yaml: is a FIFO (named pipe), not a regular file"
+
+
 def test_sweep_that_runs_backwards_is_refused(project_dir: Path) -> None:
     path, change = _set(
         TABLE2, "cases", 6, "sweep", "parameters", "ball_diameter_m", {"start": 2e-2, "stop": 1e-3, "num": 5}

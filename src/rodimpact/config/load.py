@@ -227,6 +227,15 @@ def _case_files(config: dict, root: Path, config_source: _File) -> list[_File]:
             raise _File.under(other, root).error(
                 f"a case file ends in .yaml; rename it {other.stem}.yaml (only *.yaml files are read)"
             )
+    # a case file below the directory is not read: refused by name, never ignored (a directory
+    # beside the case files holds what they point to, such as force histories)
+    for nested in sorted(directory.path.rglob("*.y*ml")):
+        inner = nested.relative_to(directory.path)
+        if len(inner.parts) > 1 and not any(part.startswith(".") for part in inner.parts):
+            raise _File.under(nested, root).error(
+                f"a case file in a subdirectory is not read; move it to {directory.label}/ (only "
+                f"{directory.label}/*.yaml are case files)"
+            )
     paths = sorted(p for p in directory.path.glob("*.yaml") if not p.name.startswith("."))
     if not paths:
         raise config_source.error(f"no *.yaml case files in {directory.label}", field="cases_dir")
