@@ -994,6 +994,19 @@ def test_alias_bomb_is_refused_before_it_is_built(project_dir: Path) -> None:
         ),
         (lambda h, f: h.update(file="../../outside.csv"), "file", "outside the directory of its case file"),
         (lambda h, f: f.unlink(), "file", "no such file"),
+        # every force negated: refused, with how to declare it
+        (
+            lambda h, f: f.write_text(
+                "\n".join(
+                    line if i == 0 else f"{line.split(',')[0]},{-float(line.split(',')[1])!r}"
+                    for i, line in enumerate(f.read_text().strip().splitlines())
+                )
+                + "\n"
+            ),
+            "file",
+            "the force is mostly negative",
+        ),
+        (lambda h, f: h.update(time_unit="s") or f.write_text("time_min,force_N\n" + "0,1\n" * 9), "file", "column 1"),
     ],
 )
 def test_a_bad_force_history_is_one_line_before_any_job(project_dir: Path, change, field, words) -> None:
@@ -1011,3 +1024,37 @@ def test_a_bad_force_history_is_one_line_before_any_job(project_dir: Path, chang
         f"config/cases/worked_example.yaml: case 'ball_10mm': field 'measured.force_history.{field}': "
     ), message
     assert words in message and "\n" not in message, message
+
+
+def test_a_negated_history_is_read_with_sign_minus_one(project_dir: Path) -> None:
+    """The history of the worked example negated, declared ``sign: -1``: read as before."""
+    case_file = project_dir / "config" / "cases" / "worked_example.yaml"
+    document = yaml.safe_load(case_file.read_text())
+    history = document["cases"][0]["measured"]["force_history"]
+    path = case_file.parent / history["file"]
+    lines = path.read_text().strip().splitlines()
+    path.write_text(
+        "\n".join([lines[0], *(f"{a},{-float(b)!r}" for a, b in (line.split(",") for line in lines[1:]))]) + "\n"
+    )
+    history["sign"] = -1
+    case_file.write_text(yaml.safe_dump(document, sort_keys=False))
+    assert load(project_dir).cases["ball_10mm"]["measured"]["force_history"]["sign"] == -1
+
+
+@pytest.mark.parametrize(
+    "rebound, words",
+    [
+        (5.0, "a rebound of 5 m/s is faster than the impact at 1 m/s"),
+        (-0.816, "must be >= 0"),
+    ],
+)
+def test_a_rebound_faster_than_the_impact_or_negative_is_refused(project_dir: Path, rebound, words) -> None:
+    case_file = project_dir / "config" / "cases" / "worked_example.yaml"
+    document = yaml.safe_load(case_file.read_text())
+    document["cases"][0]["measured"]["rebound_velocity_m_s"] = rebound
+    case_file.write_text(yaml.safe_dump(document, sort_keys=False))
+    message = error_of(project_dir)
+    assert message.startswith(
+        "config/cases/worked_example.yaml: case 'ball_10mm': field 'measured.rebound_velocity_m_s': "
+    ), message
+    assert words in message, message

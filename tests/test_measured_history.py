@@ -64,6 +64,14 @@ def test_units_from_the_header_or_declared_and_the_offset(tmp_path: Path) -> Non
         ),
         ("text.csv", "time_s,force_N\n0,abc\n", {}, "file", "line 2: not a number"),
         ("short.csv", "time_s,force_N\n0,1\n1,2\n", {}, "file", "fewer than 8"),
+        ("zero.csv", "time_s,force_N\n" + "".join(f"{t},0\n" for t in range(9)), {}, "file", "zero throughout"),
+        (
+            "negated.csv",
+            "time_s,force_N\n" + "".join(f"{t},{-f}\n" for t, f in enumerate([0, 1, 5, 9, 5, 1, 0, 0.2, 0])),
+            {},
+            "file",
+            "declare sign: -1",
+        ),
     ],
 )
 def test_each_bad_file_is_one_error_naming_its_key(tmp_path: Path, name, text, spec, field, words) -> None:
@@ -78,7 +86,7 @@ def test_a_record_over_a_million_rows_needs_a_declared_thinning(tmp_path: Path) 
     path = tmp_path / "long.csv"
     with open(path, "w", encoding="utf-8") as handle:
         handle.write("time_s,force_N\n")
-        handle.write("".join(f"{k},0\n" for k in range(MAX_ROWS + 1)))
+        handle.write("".join(f"{k},1\n" for k in range(MAX_ROWS + 1)))
     with pytest.raises(HistoryError, match="declare every: 2"):
         read_force_history(path, {})
     assert len(read_force_history(path, {"every": 2}).time_s) == math.ceil((MAX_ROWS + 1) / 2)

@@ -216,7 +216,18 @@ def read_force_history(path: str | Path, spec: Mapping[str, Any]) -> MeasuredHis
             f"{path.name} line {2 + (bad + 1) * every}: the time must increase, "
             f"{time[bad + 1]:.6g} s follows {time[bad]:.6g} s",
         )
-    return MeasuredHistory(time_s=time, force_N=data[:, 1] * force_scale, path=path, note=str(spec.get("note", "")))
+    force = data[:, 1] * force_scale * float(spec.get("sign") or 1)
+    high, low = float(force.max()), float(force.min())
+    if high <= 0.0 and low >= 0.0:
+        raise HistoryError("file", f"{path.name}: the force is zero throughout: no contact was recorded")
+    if high <= 0.0 or -low > high:
+        flip = "declare sign: 1 (or remove sign: -1)" if spec.get("sign") == -1 else "declare sign: -1"
+        raise HistoryError(
+            "file",
+            f"{path.name}: the force is mostly negative (from {low:.6g} N to {high:.6g} N): a contact force "
+            f"pushes; if the sensor reads compression as negative, {flip} in the force_history block",
+        )
+    return MeasuredHistory(time_s=time, force_N=force, path=path, note=str(spec.get("note", "")))
 
 
 def _short_cells(row: list[str], line: int, path: Path) -> None:

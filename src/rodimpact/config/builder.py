@@ -24,7 +24,7 @@ from rodimpact.config.checks import (
     check_stability,
     check_work_precision,
 )
-from rodimpact.config.measured import resolve_measured
+from rodimpact.config.measured import check_measured_physics, resolve_measured
 from rodimpact.config.plausible import Budget, check_plausible
 from rodimpact.config.project import ConfigError, Project, _File
 from rodimpact.config.schema import Schemas, deep_merge, format_path, with_floats
@@ -160,6 +160,7 @@ class ProjectBuilder:
             ),
             "published": with_floats(case["published"]),
         }
+        check_measured_physics(resolved, error)
         check_law(resolved if sweep is None else {**resolved, "sweep": sweep}, error)
         if sweep is not None:
             self.sweeps[case_id] = self._sweep(resolved, sweep, source)

@@ -16,7 +16,7 @@ from typing import Any
 from rodimpact.analysis.measured import HistoryError, read_force_history
 from rodimpact.config.project import ConfigError
 
-__all__ = ["resolve_measured"]
+__all__ = ["check_measured_physics", "resolve_measured"]
 
 
 def resolve_measured(
@@ -71,3 +71,23 @@ def resolve_measured(
         if checked is not None:
             checked[key] = label
     return {**measured, "force_history": {**history, "path": label}}
+
+
+def check_measured_physics(case: Mapping[str, Any], error: Callable[..., ConfigError]) -> None:
+    """What a measurement cannot be, given the case it measures: a rebound faster than the
+    impact (an impactor cannot leave an elastic rod with more energy than it brought).
+
+    Raises
+    ------
+    ConfigError
+        Naming the field (``measured.rebound_velocity_m_s``) and the impact velocity.
+    """
+    measured = case.get("measured") or {}
+    rebound = measured.get("rebound_velocity_m_s")
+    impact = float(case["impactor"]["velocity_m_s"])
+    if rebound is not None and float(rebound) > impact:
+        raise error(
+            f"a rebound of {float(rebound):g} m/s is faster than the impact at {impact:g} m/s: no impact on an "
+            "elastic rod returns more energy than it brought (a restitution above 1); check the value and its unit",
+            field="measured.rebound_velocity_m_s",
+        )
