@@ -1058,3 +1058,13 @@ def test_a_rebound_faster_than_the_impact_or_negative_is_refused(project_dir: Pa
         "config/cases/worked_example.yaml: case 'ball_10mm': field 'measured.rebound_velocity_m_s': "
     ), message
     assert words in message, message
+
+
+def test_a_long_bad_value_is_quoted_in_part_with_its_length(project_dir: Path) -> None:
+    """A case file that is one long string (a link to /etc/passwd, say): one line, at most about
+    100 characters of the value, and its length."""
+    text = "root:x:0:0:root:/root:/bin/bash " * 45
+    (project_dir / "config/cases/long.yaml").write_text(text + "\n")
+    message = error_of(project_dir)
+    assert message.startswith("config/cases/long.yaml: must be a mapping, got string 'root:x:0:0"), message
+    assert f"... ({len(repr(text.strip()))} characters)" in message and len(message) < 200, message

@@ -22,6 +22,7 @@ from referencing import Registry
 from referencing.jsonschema import DRAFT202012
 
 from rodimpact.config.yamlfile import YamlError, read_yaml
+from rodimpact.inputs.files import quoted
 
 __all__ = [
     "Problem",
@@ -136,7 +137,7 @@ def _describe(value: Any) -> str:
         return "a mapping"
     if isinstance(value, list):
         return "a list"
-    return f"{_PY_WORDS.get(type(value), type(value).__name__)} {value!r}"
+    return f"{_PY_WORDS.get(type(value), type(value).__name__)} {quoted(value)}"
 
 
 def _to_problem(error: ValidationError) -> Problem:
@@ -162,19 +163,23 @@ def _message(error: ValidationError, keyword: str | None, expected: Any, value: 
         kinds = [expected] if isinstance(expected, str) else list(expected)
         return f"must be {' or '.join(_TYPE_WORDS[k] for k in kinds)}, got {_describe(value)}"
     if keyword in _BOUNDS:
-        return f"must be {_BOUNDS[keyword]} {expected!r}, got {value!r}"
+        return f"must be {_BOUNDS[keyword]} {expected!r}, got {quoted(value)}"
     if keyword == "enum":
         title = error.schema.get("title")
         if title:
-            return f"unknown {title} {value!r}; known: {', '.join(map(str, expected))}"
-        return f"must be one of {', '.join(map(repr, expected))}; got {value!r}"
+            return f"unknown {title} {quoted(value)}; known: {', '.join(map(str, expected))}"
+        return f"must be one of {', '.join(map(repr, expected))}; got {quoted(value)}"
     if keyword in ("minItems", "minProperties", "minLength") and expected == 1:
         return "must not be empty"
     if keyword == "uniqueItems":
         return f"items must be unique; {_first_duplicate(value)!r} appears more than once"
     if keyword == "pattern":
         rule = error.schema.get("title")
-        return f"must be {rule}, got {value!r}" if rule else f"must match the pattern {expected!r}, got {value!r}"
+        return (
+            f"must be {rule}, got {quoted(value)}"
+            if rule
+            else f"must match the pattern {expected!r}, got {quoted(value)}"
+        )
     if keyword == "maxLength":
         return f"must be at most {expected} characters long, got {len(value)}"
     if keyword in (None, "not"):  # a `false` schema or `not: {}`: the key is forbidden here
