@@ -1068,3 +1068,17 @@ def test_a_long_bad_value_is_quoted_in_part_with_its_length(project_dir: Path) -
     message = error_of(project_dir)
     assert message.startswith("config/cases/long.yaml: must be a mapping, got string 'root:x:0:0"), message
     assert f"... ({len(repr(text.strip()))} characters)" in message and len(message) < 200, message
+
+
+@pytest.mark.parametrize("stiffness", [1e300, 1e-300])
+def test_an_absurd_law_setting_is_blamed_on_that_setting(project_dir: Path, stiffness: float) -> None:
+    """A spring of 1e300 (or 1e-300) N/m makes the impact's scales absurd: the spring's stiffness
+    is at fault, not the impactor's mass."""
+    edit(
+        project_dir / "config/cases/smooth.yaml",
+        lambda document: document["cases"][0]["contact"].__setitem__("stiffness_n_per_m", stiffness),
+    )
+    message = error_of(project_dir)
+    assert message.startswith("config/cases/smooth.yaml: case 'linear_spring': field 'contact.stiffness_n_per_m': "), (
+        message
+    )

@@ -28,6 +28,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from rodimpact.contact.laws import DEFAULT_LAW
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.options import OptionError
 from rodimpact.solvers.registry import METHODS
@@ -249,7 +250,11 @@ def culprit(
 ) -> tuple[str, bool] | None:
     """The input whose return to its reference lowers ``badness(case)`` the most: (field, is
     a setting); ties go to the first in the order of :data:`REFERENCE`, then the settings.
-    None when no single input lowers it."""
+    A contact law other than the default whose replacement by the default clears the finding
+    is the culprit first (:func:`_law_culprit`). None when no single input lowers it."""
+    law = _law_culprit(case, badness)
+    if law is not None:
+        return law
     best, found = badness(case), None
     for field, reference, setting in _candidates(case, method):
         try:
@@ -259,6 +264,22 @@ def culprit(
         if value < best:
             best, found = value, (field, setting)
     return found
+
+
+def _law_culprit(case: Mapping[str, Any], badness: Callable[[Mapping[str, Any]], float]) -> tuple[str, bool] | None:
+    """The case's contact law, when the default law on the same bodies clears the finding: its
+    one numeric setting (``contact.stiffness_n_per_m`` of a spring), else ``contact.law``."""
+    contact = case.get("contact") or {}
+    if contact.get("law") in (None, DEFAULT_LAW):
+        return None
+    plain = {key: value for key, value in case.items() if key != "contact"}
+    try:
+        if badness(plain) > 0.0 or badness(case) <= 0.0:
+            return None
+    except (ArithmeticError, ValueError, OptionError):
+        return None
+    numeric = [key for key, value in contact.items() if isinstance(value, (int, float)) and not isinstance(value, bool)]
+    return (f"contact.{numeric[0]}" if len(numeric) == 1 else "contact.law", False)
 
 
 def _furthest(case: Mapping[str, Any]) -> str:
