@@ -8,6 +8,7 @@ small studies); the configuration's own refusals are tested in tests/test_config
 
 from __future__ import annotations
 
+import contextlib
 import os
 import shlex
 import shutil
@@ -19,7 +20,7 @@ from pathlib import Path
 import h5py
 import pytest
 
-from rodimpact.plumbing.locks import RUNS_DIR
+from rodimpact.plumbing.locks import RUNS_DIR, live_job_pids
 from rodimpact.plumbing.plan_cache import CACHE_FILE
 from rodimpact.storage.faults import DIRECTORY_TIMESTAMP, REBUILD_HINT
 from rodimpact.storage.runs import read_run
@@ -183,6 +184,36 @@ def test_a_killed_build_leaves_a_lock_that_the_next_run_releases(tmp_path: Path,
     assert "rodimpact: released snakemake's lock of " in rerun.output
     assert not stale.exists() and read_run(target).case_id == "model"
     assert not locks(path)
+
+
+def test_a_rerun_while_a_killed_runs_job_still_runs_starts_nothing(tmp_path: Path) -> None:
+    """snakemake killed alone (its job keeps running and writing): a rerun at once keeps the lock
+    and stops in one line naming the job, so the job's output is written once, by the job."""
+    path = copy_project(tmp_path / "project")
+    batch = "results/runs/r10_l30/fem_axi"  # six continuum solves: tens of seconds in one job
+
+    def solving() -> dict[int, str]:
+        return {pid: script for pid, script in (live_job_pids(path) or {}).items() if script == "solve_batch.py"}
+
+    build = start(path, "-j1", batch)
+    try:
+        wait_for(lambda: solving() or build.poll() is not None, 180, "the build to start its batch")
+        jobs = solving()
+        assert jobs, "the build ended before its job was seen"
+        os.kill(build.pid, signal.SIGKILL)  # snakemake alone: its job is orphaned and goes on
+        build.wait(30)
+        rerun = snakemake(path, "-j1", batch, timeout=BUILD_TIMEOUT_S)
+        assert rerun.returncode != 0, rerun.describe()
+        assert last_line(rerun).startswith("rodimpact: a killed run's jobs still run in "), rerun.describe()
+        assert all(f"pid {pid} " in last_line(rerun) for pid in jobs), rerun.describe()
+        assert "Select jobs to execute" not in rerun.output  # nothing planned, nothing started
+        assert locks(path), "the lock of the orphaned job was released"
+        wait_for(lambda: not live_job_pids(path), 300, "the orphaned job to end")
+    finally:
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(build.pid, signal.SIGKILL)
+    written = sorted((path / batch).glob("*.h5"))  # the orphan finished its batch, once, whole
+    assert written and all(read_run(run).method == "fem_axi" for run in written)
 
 
 def test_a_second_build_under_a_live_one_is_refused_and_the_lock_kept(tmp_path: Path) -> None:

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from rodimpact.plumbing.locks import LOCK_DIR, RUNS_DIR, release_stale_lock, runs_snakemake
+from rodimpact.plumbing.locks import LOCK_DIR, RUNS_DIR, OrphanedJobs, live_job_pids, release_stale_lock, runs_snakemake
 from rodimpact.plumbing.plan_cache import CACHE_FILE, code_fingerprint
 from rodimpact.plumbing.targets import command_line_targets, untargeted_set_message
 
@@ -143,6 +143,27 @@ def test_a_wrapper_whose_arguments_name_snakemake_holds_no_lock(tmp_path: Path, 
     proc = _fake_proc(tmp_path, {4242: ([*wrapper, "/env/bin/snakemake", "-j2"], project)})
     assert release_stale_lock(project, proc=proc) is not None
     assert not any(lock.exists() for lock in locks)
+
+
+def test_the_lock_of_a_killed_run_whose_jobs_still_run_is_kept_and_the_run_stops(tmp_path: Path) -> None:
+    """snakemake killed alone leaves its jobs running: the lock is kept, and the rerun stops in
+    one line naming them; a job of another directory does not count."""
+    project = tmp_path / "project"
+    project.mkdir()
+    locks = _snakemakes_locks(project)
+    elsewhere = tmp_path / "other"
+    elsewhere.mkdir()
+    job = [sys.executable, ".snakemake/scripts/tmpab12cd.solve_batch.py"]
+    proc = _fake_proc(tmp_path, {4242: (job, project), 4343: (job, elsewhere)})
+    with pytest.raises(OrphanedJobs) as caught:
+        release_stale_lock(project, proc=proc)
+    assert caught.value.jobs == {4242: "solve_batch.py"}
+    message = str(caught.value)
+    assert "pid 4242 (solve_batch.py)" in message and "kill 4242" in message and "\n" not in message
+    assert all(lock.exists() for lock in locks)
+    alone = tmp_path / "alone"
+    alone.mkdir()
+    assert live_job_pids(project, proc=_fake_proc(alone, {4343: (job, elsewhere)})) == {}
 
 
 def test_a_run_registered_by_another_host_keeps_its_lock(tmp_path: Path) -> None:

@@ -30,7 +30,7 @@ sys.path.insert(0, SRC_DIR)
 os.environ.update(PYTHONPATH=os.pathsep.join(filter(None, [SRC_DIR, os.environ.get("PYTHONPATH")])))
 
 from rodimpact.config.yamlfile import YamlError, read_yaml
-from rodimpact.plumbing.locks import release_stale_lock
+from rodimpact.plumbing.locks import OrphanedJobs, release_stale_lock
 
 # The working directory: the project itself, or another directory with its own config/ (and
 # results/) given by --directory, such as .test. config.yaml's paths are relative to it.
@@ -59,7 +59,11 @@ preflight_config(CONFIG_FILE)
 # A lock left by a killed run (no snakemake process lives in this directory, no run of
 # another machine registered here) is released, with a one-line notice. A cluster job's
 # snakemake (--mode remote, on a compute node) never releases one: the lock is its run's.
+# While a killed run's jobs still run here, the lock is kept and this run stops in one line.
 if not workflow.remote_exec:
-    _released = release_stale_lock(WORKDIR)
+    try:
+        _released = release_stale_lock(WORKDIR)
+    except OrphanedJobs as _orphans:
+        sys.exit(str(_orphans))
     if _released:
         print(_released, file=sys.stderr)

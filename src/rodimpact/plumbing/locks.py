@@ -23,6 +23,10 @@ Why that is not enough here
       ``-m snakemake`` (:func:`runs_snakemake`). A wrapper whose arguments name snakemake
       (``timeout 500 snakemake ...``, ``/usr/bin/time snakemake ...``, a shell) is not one: its
       snakemake child is, and is found on its own; and
+    * no job of a killed run still runs here (a process of this directory running a script
+      snakemake wrote for a job, ``.snakemake/scripts/``: :func:`live_job_pids`): killing
+      snakemake alone leaves its jobs running and writing. Then the lock is kept and the run
+      stops before it plans anything, in one line naming the processes (:class:`OrphanedJobs`);
     * no run on another machine registered itself here (:func:`register_run`, called when a run
       starts: ``.snakemake/rodimpact/runs/<host>-<pid>``, removed when it ends; a shared file
       system may hold a live run of another node, which this machine cannot see).
@@ -50,7 +54,14 @@ import os
 import socket
 from pathlib import Path
 
-__all__ = ["live_snakemake_pids", "register_run", "release_stale_lock", "runs_snakemake"]
+__all__ = [
+    "OrphanedJobs",
+    "live_job_pids",
+    "live_snakemake_pids",
+    "register_run",
+    "release_stale_lock",
+    "runs_snakemake",
+]
 
 LOCK_DIR = Path(".snakemake") / "locks"
 RUNS_DIR = Path(".snakemake") / "rodimpact" / "runs"
@@ -111,6 +122,56 @@ def live_snakemake_pids(root: str | Path, proc: Path = _PROC) -> list[int] | Non
     return found
 
 
+#: Where snakemake writes the script a ``script:`` job runs (relative to the working directory).
+SCRIPTS_DIR = os.path.join(".snakemake", "scripts")
+
+
+class OrphanedJobs(RuntimeError):
+    """A killed run's lock is held by its jobs, which still run: ``pids`` -> what each runs.
+
+    The message is one line: the processes, and what to do (wait, or stop them).
+    """
+
+    def __init__(self, root: Path, jobs: dict[int, str]) -> None:
+        self.root, self.jobs = Path(root), dict(jobs)
+        listed = ", ".join(f"{pid} ({what})" for pid, what in sorted(self.jobs.items()))
+        pids = " ".join(str(pid) for pid in sorted(self.jobs))
+        super().__init__(
+            f"rodimpact: a killed run's jobs still run in {self.root.resolve()}: pid {listed}; its lock is kept "
+            f"and nothing is started: wait for them to end (or stop them: kill {pids}), then run again"
+        )
+
+
+def _job_script(command: list[str]) -> str | None:
+    """The script a snakemake ``script:`` job runs (``solve_batch.py``), None for another process."""
+    for argument in command[1:]:
+        normal = os.path.normpath(argument)
+        if normal.startswith(SCRIPTS_DIR + os.sep) or f"{os.sep}{SCRIPTS_DIR}{os.sep}" in normal:
+            return os.path.basename(normal).split(".", 1)[-1]  # tmpXXXX.solve_batch.py -> solve_batch.py
+    return None
+
+
+def live_job_pids(root: str | Path, proc: Path = _PROC) -> dict[int, str] | None:
+    """Processes running a snakemake job's script in ``root`` on this machine, pid -> the script;
+    None without ``/proc``. Jobs whose snakemake was killed keep running (and writing) until
+    they end: their outputs are not to be started again meanwhile."""
+    if not proc.is_dir():
+        return None
+    here, me = Path(root).resolve(), os.getpid()
+    found = {}
+    for entry in proc.iterdir():
+        if not entry.name.isdigit() or int(entry.name) == me:
+            continue
+        try:
+            command = [part for part in (entry / "cmdline").read_bytes().decode(errors="replace").split("\0") if part]
+            script = _job_script(command)
+            if script is not None and Path(os.readlink(entry / "cwd")).resolve() == here:
+                found[int(entry.name)] = script
+        except OSError:  # gone, or not ours to read
+            continue
+    return found
+
+
 def _alive(pid: int) -> bool:
     try:
         os.kill(pid, 0)
@@ -152,7 +213,14 @@ def _other_hosts(root: Path) -> list[str]:
 
 
 def release_stale_lock(root: str | Path, proc: Path = _PROC) -> str | None:
-    """Release a lock no live run holds; the notice to show (None when nothing was done)."""
+    """Release a lock no live run holds; the notice to show (None when nothing was done).
+
+    Raises
+    ------
+    OrphanedJobs
+        No snakemake holds the lock, but jobs of the killed run still run here: the lock is
+        kept, and the caller stops before anything is planned or started.
+    """
     root = Path(root)
     locks = sorted((root / LOCK_DIR).glob("*.lock")) if (root / LOCK_DIR).is_dir() else []
     if not locks:
@@ -162,6 +230,9 @@ def release_stale_lock(root: str | Path, proc: Path = _PROC) -> str | None:
         return None
     if _other_hosts(root):
         return None
+    jobs = live_job_pids(root, proc)
+    if jobs:
+        raise OrphanedJobs(root, jobs)
     for lock in locks:
         with contextlib.suppress(FileNotFoundError):
             lock.unlink()
