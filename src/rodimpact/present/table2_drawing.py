@@ -157,19 +157,28 @@ def _film_overlay(
         for _, curves in sweeps[(sweeps["variant"] == variant) & sweeps["film_modulus_pa"].notna()].groupby("method"):
             _film_sweep(ax, curves, nominal_pa)
     if bands is not None and not bands.empty:
-        band = bands[bands["variant"] == variant]
-        if not band.empty:
-            nominal = band["nominal_us"].to_numpy(float)
-            ax.errorbar(
-                band["mass_g"],
-                nominal,
-                yerr=[nominal - band["band_min_us"].to_numpy(float), band["band_max_us"].to_numpy(float) - nominal],
-                fmt="none",
-                ecolor="darkred",
-                elinewidth=1.2,
-                capsize=3,
-                label=FILM_RANGES_LABEL,
-            )
+        _band_bars(ax, bands[bands["variant"] == variant], FILM_RANGES_LABEL, "darkred", 1.2, 3)
+
+
+def _band_bars(
+    ax: matplotlib.axes.Axes, band: pd.DataFrame, label: str, colour: str, width: float, caps: float, zorder: float = 2
+) -> None:
+    """Each row's band as an error bar about its nominal time (``nominal_us``, ``band_min_us``,
+    ``band_max_us``, µs, at ``mass_g``); nothing for no row."""
+    if band.empty:
+        return
+    nominal = band["nominal_us"].to_numpy(float)
+    ax.errorbar(
+        band["mass_g"],
+        nominal,
+        yerr=[nominal - band["band_min_us"].to_numpy(float), band["band_max_us"].to_numpy(float) - nominal],
+        fmt="none",
+        ecolor=colour,
+        elinewidth=width,
+        capsize=caps,
+        zorder=zorder,
+        label=label,
+    )
 
 
 def _sensor_overlay(
@@ -228,20 +237,15 @@ def _sensor_overlay(
             ordered = frame.sort_values("mass_g")
             ax.plot(ordered["mass_g"], ordered["sem_us"], "-", lw=1.6, color=SENSOR_COLOR, zorder=5, label=label)
         if bands is not None and not bands.empty:
-            band = bands[bands["case_id"].isin(frame["case_id"])]
-            if not band.empty:
-                nominal = band["nominal_us"].to_numpy(float)
-                ax.errorbar(
-                    band["mass_g"],
-                    nominal,
-                    yerr=[nominal - band["band_min_us"].to_numpy(float), band["band_max_us"].to_numpy(float) - nominal],
-                    fmt="none",
-                    ecolor="teal",
-                    elinewidth=1.6,
-                    capsize=4,
-                    zorder=5,
-                    label="sensor as built: band over its sourced ranges (continuum's law)",
-                )
+            _band_bars(
+                ax,
+                bands[bands["case_id"].isin(frame["case_id"])],
+                "sensor as built: band over its sourced ranges (continuum's law)",
+                "teal",
+                1.6,
+                4,
+                zorder=5,
+            )
 
 
 def _rows(
