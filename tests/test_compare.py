@@ -109,3 +109,26 @@ def test_a_set_needs_no_name_in_the_code() -> None:
     carry measurements."""
     for path in [*Path(ROOT, "workflow").rglob("*.smk"), *Path(ROOT, "src").rglob("*.py")]:
         assert '"example"' not in path.read_text(encoding="utf-8"), path
+
+
+def test_a_measurement_past_the_rigid_wall_is_flagged_in_the_table(example) -> None:
+    """The shipped example's measurements lie within what the law allows: no warning. A contact
+    time shorter, or a peak higher, than the same law gives on a rigid wall is flagged in its
+    row (the rod only lengthens the contact and lowers its peak), and nothing else changes."""
+    from rodimpact.model.problem import ImpactProblem
+    from rodimpact.present.compare import RIGID_MARGIN, rigid_wall_warnings
+
+    frame = compare_frame(example["records"], example["histories"])
+    assert frame["warning"].isna().all()
+    record = example["records"][0]
+    rigid = ImpactProblem.from_case(record.config).rigid_contact
+    measured = {
+        **record.config["measured"],
+        "contact_time_us": 0.5 * 1e6 * rigid.contact_time_s,
+        "peak_force_n": 1.5 * rigid.peak_force_N,
+    }
+    warnings = rigid_wall_warnings({**record.config, "measured": measured})
+    assert set(warnings) == {"contact_time_us", "peak_force_n"}
+    assert warnings["contact_time_us"].startswith("shorter than the ") and "rigid wall" in warnings["contact_time_us"]
+    just_inside = {**measured, "contact_time_us": (1 - 0.5 * RIGID_MARGIN) * 1e6 * rigid.contact_time_s}
+    assert "contact_time_us" not in rigid_wall_warnings({**record.config, "measured": just_inside})

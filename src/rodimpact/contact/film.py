@@ -259,6 +259,7 @@ class HertzFilmLaw(ContactLaw):
     thickness_m: float | None = None
     name = "hertz_film"
     label = "Hertz with a thin film (approximation)"
+    approximation = True
     reading = "Hertz contact in series with the film"
     settings = HertzFilmSettings
     needs = Needs(film=True)

@@ -129,6 +129,9 @@ class ContactLaw(abc.ABC):
     method_contact: frozenset[str] = frozenset({"law", "continuum"})
     #: Case fields the law cannot be combined with -> why.
     conflicts: Mapping[str, str] = MappingProxyType({})
+    #: The law approximates what it describes beyond its range of validity (a thin layer at
+    #: contact sizes comparable to its thickness): its numbers are no bound on a measurement.
+    approximation: bool = False
 
     @abc.abstractmethod
     def force(self, approach_m: float) -> float:

@@ -148,6 +148,7 @@ COLUMNS: dict[str, Column] = {
     # the same in words (the CSV keeps both; a table for people shows these, under the same header)
     "method_label": Column("Method", fmt=_TEXT),
     "quantity_words": Column("Quantity", fmt=_TEXT),
+    "warning": Column("Warning", fmt=_TEXT),
     "film": Column("Film", fmt=_TEXT),
     "contact_law": Column("Contact law", fmt=_TEXT, words={name: law.label for name, law in LAWS.items()}),
     "law": Column("Law", fmt=_TEXT),

@@ -12,6 +12,7 @@ measured value: (computed - measured) / |measured|; a history's norms are errors
 
 from __future__ import annotations
 
+import logging
 import math
 from collections.abc import Mapping, Sequence
 from typing import Any
@@ -22,6 +23,7 @@ import pandas as pd
 from rodimpact.analysis.history_compare import HistoryComparison, compare_force_histories
 from rodimpact.analysis.measured import MeasuredHistory
 from rodimpact.contact.laws import law_of
+from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.registry import METHODS
 from rodimpact.storage.runs import RunRecord
 
@@ -77,6 +79,8 @@ def history_comparison(record: RunRecord, history: MeasuredHistory, threshold: f
     )
 
 
+log = logging.getLogger(__name__)
+
 #: The comparison table's columns, in order (each row: :func:`_row`).
 COLUMNS = (
     "case_id",
@@ -96,7 +100,46 @@ COLUMNS = (
     "computed",
     "error_pct",
     "source",
+    "warning",
 )
+
+#: A measurement past what the same law gives on a rigid wall by more than this fraction is
+#: flagged: an elastic rod only lengthens the contact and lowers its peak (noise aside).
+RIGID_MARGIN = 0.05
+
+
+def rigid_wall_warnings(config: Mapping[str, Any]) -> dict[str, str]:
+    """Measured values a case's own law cannot give on any elastic rod, quantity -> the warning.
+
+    The same impact on a rigid wall through the case's contact law
+    (:attr:`~rodimpact.model.problem.ImpactProblem.rigid_contact`) bounds what an elastic rod
+    gives: the contact no shorter, the peak no higher. A measured contact time shorter than that
+    bound, or a peak higher, by more than :data:`RIGID_MARGIN`, is legal but implausible: the
+    measurement, its unit or the law is off. Empty when the law cannot be built here, and for a
+    law that declares itself an approximation (its numbers bound nothing).
+    """
+    measured = config.get("measured") or {}
+    try:
+        problem = ImpactProblem.from_case(config)
+    except (ArithmeticError, KeyError, TypeError, ValueError):
+        return {}
+    if problem.law.approximation:
+        return {}
+    rigid = problem.rigid_contact
+    bound_us, warnings = 1e6 * rigid.contact_time_s, {}
+    time = measured.get("contact_time_us")
+    if time is not None and float(time) < (1.0 - RIGID_MARGIN) * bound_us:
+        warnings["contact_time_us"] = (
+            f"shorter than the {bound_us:.4g} µs the same law gives on a rigid wall: an elastic rod only "
+            "lengthens the contact (the measurement, its unit or the law is off)"
+        )
+    peak = measured.get("peak_force_n")
+    if peak is not None and float(peak) > (1.0 + RIGID_MARGIN) * rigid.peak_force_N:
+        warnings["peak_force_n"] = (
+            f"above the {rigid.peak_force_N:.4g} N the same law gives on a rigid wall: an elastic rod only "
+            "lowers the peak (the measurement, its unit or the law is off)"
+        )
+    return warnings
 
 
 def _row(
@@ -108,6 +151,7 @@ def _row(
     measured: float,
     computed: float,
     error_pct: float,
+    warning: str | None = None,
 ) -> dict[str, Any]:
     return {
         "case_id": config["id"],
@@ -127,6 +171,7 @@ def _row(
         "computed": computed,
         "error_pct": error_pct,
         "source": str((config.get("measured") or {}).get("source", "")),
+        "warning": warning,
     }
 
 
@@ -153,13 +198,17 @@ def compare_frame(
     rows = []
     for record in records:
         config, measured = record.config, record.config.get("measured") or {}
+        warnings = rigid_wall_warnings(config)
+        for key, text in warnings.items():
+            log.warning("case %s: measured %s %s", record.case_id, key, text)
         for key, (words, unit, computed_of) in QUANTITIES.items():
             if measured.get(key) is None:
                 continue
             value, computed = float(measured[key]), computed_of(record.summary)
-            rows.append(
-                _row(config, record.method, key, words, unit, value, computed, 100.0 * (computed - value) / abs(value))
-            )
+            error = 100.0 * (computed - value) / abs(value)
+            # the bound is the law's: a method that resolves the contact itself does not take it
+            warning = warnings.get(key) if METHODS[record.method].contact == "law" else None
+            rows.append(_row(config, record.method, key, words, unit, value, computed, error, warning))
         if record.case_id in histories:
             history, threshold = histories[record.case_id]
             result = history_comparison(record, history, threshold)

@@ -68,7 +68,8 @@ def make_compare_table(
         frame,
         f"Set {set_name} against its measurements",
         ["row", "quantity_words", "unit"],
-        ["method_label", "measured", "computed", "error_pct"],
+        # a warning column only where a measurement is flagged (compare.rigid_wall_warnings)
+        ["method_label", "measured", "computed", "error_pct", *(["warning"] if frame["warning"].notna().any() else [])],
         by="variant" if frame["variant"].notna().any() else "",
     )
     write_table(frame, csv=csv, html=html, tex=tex, views=views)
