@@ -255,9 +255,11 @@ def _rows(
     contacts: Mapping[tuple[str, str], int],
     set_title: str,
     published: bool = True,
+    swept: frozenset[str] = frozenset(),
 ) -> None:
     """A reading's rows: measured (one marker per source), the paper's FEM and SEM where the
-    cases declare them (and ``published``), ours."""
+    cases declare them (and ``published``), ours; a method in ``swept`` as dots only (its line
+    is its sweep's, :func:`_sweep_curves`)."""
     mass = frame["mass_g"]
     measured = frame.assign(_source=[sources.get(c, "") for c in frame["case_id"]])
     measured = measured[np.isfinite(measured["measured_us"].to_numpy(float))]
@@ -291,7 +293,7 @@ def _rows(
             ax.plot(
                 mass,
                 frame[f"{method}_us"],
-                "o" + METHODS[method].style,
+                "o" if method in swept else "o" + METHODS[method].style,
                 ms=4,
                 color=METHODS[method].color,
                 label=f"{METHOD_LABELS[method]}, no film",
@@ -299,9 +301,20 @@ def _rows(
             _rings(ax, mass, frame[f"{method}_us"], [contacts.get((c, method), 1) > 1 for c in frame["case_id"]])
 
 
+def swept_methods(variant: str, sweeps: pd.DataFrame | None) -> frozenset[str]:
+    """The methods with a sweep of ``variant`` without the film (their line is the sweep's)."""
+    if sweeps is None or sweeps.empty:
+        return frozenset()
+    plain = sweeps[sweeps["variant"] == variant]
+    if "film_modulus_pa" in plain:
+        plain = plain[plain["film_modulus_pa"].isna()]
+    return frozenset(plain["method"])
+
+
 def _sweep_curves(ax: matplotlib.axes.Axes, variant: str, sweeps: pd.DataFrame | None) -> None:
-    """The sweeps of a reading without the film: one curve per sweep and method, ringed where
-    its run had more than one contact."""
+    """The sweeps of a reading without the film: one curve per sweep and method, in the
+    method's colour and under its rows' label (the rows are dots on it: one legend entry),
+    ringed where its run had more than one contact."""
     if sweeps is None or sweeps.empty:
         return
     plain = sweeps[sweeps["variant"] == variant]
@@ -312,8 +325,8 @@ def _sweep_curves(ax: matplotlib.axes.Axes, variant: str, sweeps: pd.DataFrame |
             curve["mass_g"],
             curve["contact_time_us"],
             METHODS[method].style if method in METHODS else "-",
-            lw=1.0,
-            color="tab:purple",
-            label=f"{METHOD_LABELS.get(method, method)}, no film: sweep over {len(curve)} ball sizes",
+            lw=1.2,
+            color=METHODS[method].color if method in METHODS else None,
+            label=f"{METHOD_LABELS.get(method, method)}, no film",
         )
         _rings(ax, curve["mass_g"], curve["contact_time_us"], _many_contacts(curve))

@@ -31,6 +31,7 @@ from rodimpact.present.table2_drawing import (  # noqa: E402
     _sensor_overlay,
     _sweep_curves,
     short_source,
+    swept_methods,
 )
 
 # SECOND_CONTACT_LABEL and short_source live in .table2_drawing; named here too, where they were found before
@@ -194,7 +195,7 @@ def plot_table2_contact_time(
             ax.set_visible(False)
             continue
         drawn.append(ax)
-        _rows(ax, frames[variant], sources, contacts, set_title, published)
+        _rows(ax, frames[variant], sources, contacts, set_title, published, swept_methods(variant, sweeps))
         _sweep_curves(ax, variant, sweeps)
         for film in panels[variant]:
             if film in sensors:
