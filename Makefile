@@ -15,8 +15,10 @@
 #   make stability     only the stress cases and the stability map -> results/tables/stability.csv
 #   make report        make paper, then the self-contained HTML report -> results/report.html
 #                      (every table and figure with its caption; the benchmarks too if they exist)
-#   make browser       install Debian's chromium and chromium-driver when missing (as root): the
-#                      report's tests in make test run with them and skip without them
+#   make test-tools    install what some tests use beyond Python, when missing (as root):
+#                      make browser (Debian's chromium and chromium-driver: the report's tests)
+#                      and make latex (pdflatex and booktabs: the LaTeX table's test); without
+#                      them those tests skip, unless RODIMPACT_REQUIRE_TOOLS is set (CI)
 #   make report-check  open results/report.html in headless Chromium at 1400 x 900, save the first
 #                      screen as results/report_screenshot.png, and fail unless the report's title
 #                      is on it (installs Debian's chromium and chromium-driver when missing)
@@ -30,7 +32,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-from-lock
 CORES  ?= 2
 
-.PHONY: paper test test-cluster browser bench convergence convergence-separate stability report report-check readme-images provenance env clean distclean
+.PHONY: paper test test-cluster test-tools browser latex bench convergence convergence-separate stability report report-check readme-images provenance env clean distclean
 
 $(STAMP): environment.lock pyproject.toml
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info[:2] == (3, 11) else "rodimpact needs Python 3.11 (environment.lock is for 3.11), found " + sys.version.split()[0])'
@@ -78,12 +80,22 @@ report: paper
 	$(BIN)/snakemake --report results/report.html all $(wildcard results/benchmarks/sem.csv results/benchmarks/fem.csv \
 		results/tables/work_precision_separate_orders.csv)
 
-# Debian's chromium and chromedriver, for make report-check and the report's tests (as root;
-# CI runs it before make test, so that those tests run instead of skipping).
+# What some tests use beyond Python, from Debian's packages (as root): CI installs them before
+# make test (make test-tools), so that those tests run instead of skipping.
+test-tools: browser latex
+
+# chromium and chromedriver: make report-check and the report's tests
 browser:
 	@if [ ! -x /usr/bin/chromium ] || [ ! -x /usr/bin/chromedriver ]; then \
 		apt-get install -y chromium chromium-driver || \
 		{ apt-get update && apt-get install -y chromium chromium-driver; }; \
+	fi
+
+# pdflatex with booktabs: the test that compiles a LaTeX table
+latex:
+	@if ! command -v pdflatex > /dev/null; then \
+		apt-get install -y --no-install-recommends texlive-latex-base texlive-latex-recommended || \
+		{ apt-get update && apt-get install -y --no-install-recommends texlive-latex-base texlive-latex-recommended; }; \
 	fi
 
 # Checks the report as it is (make report builds it); chromium and its driver from Debian's packages.

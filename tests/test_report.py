@@ -6,7 +6,7 @@ here open pages in headless Chromium at 1400 x 900 through chromedriver: a page 
 the report with a short and with a tall description (the check must pass one and fail the
 other), and the report snakemake builds from ``workflow/report/workflow.rst`` with the shipped
 configuration. They need Debian's ``chromium`` and ``chromedriver`` (``make browser`` installs
-them), and are skipped without them, unless ``RODIMPACT_REQUIRE_BROWSER`` is set (CI).
+them), and are skipped without them, unless ``RODIMPACT_REQUIRE_TOOLS`` is set (CI).
 """
 
 from __future__ import annotations
@@ -24,9 +24,9 @@ from rodimpact.tools.report_check import CHROMEDRIVER, CHROMIUM, TitleBox, check
 
 from helpers.repo import ROOT as REPO_ROOT
 
-#: CI sets it (.ci/run, after make browser): there a missing browser fails the tests instead of
+#: CI sets it (.ci/run, after make test-tools): there a missing browser fails the tests instead of
 #: skipping them.
-REQUIRE_BROWSER = bool(os.environ.get("RODIMPACT_REQUIRE_BROWSER"))
+REQUIRE_BROWSER = bool(os.environ.get("RODIMPACT_REQUIRE_TOOLS"))
 
 needs_chromium = pytest.mark.skipif(
     not (CHROMIUM.is_file() and CHROMEDRIVER.is_file()) and not REQUIRE_BROWSER,
