@@ -95,8 +95,10 @@ def regular_file(path: str | Path) -> Path:
         raise InputFileError(
             path, "no such file" + (" (a link to nowhere)" if path.is_symlink() else ""), "missing"
         ) from None
-    except (OSError, RuntimeError) as error:  # a loop of links, no permission
-        raise InputFileError(path, f"cannot be read: {error.strerror or error}", "unreadable") from None
+    except (OSError, RuntimeError) as error:  # a loop of links (RuntimeError: no strerror), no permission
+        raise InputFileError(
+            path, f"cannot be read: {getattr(error, 'strerror', None) or error}", "unreadable"
+        ) from None
     if not stat.S_ISREG(mode):
         kind = next((words for test, words in _KINDS if test(mode)), "not a regular file")
         raise InputFileError(path, f"is {kind}, not a regular file", "not_regular")
