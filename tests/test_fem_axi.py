@@ -81,7 +81,18 @@ def test_pulse_travels_at_the_bar_speed_and_reflects_from_the_fixed_end():
 @pytest.fixture(scope="module")
 def coarse_model():
     problem = AxiImpact(0.5, 1.0, 0.01, STEEL, "cap", math.sqrt(5e-5 / math.pi), 0.5, STEEL, "fixed")
-    return solve_fem_axi(problem, FEMAxiOptions(elements_across=5, steps_per_contact=150), stations=[0.5])
+    return solve_fem_axi(
+        problem, FEMAxiOptions(elements_across=5, steps_per_contact=150), stations=[0.5, 0.999, 1.0]
+    )
+
+
+def test_a_station_at_the_rods_end_has_its_whole_strain(coarse_model):
+    """The fixed end's station and one just inside it: the same strain (the far bar's last
+    element), not half of it (a one-sided difference over the whole span's divisor)."""
+    strain = coarse_model.extra_series["station_strain"][0]
+    inside, end = strain[:, 1], strain[:, 2]
+    assert np.max(np.abs(end)) > 0
+    np.testing.assert_allclose(end, inside, rtol=0, atol=1e-3 * np.max(np.abs(inside)))
 
 
 def test_coarse_model_is_close_to_the_sem(coarse_model):

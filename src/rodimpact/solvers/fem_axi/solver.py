@@ -46,7 +46,8 @@ log = logging.getLogger(__name__)
 PEAK_PROMINENCE = 0.02
 #: Half the span of a station's strain, as a fraction of the rod's length: the strain is the
 #: difference of the cross-section mean displacement between the sections this far either
-#: side of the station, over twice this (a section beyond the rod's end is taken at the end).
+#: side of the station, over their distance (a section beyond the rod's end is taken at the
+#: end, and the difference at an end is one-sided, over half the span).
 STATION_HALF_SPAN = 1e-4
 
 
@@ -263,8 +264,10 @@ def _result(
     if stations:
         values = np.asarray(hist.stations).reshape(len(nodes.time), len(stations), 3)
         series["station_displacement"] = (values[:, :, 0], "m", "cross-section mean axial displacement at station_x_m")
+        # the sections' distance: 2 delta inside, delta at either end of the rod
+        spans = np.asarray([min(s * length + delta, length) - max(s * length - delta, 0.0) for s in stations])
         series["station_strain"] = (
-            (values[:, :, 2] - values[:, :, 1]) / (2.0 * delta),
+            (values[:, :, 2] - values[:, :, 1]) / spans,
             "1",
             "cross-section mean axial strain at station_x_m (negative in compression)",
         )
