@@ -81,9 +81,7 @@ def test_pulse_travels_at_the_bar_speed_and_reflects_from_the_fixed_end():
 @pytest.fixture(scope="module")
 def coarse_model():
     problem = AxiImpact(0.5, 1.0, 0.01, STEEL, "cap", math.sqrt(5e-5 / math.pi), 0.5, STEEL, "fixed")
-    return solve_fem_axi(
-        problem, FEMAxiOptions(elements_across=5, steps_per_contact=150), stations=[0.5, 0.999, 1.0]
-    )
+    return solve_fem_axi(problem, FEMAxiOptions(elements_across=5, steps_per_contact=150), stations=[0.5, 0.999, 1.0])
 
 
 def test_a_station_at_the_rods_end_has_its_whole_strain(coarse_model):
