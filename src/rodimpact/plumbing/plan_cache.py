@@ -87,8 +87,8 @@ def _entry_bytes(path: Path) -> bytes:
     no readable file changes the key as a file would, and so does a link that now leads
     elsewhere with the same bytes: the loader then checks where it leads."""
     try:
-        data = read_bytes(path)
-        resolved = regular_file(path)
+        resolved = regular_file(path)  # once: the read below starts from the resolved file
+        data = read_bytes(resolved)
     except InputFileError as error:
         return f"{error.kind}:{error.reason}".encode()
     target = b"" if str(resolved) == os.path.abspath(path) else b"link:" + str(resolved).encode()

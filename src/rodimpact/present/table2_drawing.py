@@ -214,25 +214,10 @@ def _sensor_overlay(
             else sweeps[(sweeps["variant"] == variant) & (sweeps["method"] == "sem")].sort_values("mass_g")
         )
         if sweep is not None and not sweep.empty:
-            ax.plot(
-                sweep["mass_g"],
-                sweep["contact_time_us"],
-                "-",
-                lw=1.6,
-                color=SENSOR_COLOR,
-                zorder=5,
-                label=f"{label} (line: {len(sweep)} ball sizes; dots: the rows)",
-            )
-            # the rows on the line: one legend entry for both
-            ax.plot(
-                frame["mass_g"],
-                frame["sem_us"],
-                "o",
-                ms=4,
-                color=SENSOR_COLOR,
-                zorder=6,
-                label=f"{label} (line: {len(sweep)} ball sizes; dots: the rows)",
-            )
+            # the sweep as a line and the rows as dots on it, under one label: one legend entry
+            both = f"{label} (line: {len(sweep)} ball sizes; dots: the rows)"
+            ax.plot(sweep["mass_g"], sweep["contact_time_us"], "-", lw=1.6, color=SENSOR_COLOR, zorder=5, label=both)
+            ax.plot(frame["mass_g"], frame["sem_us"], "o", ms=4, color=SENSOR_COLOR, zorder=6, label=both)
         else:
             ordered = frame.sort_values("mass_g")
             ax.plot(ordered["mass_g"], ordered["sem_us"], "-", lw=1.6, color=SENSOR_COLOR, zorder=5, label=label)
