@@ -33,6 +33,7 @@ include: "workflow/rules/bench.smk"
 include: "workflow/rules/forces.smk"
 include: "workflow/rules/waves.smk"
 include: "workflow/rules/compare.smk"
+include: "workflow/rules/calibrate.smk"
 
 
 rule all:

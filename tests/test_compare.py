@@ -82,7 +82,7 @@ def test_the_alignment_finds_the_trigger_and_the_norms_the_noise(example) -> Non
 
 
 def test_the_table_sets_each_measured_value_against_each_method(example) -> None:
-    frame = compare_frame(example["records"], example["histories"])
+    frame = compare_frame(example["records"], {c: {"force_history": h} for c, (h, _) in example["histories"].items()})
     assert tuple(frame.columns) == COLUMNS and frame[["case_id", "method", "quantity", "unit"]].notna().all().all()
     per_case = {
         "contact_time_us",
@@ -118,7 +118,7 @@ def test_a_measurement_past_the_rigid_wall_is_flagged_in_the_table(example) -> N
     from rodimpact.model.problem import ImpactProblem
     from rodimpact.present.compare import RIGID_MARGIN, rigid_wall_warnings
 
-    frame = compare_frame(example["records"], example["histories"])
+    frame = compare_frame(example["records"], {c: {"force_history": h} for c, (h, _) in example["histories"].items()})
     assert frame["warning"].isna().all()
     record = example["records"][0]
     rigid = ImpactProblem.from_case(record.config).rigid_contact

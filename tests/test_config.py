@@ -93,9 +93,12 @@ STRESS = [
 
 def test_shipped_config_loads_all_cases(shipped: Project) -> None:
     expected = ["model"] + [f"{row}-{variant}" for row in ROWS for variant in VARIANTS]
-    # 1 + 6 rows x 14 variants, in file order (files sorted by name: model, smooth, stress, table2, worked_example)
-    assert [c for c in shipped.cases if shipped.cases[c]["set"] not in ("smooth", "stress", "example")] == expected
+    # 1 + 6 rows x 14 variants, in file order (files sorted by name: gauge_example, model, smooth,
+    # stress, table2, worked_example)
+    others = ("smooth", "stress", "example", "gauge_example")
+    assert [c for c in shipped.cases if shipped.cases[c]["set"] not in others] == expected
     assert shipped.sets == {
+        "gauge_example": ["gauge_8mm", "gauge_12mm", "gauge_16mm", "gauge_20mm"],
         "example": ["ball_10mm", "ball_20mm"],
         "model": ["model"],
         "table2": expected[1:],
@@ -123,7 +126,8 @@ def test_model_case_is_table1_model_column(shipped: Project) -> None:
     assert case["rod"]["far_end"] == "fixed"
     assert case["methods"] == ["sem", "sem_paper", "fem1d", "fem_axi"]
     assert case["stations"] == [0.5]
-    assert case["outputs"] == list(OUTPUTS)
+    # every output but a gauge's strain and the far end's velocity (no gauge; a fixed far end)
+    assert case["outputs"] == [o for o in OUTPUTS if o not in ("gauge_strain", "far_end_velocity")]
     assert case["measured"] is None
     assert case["published"]["fem_vs_sem"] == {"contact_time_difference_pct": 11.0, "extrema_difference_pct": 9.0}
 
@@ -568,7 +572,7 @@ MALFORMED = {
     "unknown target set": (
         _set("config/config.yaml", "targets", "sets", ["model", "tabel2"]),
         "config/config.yaml: field 'targets.sets[1]': unknown case set 'tabel2'; known: model, smooth, stress, "
-        "table2, example",
+        "table2, example, gauge_example",
     ),
     "sensor band of a reading without a calibrated stack": (
         _set("config/config.yaml", "sensor", "band", ["r10_l30_sensor_cal", "r10_l30_film_cal"]),
@@ -665,7 +669,7 @@ MALFORMED = {
     "stability on an unknown set": (
         _set("config/config.yaml", "stability", "sets", ["stres"]),
         "config/config.yaml: field 'stability.sets[0]': unknown case set 'stres'; known: model, smooth, stress, "
-        "table2, example",
+        "table2, example, gauge_example",
     ),
     "stability without a method's tolerances": (
         _set("config/config.yaml", "stability", "tolerances", "fem1d", None),

@@ -134,9 +134,10 @@ def expected(built: Path) -> dict:
     project = project_cases(built)
     variants = sorted(project.variants["table2"])
     by_variant = {v: [case_run(c, m) for c in project.cases_in("table2", v) for m in c["methods"]] for v in variants}
-    runs = [case_run(c, m) for name in ("model", "table2", "example")
+    runs = [case_run(c, m) for name in ("model", "table2", "example", "gauge_example")
             for c in project.cases_in(name) for m in c["methods"]]  # fmt: skip
-    example = [case_run(c, m) for c in project.cases_in("example") for m in c["methods"]]
+    example = [case_run(c, m) for name in ("example", "gauge_example")
+               for c in project.cases_in(name) for m in c["methods"]]  # fmt: skip
     plain = [v for v in variants if "contact" not in project.variants["table2"][v]]
     calibrated = [v for v in variants if (project.variants["table2"][v].get("contact") or {}).get("law") == "tabulated"]
     # What the checks below need of the configuration: 'model' by the four methods, the text's
@@ -379,6 +380,8 @@ def test_every_set_with_measurements_is_compared(built: Path, expected: dict) ->
     assert tables == [
         "compare_example.csv",
         "compare_example_summary.csv",
+        "compare_gauge_example.csv",
+        "compare_gauge_example_summary.csv",
         "compare_table2.csv",
         "compare_table2_summary.csv",
     ]
@@ -393,6 +396,31 @@ def test_every_set_with_measurements_is_compared(built: Path, expected: dict) ->
     measured = [c for c in project.sets["table2"] if (project.cases[c]["measured"] or {}).get("contact_time_us")]
     assert set(table2["case_id"]) == set(measured) and set(table2["quantity"]) == {"contact_time_us"}
     assert not list((built / "results/figures").glob("compare_table2_*.png"))  # no history measured there
+
+
+def test_a_strain_gauged_set_is_compared_and_calibrated(built: Path, expected: dict) -> None:
+    """The strain-gauge example: its comparison has each record's first-pulse rows, its records
+    are drawn in one figure, and its calibration (a fit, not a prediction) is written whole, with
+    the sidecar the audit reads."""
+    project = expected["project"]
+    cases = project.sets["gauge_example"]
+    compare = pd.read_csv(built / "results/tables/compare_gauge_example.csv")
+    pulse = {"strain_arrival_us", "strain_peak_microstrain", "strain_integral_microstrain_us"}
+    assert pulse | {"strain_l2_pct", "strain_max_pct"} == set(compare["quantity"])
+    assert sorted(set(compare["case_id"])) == sorted(cases)
+    assert (built / "results/figures/compare_gauge_example_strain.png").stat().st_size > 10_000
+    calibration = pd.read_csv(built / "results/tables/calibration_gauge_example.csv")
+    block = project.calibrate["gauge_example"]
+    assert len(calibration) == len(cases) * len(block["quantities"])
+    assert set(calibration["quantity"]) == set(block["quantities"]) <= pulse
+    assert calibration["held_out_status"].eq("converged").all()
+    constants = pd.read_csv(built / "results/tables/calibration_gauge_example_parameters.csv")
+    assert list(constants["parameter"]) == [p["path"] for p in block["parameters"]]
+    assert constants["warning"].isna().all() and not constants["at_bound"].any()
+    assert "A fit, not a prediction" in (built / "results/tables/calibration_gauge_example.md").read_text()
+    sidecar = json.loads((built / "results/tables/calibration_gauge_example.provenance.json").read_text())
+    assert sidecar["input_files"][0]["path"] == "results/calibration/gauge_example.h5"
+    assert (built / "results/figures/calibration_gauge_example.png").stat().st_size > 10_000
 
 
 def test_sweep_points_are_runs_and_a_table(built: Path, expected: dict) -> None:
@@ -443,7 +471,7 @@ def test_provenance_audit_passes_on_a_fresh_build(built: Path) -> None:
     # every table and figure is an artifact its provenance record names
     h5 = [p.relative_to(built).as_posix() for p in (built / "results").rglob("*.h5")]
     bands = ("results/studies/film_band_", "results/studies/sensor_band/")
-    runs = [p for p in h5 if not p.startswith(("results/indentation/", *bands))]
+    runs = [p for p in h5 if not p.startswith(("results/indentation/", "results/calibration/", *bands))]
     artifacts = [
         p
         for p in (built / "results").rglob("*")
@@ -451,6 +479,7 @@ def test_provenance_audit_passes_on_a_fresh_build(built: Path) -> None:
     ]
     assert kinds["run"] == len(runs) and kinds["artifact"] >= len(artifacts) >= 20 and not kinds["unknown"], kinds
     assert kinds["band"] == len([p for p in h5 if p.startswith(bands)]) >= 3, kinds
+    assert kinds["calibration"] == len([p for p in h5 if p.startswith("results/calibration/")]) == 1, kinds
     # a copy is an untagged history: its version is 0.0.0.post1 (rodimpact._version), plus the commit
     assert all(CODE_VERSION.fullmatch(v) for f in result.findings for v in f.code_versions)
 

@@ -325,11 +325,12 @@ def test_code_change_reruns_the_solvers(changed: DotTestBuild) -> None:
     project = project_cases(changed.workdir)
     batches = {
         (c.get("variant") or c["set"], m)
-        for name in ("model", "table2", "example")
+        for name in ("model", "table2", "example", "gauge_example")
         for c in project.cases_in(name)
         for m in c["methods"]
     }
     assert stats.get("solve") == len(batches), run.describe()  # every batch of runs of the target sets
+    assert stats.get("calibrate") == 1, run.describe()  # its model runs the solvers in memory
     # the code is a param (the digest of the sources a rule runs), not sixty input files
     assert "Params have changed since last execution" in run.output, run.describe()
     assert "src/rodimpact" not in run.output, run.describe()

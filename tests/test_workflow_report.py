@@ -158,6 +158,16 @@ def _expected_report(workdir: Path) -> dict[str, list[str]]:
                     "measured contact force against time",
                     "What to see",
                 ]
+            for ending, key in (("strain", "strain_history"), ("velocity", "velocity_history")):
+                if any(c["measured"].get(key) for c in cases):
+                    expected[f"results/figures/compare_{name}_{ending}.{ext}"] = [
+                        "One case's measured record",
+                        "What to see",
+                    ]
+        if name in project.calibrate:  # a calibrated set (calibrate.smk): a fit, not a prediction
+            expected[f"results/tables/calibration_{name}.csv"] = ["A fit, not a prediction", "leave-one-out"]
+            for ext in ("png", "pdf"):
+                expected[f"results/figures/calibration_{name}.{ext}"] = ["A fit, not a prediction", "What to see"]
     for ext in ("png", "pdf"):
         # the headline (the sensor's rod, or the rods without approximations) names its companion
         expected[f"results/figures/table2_contact_time.{ext}"] = [
@@ -281,7 +291,10 @@ def test_report_is_self_contained_and_captioned(dottest: DotTestBuild, tmp_path:
     assert sorted(results) == sorted(expected)
     categories = _report_variable(page, "categories")
     swept = any(path.startswith("results/tables/sweep_") for path in expected)
-    assert set(categories) == REPORT_CATEGORIES | ({"Parameter sweeps"} if swept else set())
+    calibrated = any(path.startswith("results/tables/calibration_") for path in expected)
+    assert set(categories) == REPORT_CATEGORIES | ({"Parameter sweeps"} if swept else set()) | (
+        {"Calibration (a fit, not a prediction)"} if calibrated else set()
+    )
     for path, result in results.items():
         assert result["name"] == Path(path).name
         assert result["data_uri"].startswith(f"data:{result['mime_type']};")

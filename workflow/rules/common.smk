@@ -41,8 +41,9 @@ from pathlib import Path
 from snakemake.utils import Paramspace
 
 from rodimpact.analysis.studies import level_case, map_point_case, map_point_names, reference_case
-from rodimpact.analysis.measured import measured_cases
+from rodimpact.analysis.measured import RECORDS, SIGNAL_RECORDS, measured_cases
 from rodimpact.analysis.sweeps import sweep_frame, sweep_point_case, sweep_points
+from rodimpact.config.calibration import calibration_cases, expected_evaluations, with_method
 from rodimpact.config.checks import swept_methods
 from rodimpact.contact.laws import LAWS, law_of
 from rodimpact.solvers.field import FIELD_OUTPUT
@@ -379,6 +380,7 @@ def default_targets():
             "results/figures/work_precision_{case}.{ext}", case=WORK_PRECISION["cases"], ext=["pdf", "png"]
         )
     targets += compare_targets()
+    targets += calibration_targets()
     if STABILITY:
         targets += ["results/tables/stability.csv"]
     if MAP:

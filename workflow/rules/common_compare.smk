@@ -16,15 +16,36 @@ def compare_runs(set_name):
     return runs_of(measured_cases(PROJECT.cases_in(set_name)))
 
 
+# record figure's ending (strain, velocity) -> the compared sets with such a record (compare.smk)
+SIGNAL_SETS = {
+    ending: [
+        name for name in COMPARE_SETS if any(c["measured"].get(key) for c in measured_cases(PROJECT.cases_in(name)))
+    ]
+    for ending, key in SIGNAL_RECORDS.items()
+}
+
+
 def compare_histories(set_name):
-    """The measured force histories of a set's cases (inputs: a changed record reruns the comparison)."""
+    """The measured records of a set's cases (inputs: a changed record reruns the comparison)."""
     return sorted(
         {
-            c["measured"]["force_history"]["path"]
+            c["measured"][key]["path"]
             for c in measured_cases(PROJECT.cases_in(set_name))
-            if c["measured"].get("force_history")
+            for key in RECORDS
+            if c["measured"].get(key)
         }
     )
+
+
+def signal_runs(set_name, ending):
+    """The runs of a set's cases with a measured record of the kind ``ending`` names."""
+    key = SIGNAL_RECORDS[ending]
+    if set_name not in SIGNAL_SETS[ending]:
+        refuse(
+            f"set {set_name!r} has no measured {key}; sets that have one: "
+            f"{', '.join(SIGNAL_SETS[ending]) or 'none'}"
+        )
+    return runs_of([c for c in measured_cases(PROJECT.cases_in(set_name)) if c["measured"].get(key)])
 
 
 def compare_case_runs(set_name, case_id):
@@ -44,4 +65,51 @@ def compare_targets():
     )
     targets += expand("results/figures/compare_{set}.{ext}", set=COMPARE_SETS, ext=["pdf", "png"])
     targets += [f"results/figures/compare_{s}_{c}.{ext}" for c, s in HISTORY_CASES.items() for ext in ("pdf", "png")]
+    targets += [
+        f"results/figures/compare_{s}_{ending}.{ext}"
+        for ending, sets in SIGNAL_SETS.items()
+        for s in sets
+        for ext in ("pdf", "png")
+    ]
     return targets
+
+
+# The calibrated sets (calibrate.smk): the compared sets whose case file declares `calibrate:`.
+CALIBRATED_SETS = [name for name in COMPARE_SETS if name in PROJECT.calibrate]
+SRC_CALIBRATE = sources("rodimpact.jobs.calibrate", "rodimpact.jobs.logs")
+SRC_CALIBRATION_ARTIFACTS = sources("rodimpact.present.calibration_artifacts", "rodimpact.jobs.logs")
+
+
+def calibration_cases_of(set_name):
+    """The cases a set's calibration fits (those giving one of its quantities)."""
+    return calibration_cases(PROJECT.cases_in(set_name), PROJECT.calibrate[set_name])
+
+
+def calibration_resources():
+    """A calibration job's resources: its method's runs of every fitted case, each repeated as
+    often as a fit and its leave-one-out are expected to evaluate it (expected_evaluations)."""
+
+    def runs(set_name):
+        block = PROJECT.calibrate[set_name]
+        cases = calibration_cases_of(set_name)
+        repeats = expected_evaluations(len(block["parameters"]), len(cases))
+        return [(with_method(case, block["method"], config["numerics"]), block["method"], repeats) for case in cases]
+
+    return _resources(lambda w: estimate_sequence(runs(w.set)))
+
+
+def calibration_targets():
+    """Each calibrated set's tables and figure."""
+    return [
+        f"results/{kind}/calibration_{name}{ending}"
+        for name in CALIBRATED_SETS
+        for kind, ending in (
+            ("tables", ".csv"),
+            ("tables", "_parameters.csv"),
+            ("tables", ".md"),
+            ("tables", ".html"),
+            ("tables", ".provenance.json"),
+            ("figures", ".pdf"),
+            ("figures", ".png"),
+        )
+    ]

@@ -101,3 +101,47 @@ rule compare_history:
         runs=lambda w: compare_case_runs(w.set, w.case),
     script:
         "../scripts/compare_history.py"
+
+
+rule compare_signal:
+    """A set's measured strains at a gauge, or velocities, against each method's signals and their
+    difference, one row per case (for fem_axi's strain, the section's mean beside the surface's);
+    one job, as every row reads the same set's runs."""
+    input:
+        runs=run_batches(lambda w: signal_runs(w.set, w.ending)),
+        records=lambda w: compare_histories(w.set),
+    output:
+        pdf=report(
+            "results/figures/compare_{set}_{ending}.pdf",
+            caption="../report/compare_signal.rst",
+            category="Comparison with measurements",
+            subcategory="{set}",
+            labels={"set": "{set}", "artifact": "Records ({ending}) against the methods", "format": "PDF"},
+        ),
+        png=report(
+            "results/figures/compare_{set}_{ending}.png",
+            caption="../report/compare_signal.rst",
+            category="Comparison with measurements",
+            subcategory="{set}",
+            labels={"set": "{set}", "artifact": "Records ({ending}) against the methods", "format": "PNG"},
+        ),
+        provenance="results/figures/compare_{set}_{ending}.provenance.json",
+    log:
+        "logs/figures/compare_{set}_{ending}.log",
+    wildcard_constraints:
+        set=one_of({s for sets in SIGNAL_SETS.values() for s in sets}),
+        ending=one_of(SIGNAL_RECORDS),
+    group:
+        GROUP_TABLES
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
+    params:
+        code=SRC_COMPARE,
+        runs=lambda w: signal_runs(w.set, w.ending),
+        key=lambda w: SIGNAL_RECORDS[w.ending],
+        title=lambda w: f"{set_title(w.set)[:1].upper()}{set_title(w.set)[1:]}: measured and computed {w.ending}",
+    script:
+        "../scripts/compare_signal.py"

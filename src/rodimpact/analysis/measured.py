@@ -1,12 +1,18 @@
-"""A measured force history: the CSV file a case's ``measured.force_history`` names, read and checked.
+"""A measured record: the CSV file a case's ``measured`` block names, read and checked.
 
-The file has a header and two columns, time then force. Their units come from the header
-(``time_s``, ``time_ms`` or ``time_us``; ``force_N`` or ``force_kN``) or, for plain ``time``
-and ``force``, from the block's ``time_unit`` and ``force_unit``. The block may shift the time
+Three kinds of record (:data:`RECORDS`): the contact force (``force_history``), the axial
+strain at a gauge on the rod (``strain_history``) and a velocity, of the impactor or of the
+rod's far end (``velocity_history``). The file has a header and two columns, time then the
+value. Their units come from the header (``time_s``, ``time_ms`` or ``time_us``; ``force_N``
+or ``force_kN``; ``strain_strain`` or ``strain_microstrain``; ``velocity_m_s`` or
+``velocity_mm_s``) or, for plain ``time`` and ``force`` (``strain``, ``velocity``), from the
+block's ``time_unit`` and ``force_unit`` (``strain_unit``, ``velocity_unit``). The block may shift the time
 (``time_offset_s``, added after the unit's scale) and thin a long record (``every``: keep
-every k-th row). The file is refused, with one line naming what is wrong, when it is missing,
-has no header or an unknown unit, a time that does not increase, a value that is not a finite
-number, fewer than :data:`MIN_ROWS` rows, or more than :data:`MAX_ROWS` rows kept.
+every k-th row) and multiply the value by its ``sign``. The file is refused, with one line
+naming what is wrong, when it is missing, has no header or an unknown unit, a unit that
+contradicts the block's, a time that does not increase, a value that is not a finite number,
+fewer than :data:`MIN_ROWS` rows, more than :data:`MAX_ROWS` rows kept, or a value that is
+zero throughout (a force also when it is mostly negative: a contact force pushes).
 
 Nothing here knows the workflow: :mod:`rodimpact.config.load` checks each history before any
 job, and the comparison (:mod:`.history_compare`) reads it again in its job.
@@ -28,6 +34,11 @@ from rodimpact.inputs.files import InputFileError, quoted, read_text
 
 __all__ = [
     "FORCE_UNITS",
+    "RECORDS",
+    "SIGNAL_RECORDS",
+    "STRAIN_UNITS",
+    "VELOCITY_UNITS",
+    "RecordKind",
     "HistoryError",
     "MAX_CELL_CHARS",
     "MAX_HISTORY_BYTES",
@@ -39,15 +50,53 @@ __all__ = [
     "TIME_UNITS",
     "measured_cases",
     "read_force_history",
+    "read_history",
 ]
 
 #: What a case's ``measured`` block may give to compare with (``source`` and ``note`` describe it).
-MEASURED_KEYS = ("contact_time_us", "peak_force_n", "rebound_velocity_m_s", "force_history")
+MEASURED_KEYS = (
+    "contact_time_us",
+    "peak_force_n",
+    "rebound_velocity_m_s",
+    "force_history",
+    "strain_history",
+    "velocity_history",
+)
 
 #: Time units a history may declare, and their size in s.
 TIME_UNITS = {"s": 1.0, "ms": 1e-3, "us": 1e-6}
 #: Force units a history may declare, and their size in N.
 FORCE_UNITS = {"N": 1.0, "kN": 1e3}
+#: Strain units a history may declare, and their size (dimensionless).
+STRAIN_UNITS = {"strain": 1.0, "microstrain": 1e-6}
+#: Velocity units a history may declare, and their size in m/s.
+VELOCITY_UNITS = {"m_s": 1.0, "mm_s": 1e-3}
+
+
+@dataclass(frozen=True)
+class RecordKind:
+    """What one kind of record holds: its ``measured`` key, the header's name of its value
+    column, the units that column may take (name -> size in SI) and the SI unit's symbol."""
+
+    key: str
+    quantity: str
+    units: Mapping[str, float]
+    si_unit: str
+    words: str
+
+
+#: The records a case's ``measured`` block may name, by key.
+RECORDS: dict[str, RecordKind] = {
+    kind.key: kind
+    for kind in (
+        RecordKind("force_history", "force", FORCE_UNITS, "N", "contact force"),
+        RecordKind("strain_history", "strain", STRAIN_UNITS, "1", "axial strain at the gauge"),
+        RecordKind("velocity_history", "velocity", VELOCITY_UNITS, "m/s", "velocity"),
+    )
+}
+#: The records that a comparison draws in a figure of their own beside the force history's
+#: (``results/figures/compare_{set}_{ending}``, a row per case): ending -> key.
+SIGNAL_RECORDS = {"strain": "strain_history", "velocity": "velocity_history"}
 #: The fewest rows a history must keep to be compared.
 MIN_ROWS = 8
 #: The most rows kept without a declared thinning (``every``): 10^6 rows read in well under a
@@ -67,8 +116,8 @@ def measured_cases(cases: list[Mapping[str, Any]]) -> list[Mapping[str, Any]]:
 
 
 class HistoryError(ValueError):
-    """A force history that cannot be used; ``field`` is the key of the ``force_history``
-    block it concerns (``file`` for the file's own faults)."""
+    """A record that cannot be used; ``field`` is the key of its block (``force_history``,
+    ``strain_history`` or ``velocity_history``) it concerns (``file`` for the file's own faults)."""
 
     def __init__(self, field: str, message: str) -> None:
         self.field, self.reason = field, message
@@ -77,24 +126,33 @@ class HistoryError(ValueError):
 
 @dataclass(frozen=True)
 class MeasuredHistory:
-    """A measured contact force against time, in SI units.
+    """A measured record against time, in SI units.
 
     Attributes
     ----------
     time_s : ndarray, shape (n,)
         Strictly increasing times, s (with the declared offset).
-    force_N : ndarray, shape (n,)
-        Force, N.
+    values : ndarray, shape (n,)
+        The value in the kind's SI unit (force, N; strain, 1; velocity, m/s), times the
+        block's ``sign``.
     path : Path
         The file it was read from.
     note : str
         How it was measured (the block's ``note``).
+    kind : str
+        The record's key in the ``measured`` block (:data:`RECORDS`).
     """
 
     time_s: NDArray[np.float64]
-    force_N: NDArray[np.float64]
+    values: NDArray[np.float64]
     path: Path
     note: str = ""
+    kind: str = "force_history"
+
+    @property
+    def force_N(self) -> NDArray[np.float64]:
+        """The values of a force record, N."""
+        return self.values
 
 
 def _unit(name: str, quantity: str, declared: str | None, units: Mapping[str, float], where: str) -> float:
@@ -128,7 +186,14 @@ def _unit(name: str, quantity: str, declared: str | None, units: Mapping[str, fl
 
 
 def read_force_history(path: str | Path, spec: Mapping[str, Any]) -> MeasuredHistory:
-    """Read and check the force history ``path`` as the ``force_history`` block ``spec`` declares it.
+    """Read and check the force history ``path`` as the ``force_history`` block ``spec`` declares
+    it (:func:`read_history` of that kind)."""
+    return read_history(path, spec, "force_history")
+
+
+def read_history(path: str | Path, spec: Mapping[str, Any], key: str) -> MeasuredHistory:
+    """Read and check the record ``path`` as the ``measured`` block's ``key`` (one of
+    :data:`RECORDS`) ``spec`` declares it.
 
     The file is read as :func:`rodimpact.inputs.files.read_text` reads a user's file: a regular
     file only (never a FIFO or a device), at most :data:`MAX_HISTORY_BYTES`, UTF-8 (a bad byte
@@ -140,8 +205,11 @@ def read_force_history(path: str | Path, spec: Mapping[str, Any]) -> MeasuredHis
     path : path
         The CSV file (already resolved against the case file's directory).
     spec : mapping
-        ``time_unit``, ``force_unit`` (optional where the header names them), ``time_offset_s``
+        ``time_unit`` and the value's unit (``force_unit``, ``strain_unit``, ``velocity_unit``;
+        optional where the header names them), ``sign`` (default 1), ``time_offset_s``
         (default 0), ``every`` (default 1), ``note``.
+    key : str
+        The kind of record, a key of :data:`RECORDS`.
 
     Returns
     -------
@@ -152,6 +220,7 @@ def read_force_history(path: str | Path, spec: Mapping[str, Any]) -> MeasuredHis
     HistoryError
         Whatever makes the file unusable, with the block's key it concerns.
     """
+    kind = RECORDS[key]
     path = Path(path)
     try:
         text = read_text(path, limit=MAX_HISTORY_BYTES)
@@ -183,11 +252,13 @@ def read_force_history(path: str | Path, spec: Mapping[str, Any]) -> MeasuredHis
         if not header or len(header) != 2 or any(_is_number(cell) for cell in header):
             raise HistoryError(
                 "file",
-                f"{path.name} must start with a header of two columns, time and force "
-                f"(e.g. 'time_s,force_N'), got {quoted(header)}",
+                f"{path.name} must start with a header of two columns, time and {kind.quantity} "
+                f"(e.g. 'time_s,{kind.quantity}_{next(iter(kind.units))}'), got {quoted(header)}",
             )
         time_scale = _unit(header[0], "time", spec.get("time_unit"), TIME_UNITS, f"{path.name} line 1, column 1")
-        force_scale = _unit(header[1], "force", spec.get("force_unit"), FORCE_UNITS, f"{path.name} line 1, column 2")
+        value_scale = _unit(
+            header[1], kind.quantity, spec.get(f"{kind.quantity}_unit"), kind.units, f"{path.name} line 1, column 2"
+        )
         values = []
         for line, row in enumerate(reader, start=2):
             if not row or not "".join(row).strip():
@@ -216,18 +287,19 @@ def read_force_history(path: str | Path, spec: Mapping[str, Any]) -> MeasuredHis
             f"{path.name} line {2 + (bad + 1) * every}: the time must increase, "
             f"{time[bad + 1]:.6g} s follows {time[bad]:.6g} s",
         )
-    force = data[:, 1] * force_scale * float(spec.get("sign") or 1)
-    high, low = float(force.max()), float(force.min())
+    value = data[:, 1] * value_scale * float(spec.get("sign") or 1)
+    high, low = float(value.max()), float(value.min())
     if high <= 0.0 and low >= 0.0:
-        raise HistoryError("file", f"{path.name}: the force is zero throughout: no contact was recorded")
-    if high <= 0.0 or -low > high:
+        what = "no contact" if key == "force_history" else "nothing"
+        raise HistoryError("file", f"{path.name}: the {kind.quantity} is zero throughout: {what} was recorded")
+    if key == "force_history" and (high <= 0.0 or -low > high):
         flip = "declare sign: 1 (or remove sign: -1)" if spec.get("sign") == -1 else "declare sign: -1"
         raise HistoryError(
             "file",
             f"{path.name}: the force is mostly negative (from {low:.6g} N to {high:.6g} N): a contact force "
             f"pushes; if the sensor reads compression as negative, {flip} in the force_history block",
         )
-    return MeasuredHistory(time_s=time, force_N=force, path=path, note=str(spec.get("note", "")))
+    return MeasuredHistory(time_s=time, values=value, path=path, note=str(spec.get("note", "")), kind=key)
 
 
 def _short_cells(row: list[str], line: int, path: Path) -> None:

@@ -6,8 +6,9 @@ What lives here: :mod:`.load` (read, check and resolve config.yaml, materials an
 checked cases, one file at a time), :mod:`.yamlfile` (reading one YAML document,
 aliases bounded), :mod:`.schema` (JSON-schema checks and merging), :mod:`.project`
 (:class:`~rodimpact.config.project.Project` and :class:`~rodimpact.config.project.ConfigError`),
-:mod:`.bodies` (a case's materials and contact block), :mod:`.measured` (a case's measured force
-history, found and checked), :mod:`.checks` (each run's options
+:mod:`.bodies` (a case's materials and contact block), :mod:`.measured` (a case's measured records
+and its gauges, found and checked), :mod:`.calibration` (a set's ``calibrate`` block, checked
+against its cases), :mod:`.paths` (a setting of a resolved case named by its path), :mod:`.checks` (each run's options
 against its case) and :mod:`.plausible` (each run's scales and cost before any job).
 
 What it may import: :mod:`rodimpact.solvers.registry`, :mod:`rodimpact.solvers.field` and the

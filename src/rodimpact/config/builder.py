@@ -16,6 +16,7 @@ from collections.abc import Callable
 
 from rodimpact.analysis.sweeps import SweepError, sweep_point_case, sweep_points
 from rodimpact.config.bodies import check_law, resolve_contact, resolve_material
+from rodimpact.config.calibration import check_calibration
 from rodimpact.config.checks import (
     check_outputs,
     check_run,
@@ -24,7 +25,7 @@ from rodimpact.config.checks import (
     check_stability,
     check_work_precision,
 )
-from rodimpact.config.measured import check_measured_physics, resolve_measured
+from rodimpact.config.measured import check_measured_physics, record_outputs, resolve_gauges, resolve_measured
 from rodimpact.config.plausible import Budget, check_plausible
 from rodimpact.config.project import ConfigError, Project, _File
 from rodimpact.config.schema import Schemas, deep_merge, format_path, with_floats
@@ -51,6 +52,8 @@ OUTPUTS: tuple[str, ...] = (
     "energy",
     "contact_radius",
     FIELD_OUTPUT,
+    "gauge_strain",
+    "far_end_velocity",
 )
 
 CASES_SCHEMA = "cases.schema.yaml"
@@ -67,6 +70,8 @@ class ProjectBuilder:
         self.sets: dict[str, list[str]] = {}
         self.variants: dict[str, dict[str, dict]] = {}
         self.compare: dict[str, dict] = {}
+        self.calibrate: dict[str, tuple[dict, _File]] = {}  # set -> its calibrate block and the file declaring it
+        self.schemas: Schemas | None = None
         self.sweeps: dict[str, dict] = {}
         self.histories: dict[tuple, str] = {}  # measured force histories checked (config.measured)
 
@@ -82,6 +87,14 @@ class ProjectBuilder:
         self._add_variants(source, set_name, variants)
         if document.get("compare") is not None:
             self.compare[set_name] = document["compare"]
+        if document.get("calibrate") is not None:
+            if set_name in self.calibrate:
+                other = self.calibrate[set_name][1].label
+                raise source.error(
+                    f"set {set_name!r} is calibrated in {other} already; declare it once", field="calibrate"
+                )
+            self.calibrate[set_name] = (document["calibrate"], source)
+        self.schemas = schemas
         self.sets.setdefault(set_name, [])
         for entry in document["cases"]:
             base = deep_merge(document.get("defaults", {}), entry)
@@ -161,6 +174,16 @@ class ProjectBuilder:
             "published": with_floats(case["published"]),
         }
         check_measured_physics(resolved, error)
+        gauges = resolve_gauges(resolved, case["gauges"], error)
+        if gauges:  # only where there are any: a case without keeps its resolved form
+            resolved["gauges"] = gauges
+        resolved["outputs"] += [name for name in record_outputs(resolved) if name not in resolved["outputs"]]
+        if "gauge_strain" in resolved["outputs"] and not gauges:
+            where = case["outputs"].index("gauge_strain") if "gauge_strain" in case["outputs"] else None
+            raise error(
+                "output 'gauge_strain' needs gauges (gauges, or a measured strain_history)",
+                field=f"outputs[{where}]" if where is not None else "variant_outputs",
+            )
         check_law(resolved if sweep is None else {**resolved, "sweep": sweep}, error)
         if sweep is not None:
             self.sweeps[case_id] = self._sweep(resolved, sweep, source)
@@ -270,11 +293,15 @@ class ProjectBuilder:
         )
         check_stability(self.config.get("stability"), self.cases, self.sets, self.config_source.error)
         check_sensor(self.config.get("sensor"), self.cases, self.config_source.error)
+        for set_name, (block, source) in self.calibrate.items():
+            cases = [self.cases[case_id] for case_id in self.sets[set_name]]
+            check_calibration(set_name, block, cases, self.schemas, self.config["numerics"], source.error)
         return Project(
             cases=self.cases,
             sets=self.sets,
             variants=self.variants,
             compare=self.compare,
+            calibrate={name: block for name, (block, _) in self.calibrate.items()},
             sweeps=self.sweeps,
             config=self.config,
         )

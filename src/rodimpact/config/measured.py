@@ -1,6 +1,7 @@
-"""A case's measured block: its force history's file found, read and checked before any job.
+"""A case's measured block: its records' files found, read and checked before any job.
 
-The file is named relative to the case file and must lie in that file's directory or below it:
+Each record (a force, a strain at a gauge, a velocity: :data:`~rodimpact.analysis.measured.RECORDS`)
+is named relative to the case file and must lie in that file's directory or below it:
 the plan's cache (:mod:`rodimpact.plumbing.plan_cache`) reads the cases directory's whole tree,
 so a history there that changes reaches the plan, and the comparison's rule lists it as an
 input. The resolved block keeps the file as written and adds ``path``, the file relative to
@@ -13,10 +14,11 @@ from collections.abc import Callable, Mapping
 from pathlib import Path, PurePosixPath
 from typing import Any
 
-from rodimpact.analysis.measured import HistoryError, read_force_history
+from rodimpact.analysis.measured import MEASURED_KEYS, RECORDS, HistoryError, read_history
 from rodimpact.config.project import ConfigError
+from rodimpact.model.gauges import Gauge, GaugeError
 
-__all__ = ["check_measured_physics", "resolve_measured"]
+__all__ = ["check_measured_physics", "record_outputs", "resolve_gauges", "resolve_measured"]
 
 
 def resolve_measured(
@@ -26,63 +28,124 @@ def resolve_measured(
     error: Callable[..., ConfigError],
     checked: dict[tuple, str] | None = None,
 ) -> dict | None:
-    """The case's ``measured`` block with its force history (if any) checked and located.
+    """The case's ``measured`` block with its records (if any) checked and located.
 
     Parameters
     ----------
     measured : mapping or None
         The case's block, schema-checked.
     case_file : Path
-        The case file (its directory is where ``force_history.file`` starts).
+        The case file (its directory is where each record's ``file`` starts).
     case_label : str
         The case file's name relative to the project root (as messages show it).
     error : callable
         ``error(message, field=...)`` -> :class:`ConfigError` naming the file and the case.
     checked : dict, optional
-        Histories already checked, (path, spec) -> root-relative path: a file several variants
-        share is read once.
+        Records already checked, (path, key, spec) -> root-relative path: a file several
+        variants share is read once.
 
     Raises
     ------
     ConfigError
-        The history's file lies outside the case file's directory, or cannot be used
+        A record's file lies outside the case file's directory, or cannot be used
         (:class:`~rodimpact.analysis.measured.HistoryError`), with its field.
     """
-    if not measured or not measured.get("force_history"):
-        return None if measured is None else dict(measured)
-    history = dict(measured["force_history"])
+    if measured is None:
+        return None
+    resolved = dict(measured)
+    for key in RECORDS:
+        if measured.get(key):
+            resolved[key] = _resolve_record(key, dict(measured[key]), case_file, case_label, error, checked)
+    return resolved
+
+
+def _resolve_record(
+    key: str,
+    history: dict[str, Any],
+    case_file: Path,
+    case_label: str,
+    error: Callable[..., ConfigError],
+    checked: dict[tuple, str] | None,
+) -> dict[str, Any]:
+    """One record of the ``measured`` block, read and checked, with its ``path`` added."""
     directory = case_file.parent.resolve()
     path = (case_file.parent / history["file"]).resolve()
     if not path.is_relative_to(directory):
         raise error(
-            f"{history['file']!r} lies outside the directory of its case file; keep a history "
+            f"{history['file']!r} lies outside the directory of its case file; keep a record "
             "beside its case file or below it, so that a change to it reaches the plan",
-            field="measured.force_history.file",
+            field=f"measured.{key}.file",
         )
-    key = (str(path), tuple(sorted((k, str(v)) for k, v in history.items())))
-    if checked is not None and key in checked:
-        label = checked[key]
+    cache_key = (str(path), key, tuple(sorted((k, str(v)) for k, v in history.items())))
+    if checked is not None and cache_key in checked:
+        label = checked[cache_key]
     else:
         try:
-            read_force_history(path, history)
+            read_history(path, history, key)
         except HistoryError as problem:
-            raise error(problem.reason, field=f"measured.force_history.{problem.field}") from None
+            raise error(problem.reason, field=f"measured.{key}.{problem.field}") from None
         label = (PurePosixPath(case_label).parent / path.relative_to(directory).as_posix()).as_posix()
         if checked is not None:
-            checked[key] = label
-    return {**measured, "force_history": {**history, "path": label}}
+            checked[cache_key] = label
+    return {**history, "path": label}
 
 
-def check_measured_physics(case: Mapping[str, Any], error: Callable[..., ConfigError]) -> None:
-    """What a measurement cannot be, given the case it measures: a rebound faster than the
-    impact (an impactor cannot leave an elastic rod with more energy than it brought).
+def resolve_gauges(
+    case: Mapping[str, Any], declared: list[Mapping[str, Any]], error: Callable[..., ConfigError]
+) -> list:
+    """The case's gauges: those it declares (``gauges``), then its strain record's, each on
+    the rod (:meth:`rodimpact.model.gauges.Gauge.check`), as ``{station_m, gauge_length_m}``.
 
     Raises
     ------
     ConfigError
-        Naming the field (``measured.rebound_velocity_m_s``) and the impact velocity.
+        A gauge off the rod, longer than it or over one of its ends, naming its field.
+    """
+    length = float(case["rod"]["length_m"])
+    gauges: list[tuple[str, Gauge]] = [
+        (f"gauges[{index}]", Gauge.from_settings(settings)) for index, settings in enumerate(declared)
+    ]
+    record = (case.get("measured") or {}).get("strain_history")
+    if record:
+        gauges.append(("measured.strain_history", Gauge.from_settings(record)))
+    for where, gauge in gauges:
+        try:
+            gauge.check(length)
+        except GaugeError as problem:
+            raise error(problem.reason.lstrip("="), field=f"{where}.{problem.field}") from None
+    unique = list(dict.fromkeys(gauge for _, gauge in gauges))
+    return [gauge.as_settings() for gauge in unique]
+
+
+def record_outputs(case: Mapping[str, Any]) -> list[str]:
+    """The outputs the case's records need its runs to store: the strain at its gauges for a
+    strain record, the velocity a velocity record measures."""
+    measured = case.get("measured") or {}
+    needed = []
+    if measured.get("force_history"):
+        needed.append("contact_force")
+    if measured.get("strain_history"):
+        needed.append("gauge_strain")
+    velocity = measured.get("velocity_history")
+    if velocity:
+        needed.append("impactor_velocity" if velocity["of"] == "impactor" else "far_end_velocity")
+    return needed
+
+
+def check_measured_physics(case: Mapping[str, Any], error: Callable[..., ConfigError]) -> None:
+    """What a measurement cannot be, given the case it measures: nothing at all (a block with
+    no value and no record); a rebound faster than the impact (an impactor cannot leave an
+    elastic rod with more energy than it brought); the velocity of a fixed far end.
+
+    Raises
+    ------
+    ConfigError
+        Naming the field (``measured.rebound_velocity_m_s``) and the impact velocity; or
+        ``measured.velocity_history.of`` for the far end of a rod whose far end is fixed.
     """
     measured = case.get("measured") or {}
+    if case.get("measured") is not None and not any(measured.get(key) is not None for key in MEASURED_KEYS):
+        raise error(f"gives nothing to compare with; give one of {', '.join(MEASURED_KEYS)}", field="measured")
     rebound = measured.get("rebound_velocity_m_s")
     impact = float(case["impactor"]["velocity_m_s"])
     if rebound is not None and float(rebound) > impact:
@@ -90,4 +153,10 @@ def check_measured_physics(case: Mapping[str, Any], error: Callable[..., ConfigE
             f"a rebound of {float(rebound):g} m/s is faster than the impact at {impact:g} m/s: no impact on an "
             "elastic rod returns more energy than it brought (a restitution above 1); check the value and its unit",
             field="measured.rebound_velocity_m_s",
+        )
+    velocity = measured.get("velocity_history")
+    if velocity and velocity["of"] == "far_end" and case["rod"].get("far_end", "fixed") != "free":
+        raise error(
+            "the far end's velocity of a rod whose far end is fixed is zero: a record of it needs rod.far_end: free",
+            field="measured.velocity_history.of",
         )

@@ -110,6 +110,9 @@ class Project:
     compare
         Case set name -> its ``compare`` options as written (``x``, ``title``, ``reference``;
         empty when its files give none).
+    calibrate
+        Case set name -> its ``calibrate`` block as checked (:mod:`.calibration`); sets
+        without one are absent.
     sweeps
         Resolved sweep cases keyed by id (not in ``cases`` nor ``sets``): a case with its
         ``sweep`` (``description``, ``methods``, ``parameters``: name -> sorted values).
@@ -121,6 +124,7 @@ class Project:
     sets: dict[str, list[str]]
     variants: dict[str, dict]
     compare: dict[str, dict] = dataclass_field(default_factory=dict)
+    calibrate: dict[str, dict] = dataclass_field(default_factory=dict)
     sweeps: dict[str, dict] = dataclass_field(default_factory=dict)
     config: dict[str, Any] = dataclass_field(default_factory=dict)
 

@@ -3,10 +3,11 @@
 Any case set whose cases carry ``measured`` values is compared the same way, whatever its
 name. For each case (and variant) and each method that ran it, every measured quantity is set
 against the computed one: the contact time, the peak force, the rebound velocity (positive away
-from the rod; its ratio to the impact velocity is the coefficient of restitution), and, for a
-measured force history (:mod:`rodimpact.analysis.measured`), the contact time read from both
-signals at the history's ``threshold``, and the L2 and max-norm errors of the computed force
-after alignment (:mod:`rodimpact.analysis.history_compare`). Errors are signed, in % of the
+from the rod; its ratio to the impact velocity is the coefficient of restitution), and what
+each record gives (:mod:`rodimpact.analysis.observations`): for a force history, the contact
+time read from both signals and the errors of the force after alignment; for a strain at a
+gauge, or the far end's velocity, the first pulse's arrival, peak and integral and the errors
+after alignment; for the impactor's velocity, its errors. Errors are signed, in % of the
 measured value: (computed - measured) / |measured|; a history's norms are errors already.
 """
 
@@ -20,8 +21,9 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from rodimpact.analysis.history_compare import HistoryComparison, compare_force_histories
+from rodimpact.analysis.history_compare import HistoryComparison
 from rodimpact.analysis.measured import MeasuredHistory
+from rodimpact.analysis.observations import QUANTITY_ORDER, SCALARS, force_comparison, observed
 from rodimpact.contact.laws import law_of
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.registry import METHODS
@@ -29,7 +31,6 @@ from rodimpact.storage.runs import RunRecord
 
 __all__ = [
     "COLUMNS",
-    "HISTORY_QUANTITIES",
     "QUANTITIES",
     "X_AXES",
     "X_NAMES",
@@ -40,23 +41,9 @@ __all__ = [
     "x_axis",
 ]
 
-#: Measured scalars a case may give (:data:`rodimpact.analysis.measured.MEASURED_KEYS`): key ->
-#: (words, unit, the computed value from a run's summary).
-QUANTITIES: dict[str, tuple[str, str, Any]] = {
-    "contact_time_us": ("contact time", "µs", lambda s: 1e6 * float(s["contact_time_s"])),
-    "peak_force_n": (
-        "peak force",
-        "N",
-        lambda s: float(np.max(s["peak_force_N"])) if len(s["peak_force_N"]) else math.nan,
-    ),
-    "rebound_velocity_m_s": ("rebound velocity", "m/s", lambda s: -float(s["rebound_velocity_m_s"])),
-}
-#: Rows a measured force history adds: quantity -> (words, unit).
-HISTORY_QUANTITIES = {
-    "signal_contact_time_us": ("contact time read from the signal", "µs"),
-    "history_l2_pct": ("force history, L2 error after alignment", "%"),
-    "history_max_pct": ("force history, max-norm error after alignment", "%"),
-}
+#: Measured scalars a case may give, and what a run says of them (one place:
+#: :mod:`rodimpact.analysis.observations`).
+QUANTITIES = SCALARS
 
 
 def model_label(config: Mapping[str, Any], method: str) -> str:
@@ -72,11 +59,10 @@ def model_label(config: Mapping[str, Any], method: str) -> str:
 
 def history_comparison(record: RunRecord, history: MeasuredHistory, threshold: float) -> HistoryComparison:
     """The run's contact force against the measured history (needs the run's ``contact_force``)."""
-    if "contact_force" not in record.series:
-        raise ValueError(f"run {record.path}: no contact_force series to compare with the measured history")
-    return compare_force_histories(
-        history.time_s, history.force_N, record.series["time"], record.series["contact_force"], threshold
-    )
+    try:
+        return force_comparison(record.series, history, threshold)
+    except KeyError as missing:
+        raise ValueError(f"run {record.path}: {missing.args[0]}") from None
 
 
 log = logging.getLogger(__name__)
@@ -176,64 +162,55 @@ def _row(
 
 
 def compare_frame(
-    records: Sequence[RunRecord], histories: Mapping[str, tuple[MeasuredHistory, float]] | None = None
+    records: Sequence[RunRecord], histories: Mapping[str, Mapping[str, MeasuredHistory]] | None = None
 ) -> pd.DataFrame:
     """One row per case, method and measured quantity (see the module docstring).
 
     Parameters
     ----------
     records : sequence of RunRecord
-        Full runs (with series where a history is compared) of the set's measured cases.
+        Full runs (with series where a record is compared) of the set's measured cases.
     histories : mapping, optional
-        Case id -> (its measured history, its threshold).
+        Case id -> its records, read, by their key in the ``measured`` block.
 
     Returns
     -------
     DataFrame
-        Columns ``case_id, row, variant, mass_g, velocity_m_s, diameter_mm, rod_length_mm,
-        method, method_label, contact_law, quantity, quantity_words, unit, measured, computed, error_pct,
-        source``, sorted by mass, case, quantity and the registry's method order.
+        Columns :data:`COLUMNS`, sorted by mass, case, quantity and the registry's method order.
     """
     histories = dict(histories or {})
     rows = []
     for record in records:
-        config, measured = record.config, record.config.get("measured") or {}
+        config = record.config
         warnings = rigid_wall_warnings(config)
         for key, text in warnings.items():
             log.warning("case %s: measured %s %s", record.case_id, key, text)
-        for key, (words, unit, computed_of) in QUANTITIES.items():
-            if measured.get(key) is None:
-                continue
-            value, computed = float(measured[key]), computed_of(record.summary)
-            error = 100.0 * (computed - value) / abs(value)
-            # the bound is the law's: a method that resolves the contact itself does not take it
-            warning = warnings.get(key) if METHODS[record.method].contact == "law" else None
-            rows.append(_row(config, record.method, key, words, unit, value, computed, error, warning))
-        if record.case_id in histories:
-            history, threshold = histories[record.case_id]
-            result = history_comparison(record, history, threshold)
-            signal_us, model_us = 1e6 * result.measured_contact_time_s, 1e6 * result.model_contact_time_s
-            words, unit = HISTORY_QUANTITIES["signal_contact_time_us"]
+        # the bound is the law's: a method that resolves the contact itself does not take it
+        bounded = METHODS[record.method].contact == "law"
+        try:
+            found = observed(config, record.series, record.summary, histories.get(record.case_id))
+        except (KeyError, ValueError) as problem:
+            raise ValueError(f"run {record.path}: {problem.args[0] if problem.args else problem}") from None
+        for row in found:
+            warning = warnings.get(row.quantity) if bounded else None
             rows.append(
                 _row(
                     config,
                     record.method,
-                    "signal_contact_time_us",
-                    f"{words} at {threshold:g} of its peak",
-                    unit,
-                    signal_us,
-                    model_us,
-                    100.0 * (model_us - signal_us) / signal_us,
+                    row.quantity,
+                    row.words,
+                    row.unit,
+                    row.measured,
+                    row.computed,
+                    row.error_pct,
+                    warning,
                 )
             )
-            for key, value in (("history_l2_pct", result.l2_error), ("history_max_pct", result.max_error)):
-                words, unit = HISTORY_QUANTITIES[key]
-                rows.append(_row(config, record.method, key, words, unit, math.nan, math.nan, 100.0 * value))
     frame = pd.DataFrame(rows, columns=list(COLUMNS))
     if frame.empty:
         return frame
     order = {m: k for k, m in enumerate(METHODS)}
-    quantities = {q: k for k, q in enumerate([*QUANTITIES, *HISTORY_QUANTITIES])}
+    quantities = {q: k for k, q in enumerate(QUANTITY_ORDER)}
     frame = frame.assign(_m=frame["method"].map(order).fillna(len(order)), _q=frame["quantity"].map(quantities))
     return (
         frame.sort_values(["mass_g", "case_id", "_q", "_m"], kind="stable")

@@ -1,24 +1,25 @@
 """A case set's comparison with its measurements, written: its table, its figure, and one
-figure per measured force history (:mod:`.compare`, :mod:`.compare_figures`), from the set's
-stored runs and measured files only."""
+figure per measured record, force, strain at a gauge or velocity (:mod:`.compare`,
+:mod:`.compare_figures`), from the set's stored runs and measured files only."""
 
 from __future__ import annotations
 
 import logging
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
 
 from rodimpact.analysis.history_compare import DEFAULT_THRESHOLD
-from rodimpact.analysis.measured import read_force_history
+from rodimpact.analysis.measured import RECORDS, MeasuredHistory, read_history
+from rodimpact.analysis.observations import signal_comparison
 from rodimpact.present.compare import compare_frame, compare_summary, history_comparison, x_axis
 from rodimpact.present.film_tables import write_provenance_with_files
 from rodimpact.present.table_formats import markdown_table, panels
 from rodimpact.present.tables import write_table
+from rodimpact.solvers.registry import METHODS
 from rodimpact.storage.atomic import atomic_output
 from rodimpact.storage.runs import read_run
 
-__all__ = ["make_compare_figure", "make_compare_table", "make_history_figure"]
+__all__ = ["SIGNAL_FIGURES", "make_compare_figure", "make_compare_table", "make_history_figure", "make_signal_figure"]
 
 log = logging.getLogger(__name__)
 
@@ -27,25 +28,29 @@ _CAPTION = (
     "computed value, and the error (computed − measured) / |measured| in %. A measured force history adds "
     "the contact time read from both signals at the history's threshold, and the L2 and max-norm errors "
     "of the computed force after the two are aligned where each first rises through that fraction of its "
-    'peak (config/README.md, "Comparing with your experiment").'
+    "peak. A strain at a gauge, or the far end's velocity, adds its first pulse's arrival (against x/c), "
+    "peak and time integral, and the errors after the arrivals are aligned "
+    '(config/README.md, "Comparing with your experiment").'
 )
 
 
-def _histories(records) -> dict[str, tuple[Any, float]]:
-    """Case id -> (its measured history, its threshold), for the cases that give one."""
-    out = {}
+def _histories(records) -> dict[str, dict[str, MeasuredHistory]]:
+    """Case id -> its records, read, by their key in the ``measured`` block."""
+    out: dict[str, dict[str, MeasuredHistory]] = {}
     for record in records:
-        spec = (record.config.get("measured") or {}).get("force_history")
-        if spec and record.case_id not in out:
-            out[record.case_id] = (
-                read_force_history(spec["path"], spec),
-                float(spec.get("threshold", DEFAULT_THRESHOLD)),
-            )
+        measured = record.config.get("measured") or {}
+        if record.case_id in out:
+            continue
+        found = {key: read_history(measured[key]["path"], measured[key], key) for key in RECORDS if measured.get(key)}
+        if found:
+            out[record.case_id] = found
     return out
 
 
 def _history_files(records) -> list[str]:
-    return sorted({spec["path"] for r in records if (spec := (r.config.get("measured") or {}).get("force_history"))})
+    return sorted(
+        {spec["path"] for r in records for key in RECORDS if (spec := (r.config.get("measured") or {}).get(key))}
+    )
 
 
 def make_compare_table(
@@ -83,7 +88,7 @@ def make_compare_table(
             encoding="utf-8",
         )
     write_provenance_with_files(
-        provenance, records, [csv, summary, md, html, tex], {"measured force history": _history_files(records)}
+        provenance, records, [csv, summary, md, html, tex], {"measured records": _history_files(records)}
     )
     log.info("set %s: %d comparisons of %d runs", set_name, len(frame), len(records))
 
@@ -116,7 +121,7 @@ def make_compare_figure(
         provenance=provenance_record(records, [pdf, png]),
         title=f"Set {set_name} against its measurements",
     )
-    write_provenance_with_files(provenance, records, [pdf, png], {"measured force history": _history_files(records)})
+    write_provenance_with_files(provenance, records, [pdf, png], {"measured records": _history_files(records)})
 
 
 def make_history_figure(
@@ -137,9 +142,11 @@ def make_history_figure(
     records = [read_run(p) for p in runs]
     cases = {r.case_id for r in records}
     histories = _histories(records)
-    if len(cases) != 1 or not histories:
+    if len(cases) != 1 or not histories or "force_history" not in next(iter(histories.values())):
         raise ValueError(f"runs: one case with a measured force history expected, got {sorted(cases)}")
-    ((case_id, (history, threshold)),) = histories.items()
+    ((case_id, found),) = histories.items()
+    history = found["force_history"]
+    threshold = float(records[0].config["measured"]["force_history"].get("threshold", DEFAULT_THRESHOLD))
     comparisons = [(r.method, history_comparison(r, history, threshold)) for r in records]
     description = str(records[0].config.get("description") or case_id)
     save_figure(
@@ -149,4 +156,61 @@ def make_history_figure(
         provenance=provenance_record(records, [pdf, png]),
         title=f"{case_id}: measured and computed force",
     )
-    write_provenance_with_files(provenance, records, [pdf, png], {"measured force history": _history_files(records)})
+    write_provenance_with_files(provenance, records, [pdf, png], {"measured records": _history_files(records)})
+
+
+#: A record's figure: its key -> (the signal in words, the y label, the scale to its unit).
+SIGNAL_FIGURES = {
+    "strain_history": ("strain", "axial strain at the gauge (µstrain)", 1e6),
+    "velocity_history": ("velocity", "velocity (m/s)", 1.0),
+}
+
+
+def make_signal_figure(
+    runs: Sequence[str | Path],
+    key: str,
+    title: str,
+    *,
+    pdf: str | Path,
+    png: str | Path,
+    provenance: str | Path,
+) -> None:
+    """A set's measured strain or velocity records against each method's signals, one row per
+    case (``key``: ``strain_history`` or ``velocity_history``; every run of ``runs`` is of a
+    case with such a record; :func:`~rodimpact.present.compare_figures.plot_signal_overlays`).
+
+    Raises
+    ------
+    ValueError
+        A run's case has no such record.
+    """
+    from rodimpact.present.compare_figures import plot_signal_overlays
+    from rodimpact.present.figures import save_figure
+    from rodimpact.storage.sidecar import provenance_record
+
+    order = {name: k for k, name in enumerate(METHODS)}
+    records = sorted(
+        (read_run(p) for p in runs), key=lambda r: (r.config["impactor"]["mass_kg"], order.get(r.method, 99))
+    )
+    histories = _histories(records)
+    panels = []
+    for case_id in dict.fromkeys(r.case_id for r in records):  # a row per case, lightest first
+        if key not in histories.get(case_id, {}):
+            raise ValueError(f"runs: case {case_id!r} has no measured {key}")
+        runs_of_case = [r for r in records if r.case_id == case_id]
+        spec, history = runs_of_case[0].config["measured"][key], histories[case_id][key]
+        comparisons = [(r, signal_comparison(key, spec, r.series, r.summary, history)) for r in runs_of_case]
+        description = str(runs_of_case[0].config.get("description") or case_id)
+        panels.append((comparisons, spec, description, history.note))
+    words, ylabel, scale = SIGNAL_FIGURES[key]
+    if key == "velocity_history":
+        whose = {p[1]["of"] for p in panels}
+        ylabel = (f"the {'impactor' if whose == {'impactor'} else 'far end'}'s " if len(whose) == 1 else "") + ylabel
+    save_figure(
+        plot_signal_overlays(panels, ylabel, scale, title),
+        pdf=pdf,
+        png=png,
+        provenance=provenance_record(records, [pdf, png]),
+        title=title,
+    )
+    write_provenance_with_files(provenance, records, [pdf, png], {"measured records": _history_files(records)})

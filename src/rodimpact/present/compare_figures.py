@@ -1,10 +1,11 @@
-"""The figures of a case set against its measurements: one for the set, one per measured history."""
+"""The figures of a case set against its measurements: one for the set, one per measured record."""
 
 from __future__ import annotations
 
 import math
 import textwrap
 from collections.abc import Mapping, Sequence
+from typing import Any
 
 import matplotlib
 
@@ -12,16 +13,26 @@ matplotlib.use("Agg")  # headless: the workflow's figures never open a window
 
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
+import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
 from rodimpact.analysis.history_compare import HistoryComparison  # noqa: E402
+from rodimpact.analysis.observations import gauge_column  # noqa: E402
+from rodimpact.analysis.wave_compare import SignalComparison  # noqa: E402
 from rodimpact.present.table2_figures import short_source  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
 
-__all__ = ["plot_compare_set", "plot_history_overlay"]
+__all__ = ["plot_compare_set", "plot_history_overlay", "plot_signal_overlays"]
 
 #: The measured scalars drawn, in this order, each in its row of panels.
-_DRAWN = ("contact_time_us", "peak_force_n", "rebound_velocity_m_s")
+_DRAWN = (
+    "contact_time_us",
+    "peak_force_n",
+    "rebound_velocity_m_s",
+    "strain_peak_microstrain",
+    "strain_integral_microstrain_us",
+    "far_end_peak_velocity_m_s",
+)
 _MARKERS = ("s", "D", "P", "X", "h")
 #: The markers of a method's lines, one per contact law met in the set.
 _LAW_MARKERS = ("o", "^", "v", "D", "s")
@@ -170,7 +181,95 @@ def plot_history_overlay(
     lower.set_ylabel("computed − measured (N)")
     lower.set_xlabel("time since the computed contact began (µs)")
     lower.grid(alpha=0.3)
-    upper.set_title(textwrap.fill(title + (f" — {note}" if note else ""), 80), fontsize=9)
+    # the note's opening only: how the record was made, not the command that made it
+    upper.set_title(textwrap.fill(title + (f" — {textwrap.shorten(note, 120)}" if note else ""), 80), fontsize=9)
     if not comparisons:
         upper.text(0.5, 0.5, "no run to compare", transform=upper.transAxes, ha="center")
     return fig
+
+
+def plot_signal_overlays(
+    panels: Sequence[tuple[Sequence[tuple[Any, SignalComparison]], Mapping[str, Any], str, str]],
+    ylabel: str,
+    scale: float,
+    title: str,
+) -> matplotlib.figure.Figure:
+    """A set's measured strain or velocity records, one row per case: the record and each
+    method's signal (left), and their difference, computed minus measured (right), against the
+    time since the impact.
+
+    Parameters
+    ----------
+    panels : sequence of (comparisons, spec, description, note)
+        Per case: each run (its ``method``, ``series`` and ``summary``) with its comparison, the
+        record's block (``station_m`` and ``gauge_length_m`` of a gauge; ``of`` of a velocity),
+        the case in words and how the record was made.
+    ylabel : str
+        The signal in words, with its unit.
+    scale : float
+        Multiplies the signal into the unit of ``ylabel``.
+    title : str
+        The figure's title.
+    """
+    rows = max(len(panels), 1)
+    fig, axes = plt.subplots(
+        rows, 2, figsize=(10.0, 0.6 + 2.9 * rows), width_ratios=(3, 2), squeeze=False, layout="constrained"
+    )
+    unit = ylabel.rsplit("(", 1)[-1].rstrip(")") if ylabel.endswith(")") else ""
+    for (signal, difference), (comparisons, spec, description, note) in zip(axes, panels, strict=False):
+        _signal_row(signal, difference, comparisons, spec, scale)
+        if "station_m" in spec:
+            where = f"gauge at {1e3 * float(spec['station_m']):.4g} mm"
+            if float(spec.get("gauge_length_m", 0.0)) > 0:
+                where += f", {1e3 * float(spec['gauge_length_m']):.3g} mm long"
+            description = f"{description} ({where})"
+        # the note's opening only: how the record was made, not the command that made it
+        text = description + (f" — {textwrap.shorten(note, 90)}" if note else "")
+        signal.set_title(textwrap.fill(text, 95), fontsize=8, loc="left")
+        signal.set_ylabel(ylabel, fontsize=8.5)
+        difference.set_ylabel(f"computed − measured ({unit})" if unit else "computed − measured", fontsize=8.5)
+    for ax in axes[-1]:
+        ax.set_xlabel("time since the impact (µs)")
+    if not panels:
+        axes[0, 0].text(0.5, 0.5, "no record to compare", transform=axes[0, 0].transAxes, ha="center")
+    handles: dict[str, object] = {}
+    for ax in axes[:, 0]:
+        for handle, label in zip(*ax.get_legend_handles_labels(), strict=True):
+            handles.setdefault(label, handle)
+    fig.legend(list(handles.values()), list(handles), loc="outside lower center", ncol=2, fontsize=8, frameon=False)
+    fig.suptitle(textwrap.fill(title, 100), fontsize=10)
+    return fig
+
+
+def _signal_row(signal, difference, comparisons, spec: Mapping[str, Any], scale: float) -> None:
+    """One case's record and each method's signal (``signal``), and their difference."""
+    for index, (run, result) in enumerate(comparisons):
+        t_us = 1e6 * result.time_s
+        if index == 0:
+            aligned = "aligned on the first arrival" if result.measured_pulse is not None else "on its own clock"
+            signal.plot(t_us, scale * result.measured, color="k", lw=1.0, label=f"measured ({aligned})")
+        style = _method_style(run.method)
+        label = METHODS[run.method].label if run.method in METHODS else run.method
+        signal.plot(t_us, scale * result.model, lw=1.3, label=label, **style)
+        difference.plot(
+            t_us,
+            scale * (result.model - result.measured),
+            lw=0.9,
+            label=f"{label}: L2 error {100 * result.l2_error:.1f} %",
+            **style,
+        )
+        if "gauge_mean_strain" in run.series and "station_m" in spec:
+            column = gauge_column(run.summary, float(spec["station_m"]), float(spec.get("gauge_length_m", 0.0)))
+            mean = np.asarray(run.series["gauge_mean_strain"]).reshape(len(run.series["time"]), -1)[:, column]
+            signal.plot(
+                t_us,
+                scale * np.interp(result.time_s, run.series["time"], mean),
+                lw=1.0,
+                color=style["color"],
+                ls=":",
+                label=f"{label}: the section's mean strain (the surface's drawn solid)",
+            )
+    difference.axhline(0.0, color="0.5", lw=0.8)
+    difference.legend(fontsize=7, loc="best")
+    for ax in (signal, difference):
+        ax.grid(alpha=0.3)

@@ -10,11 +10,24 @@ on the development machine (one core of a 2-core x86_64 VM) against the stored r
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
 from rodimpact.model.problem import ImpactProblem
+from rodimpact.solvers.gauge_series import FAR_END_OUTPUT, GAUGE_OUTPUT, case_gauges, record_until_s, recorded_reach_m
 
-__all__ = ["Cost", "MIB", "SHORT_CONTACT", "SOLVE_S", "STATION_STEP_BYTES", "contact_duration", "horizon"]
+__all__ = [
+    "Cost",
+    "MIB",
+    "SHORT_CONTACT",
+    "SOLVE_S",
+    "STATION_STEP_BYTES",
+    "contact_duration",
+    "horizon",
+    "recorded_probes",
+    "recording_end",
+]
 
 MIB = 2.0**20
 
@@ -59,6 +72,29 @@ def contact_duration(problem: ImpactProblem) -> float:
     if problem.rod.impedance * problem.velocity_m_s >= rigid.peak_force_N and short < problem.rod.reflection_period:
         return min(estimate, short)
     return estimate
+
+
+def recorded_probes(case: Mapping[str, Any]) -> int:
+    """The probes a run of ``case`` records at every stored step, each counted at a station's
+    :data:`STATION_STEP_BYTES`: its stations, its gauges when its outputs list ``gauge_strain``
+    (one history each, two with ``fem_axi``'s mean) and the far end when they list
+    ``far_end_velocity`` (one history)."""
+    outputs = case.get("outputs", ())
+    gauges = len(case.get("gauges", ())) if GAUGE_OUTPUT in outputs else 0
+    return len(case.get("stations", ())) + gauges + (1 if FAR_END_OUTPUT in outputs else 0)
+
+
+def recording_end(case: Mapping[str, Any], problem: ImpactProblem, contact_s: float) -> float:
+    """The time a run of ``case`` that records gauges or the far end's velocity goes on to after
+    contacts that end by ``contact_s`` (s; the time limit does not cut it short), s:
+    :func:`~rodimpact.solvers.gauge_series.record_until_s` of the farthest section it records;
+    0 when it records neither (or the section is not at a finite distance)."""
+    outputs = case.get("outputs", ())
+    gauges = case_gauges(case)
+    reach = recorded_reach_m(gauges, FAR_END_OUTPUT in outputs, problem.rod.length_m)
+    if reach is None or not math.isfinite(reach):
+        return 0.0
+    return record_until_s(contact_s, reach, problem.rod.wave_speed)
 
 
 def horizon(problem: ImpactProblem, max_time_factor: float, contact_s: float, end_test_s: float) -> float:

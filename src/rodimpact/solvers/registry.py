@@ -30,6 +30,7 @@ from rodimpact.solvers.fem1d.options import FEM1DOptions
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact
 from rodimpact.solvers.field import FIELD_OUTPUT, FieldGrid
+from rodimpact.solvers.gauge_series import FAR_END_OUTPUT, GAUGE_OUTPUT, case_gauges
 from rodimpact.solvers.options import Options
 from rodimpact.solvers.result import ImpactResult
 from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
@@ -65,7 +66,9 @@ class Method:
         ``problem(case) -> problem``: what the solver solves, built from a resolved case.
     solver : str
         ``"module:function"`` of the driver, ``function(problem, options, stations=...) -> ImpactResult``
-        (and ``field=`` a :class:`~rodimpact.solvers.field.FieldGrid` when it records the field).
+        (and ``field=`` a :class:`~rodimpact.solvers.field.FieldGrid` when it records the field;
+        ``gauges=`` a tuple of :class:`~rodimpact.model.gauges.Gauge` when the case lists the
+        output ``gauge_strain``; ``far_end_velocity=True`` when it lists ``far_end_velocity``).
     cost : str
         ``"module:function"`` of its closed-form cost model, ``function(case, options) -> Cost``
         (:mod:`rodimpact.solvers.cost`).
@@ -133,12 +136,25 @@ class Method:
 
         A method that takes the contact law adds the law's parameters and its run summary
         (:meth:`~rodimpact.contact.law.ContactLaw.run_summary`, at the run's largest
-        approach) to the result's summary.
+        approach) to the result's summary. The driver gets ``gauges`` and
+        ``far_end_velocity`` only when the case's outputs list ``gauge_strain`` and
+        ``far_end_velocity`` (:mod:`~rodimpact.solvers.gauge_series`): a run pays only for
+        what it is asked.
+
+        Raises
+        ------
+        rodimpact.model.gauges.GaugeError
+            A gauge is malformed or off the rod (its setting in ``field``).
         """
         driver = _load(self.solver)
         problem = self.problem(case)
         grid = self.field_grid(case)
-        more = {} if grid is None else {"field": grid}
+        more: dict[str, Any] = {} if grid is None else {"field": grid}
+        outputs = case.get("outputs", ())
+        if GAUGE_OUTPUT in outputs:
+            more["gauges"] = case_gauges(case)
+        if FAR_END_OUTPUT in outputs:
+            more["far_end_velocity"] = True
         result = driver(problem, self.options_of(settings), stations=case.get("stations", ()), **more)
         if self.contact == "law":
             law = problem.law

@@ -31,6 +31,10 @@ OUTPUT_DATASETS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
     "station_displacement": (("station_displacement",), ()),
     "contact_radius": (("contact_radius",), ()),
     "station_strain": (("station_strain",), ()),
+    # gauge_* have shape (n, k) for the k gauges in the summary's gauge_x_m, gauge_length_m;
+    # gauge_mean_strain: fem_axi's, over the cross-section's mean displacement (:mod:`.gauge_series`)
+    "gauge_strain": (("gauge_strain",), ("gauge_mean_strain",)),
+    "far_end_velocity": (("far_end_velocity",), ()),
     "energy": (
         ("impactor_kinetic_energy", "contact_energy", "rod_energy"),
         ("rod_kinetic_energy", "rod_strain_energy"),

@@ -2,7 +2,8 @@
 
 What lives here: :mod:`.runs` (one HDF5 file per run), :mod:`.runcheck` (what a run file may
 hold), :mod:`.runfield` (its strain field), :mod:`.casefile` (the case files), :mod:`.curves`
-(contact-law curves as HDF5), :mod:`.bands` (prediction bands as HDF5), :mod:`.faults` (an
+(contact-law curves as HDF5), :mod:`.bands` (prediction bands as HDF5), :mod:`.calibrations` (a set's
+calibration as HDF5), :mod:`.faults` (an
 input a job cannot use, marked out of date: :class:`~rodimpact.storage.faults.UnreadableInput`
 and :class:`~rodimpact.storage.faults.StoredFileError`), :mod:`.atomic` (the one
 whole-or-nothing writer), :mod:`.provenance` (hashes and versions) and :mod:`.sidecar` (the

@@ -6,8 +6,9 @@
   over config, series and summary) matches its content, it was made by the libraries
   installed now, and the case file it records still holds its case;
 * a case file (``results/cases/*.yaml``): its case has the hash it was written with;
-* a contact-law curve (``results/indentation/*.h5``) or a band
-  (``results/studies/film_band_*.h5``, ``results/studies/sensor_band/*.h5``): its data match their hash;
+* a contact-law curve (``results/indentation/*.h5``), a band
+  (``results/studies/film_band_*.h5``, ``results/studies/sensor_band/*.h5``) or a calibration
+  (``results/calibration/*.h5``): its data match their hash;
 * a table or figure: a provenance sidecar (``*.provenance.json``) lists it with the SHA-256
   of its bytes as written, and every input run the sidecar names still has the config and
   content hashes the artifact was made from;
@@ -36,6 +37,7 @@ from typing import Any
 import h5py
 
 from rodimpact.storage.bands import read_band
+from rodimpact.storage.calibrations import read_calibration
 from rodimpact.storage.casefile import read_case_file
 from rodimpact.storage.curves import read_contact_curve
 from rodimpact.storage.faults import DIRECTORY_TIMESTAMP, REBUILD_HINT, StoredFileError
@@ -138,9 +140,10 @@ def audit_run(path: str | Path, libraries: Mapping[str, str], repo_root: Path | 
 
 
 def audit_derived(path: str | Path, kind: str, repo_root: Path | None) -> Finding:
-    """Check a contact-law curve (``results/indentation/``) or a band (``results/studies/``):
-    readable, its data match their hash, its code version exists."""
-    reader = read_contact_curve if kind == "curve" else read_band
+    """Check a contact-law curve (``results/indentation/``), a band (``results/studies/``) or a
+    calibration (``results/calibration/``): readable, its data match their hash, its code
+    version exists."""
+    reader = {"curve": read_contact_curve, "band": read_band, "calibration": read_calibration}[kind]
     try:
         reader(path)
         with h5py.File(path, "r") as h5:
@@ -273,6 +276,8 @@ def audit(root: str | Path = ".", *, results: str = "results", workflow: bool = 
                 (f"{results}/studies/film_band_", f"{results}/studies/sensor_band/")
             ) and path.endswith(".h5"):
                 found[path] = audit_derived(path, "band", repo_root)
+            elif path.startswith(f"{results}/calibration/") and path.endswith(".h5"):
+                found[path] = audit_derived(path, "calibration", repo_root)
             elif path.endswith(".h5"):
                 found[path] = audit_run(path, libraries, repo_root)
             elif path.startswith(f"{results}/cases/") and path.endswith(".yaml"):

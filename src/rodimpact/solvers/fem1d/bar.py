@@ -40,6 +40,12 @@ class BarModel:
     n_elements : int
     field_probes : scipy.sparse.csr_matrix, shape (f, d)
         Axial strain at the cross-sections of the strain field, as ``strain_probes``.
+    gauge_probes : scipy.sparse.csr_matrix, shape (g, d)
+        Mean axial strain over each gauge: (u(x + g/2) - u(x - g/2)) / g, the displacement
+        probed at both ends of the gauge; a point gauge (g = 0) as ``strain_probes``.
+    far_probe : scipy.sparse.csr_matrix, shape (1, d), or None
+        The far end's value (x = l) of a nodal field (its velocity from the velocities); a
+        zero row when the far end is fixed (its DOF eliminated).
     """
 
     mass: sp.csc_matrix
@@ -50,6 +56,8 @@ class BarModel:
     dof_spacing_m: float
     n_elements: int
     field_probes: sp.csr_matrix | None = None
+    gauge_probes: sp.csr_matrix | None = None
+    far_probe: sp.csr_matrix | None = None
 
 
 def bar_model(
@@ -58,6 +66,8 @@ def bar_model(
     n_elements: int,
     stations_m: Sequence[float] = (),
     field_m: Sequence[float] = (),
+    gauges_m: Sequence[tuple[float, float]] = (),
+    far_end: bool = False,
 ) -> BarModel:
     """Assemble the bar 0 <= x <= l struck at x = 0 (the far end fixed or free).
 
@@ -73,6 +83,10 @@ def bar_model(
         Positions of the probes, m from the struck end.
     field_m : sequence of float
         Cross-sections of the strain field (:attr:`BarModel.field_probes`), m from the struck end.
+    gauges_m : sequence of (float, float)
+        The gauges' centres and lengths (:attr:`BarModel.gauge_probes`), m.
+    far_end : bool
+        Build the far end's probe (:attr:`BarModel.far_probe`).
     """
     if element not in ELEMENTS:
         raise ValueError(f"element must be one of {sorted(ELEMENTS)}, got {element!r}")
@@ -118,7 +132,23 @@ def bar_model(
         dof_spacing_m=h_e / (1 if element == "P1" else 2),
         n_elements=int(n_elements),
         field_probes=_strain_probes(basis, np.asarray(list(field_m), dtype=float), length, h_e)[:, free],
+        gauge_probes=_gauge_probes(basis, gauges_m, length, h_e)[:, free] if len(gauges_m) else None,
+        far_probe=sp.csr_matrix(basis.probes(np.array([[length]])))[:, free] if far_end else None,
     )
+
+
+def _gauge_probes(basis: Basis, gauges_m: Sequence[tuple[float, float]], length: float, h_e: float) -> sp.csr_matrix:
+    """The mean strain over each gauge (centre x, length g, m), shape (k, N): the difference
+    of the displacement at its ends over g; a point gauge's du/dx as :func:`_strain_probes`."""
+    rows = []
+    for x, g in gauges_m:
+        if g > 0.0:
+            ends = np.array([[x - 0.5 * g, x + 0.5 * g]])
+            values = sp.csr_matrix(basis.probes(ends))
+            rows.append((values[1] - values[0]) / g)
+        else:
+            rows.append(_strain_probes(basis, np.array([x]), length, h_e))
+    return sp.csr_matrix(sp.vstack(rows))
 
 
 def _strain_probes(basis: Basis, positions: NDArray[np.float64], length: float, h_e: float) -> sp.csr_matrix:

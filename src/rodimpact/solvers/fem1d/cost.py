@@ -7,7 +7,16 @@ from collections.abc import Mapping
 from typing import Any
 
 from rodimpact.model.problem import ImpactProblem
-from rodimpact.solvers.cost import MIB, SOLVE_S, STATION_STEP_BYTES, Cost, contact_duration, horizon
+from rodimpact.solvers.cost import (
+    MIB,
+    SOLVE_S,
+    STATION_STEP_BYTES,
+    Cost,
+    contact_duration,
+    horizon,
+    recorded_probes,
+    recording_end,
+)
 from rodimpact.solvers.fem1d.options import FEM1DOptions
 from rodimpact.solvers.field import FIELD_OUTPUT, FieldGrid
 from rodimpact.solvers.stepping import SEPARATION_ROUND_TRIPS
@@ -31,14 +40,16 @@ def fem1d_cost(case: Mapping[str, Any], options: FEM1DOptions) -> Cost:
     # round trip), a free rod's separation window
     contact, period = contact_duration(problem), problem.rod.reflection_period
     end_test = min(3.0 * contact, period) if problem.rod.far_end == "fixed" else SEPARATION_ROUND_TRIPS * period
-    span = horizon(problem, options.max_time_factor, contact, end_test)
+    # a run that records gauges or the far end's velocity steps on to its recording's end
+    # (beyond the time limit)
+    span = max(horizon(problem, options.max_time_factor, contact, end_test), recording_end(case, problem, contact))
     steps = span / step + 1.0
     if FIELD_OUTPUT in case.get("outputs", ()) and math.isfinite(problem.rod.reflection_period):
         # the strain field: the bar stepped alone for its round trips after the last contact
         steps += (
             FieldGrid.from_settings(case.get("field_grid", {})).round_trips_after * problem.rod.reflection_period / step
         )
-    stations = len(case.get("stations", ()))
+    stations = recorded_probes(case)  # stations, gauges and the far end, when asked for
     return Cost(
         time_step_s=step,
         steps=steps,

@@ -25,11 +25,19 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq
 
+from rodimpact.model.gauges import Gauge
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.model.responses import Rod
 from rodimpact.solvers.fem1d.bar import BarModel, banded_solver, bar_model, end_vector
 from rodimpact.solvers.fem1d.options import FEM1DOptions
 from rodimpact.solvers.field import FieldGrid, field_datasets
+from rodimpact.solvers.gauge_series import (
+    checked_gauges,
+    far_end_datasets,
+    gauge_datasets,
+    record_until_s,
+    recorded_reach_m,
+)
 from rodimpact.solvers.result import ImpactResult
 from rodimpact.solvers.stepping import SEPARATION_ROUND_TRIPS, Outcome, StepHistory, energy_error, limit_reached
 
@@ -47,6 +55,7 @@ class _Setup:
     h: float
     warnings: tuple[str, ...]
     stations_m: tuple[float, ...]
+    gauges: tuple[Gauge, ...]
     solve: Any  # K_eff^-1 (a banded Cholesky factor's solve)
     g: NDArray[np.float64]  # K_eff^-1 e0
     static_end: float  # end compliance of the fixed bar, m/N (inf for a free far end)
@@ -55,11 +64,13 @@ class _Setup:
 
 @dataclass(eq=False)
 class _History(StepHistory):
-    """The histories every run records, and fem1d's own: the stations' displacement and strain
-    and the rod's kinetic and strain energies."""
+    """The histories every run records, and fem1d's own: the stations' displacement and strain,
+    the gauges' strain, the far end's velocity and the rod's kinetic and strain energies."""
 
     station_u: list[NDArray[np.float64]] = field(default_factory=list)
     station_e: list[NDArray[np.float64]] = field(default_factory=list)
+    gauge_e: list[NDArray[np.float64]] = field(default_factory=list)
+    far_v: list[float] = field(default_factory=list)
     rod_kinetic: list[float] = field(default_factory=list)
     rod_strain: list[float] = field(default_factory=list)
 
@@ -82,12 +93,26 @@ def _hermite_root(a0: float, a1: float, d0: float, d1: float, h: float) -> float
 
 
 def _setup(
-    problem: ImpactProblem, options: FEM1DOptions, stations: Sequence[float], field: FieldGrid | None = None
+    problem: ImpactProblem,
+    options: FEM1DOptions,
+    stations: Sequence[float],
+    field: FieldGrid | None = None,
+    gauges: Sequence[Gauge] = (),
+    far_end: bool = False,
 ) -> _Setup:
     n_el, h, warnings = options.resolve(problem)
     rod = problem.rod
+    gauges = checked_gauges(gauges, rod.length_m)
     xs = tuple(float(s) * rod.length_m for s in stations)
-    bar = bar_model(rod, options.element, n_el, xs, () if field is None else field.positions(rod.length_m))
+    bar = bar_model(
+        rod,
+        options.element,
+        n_el,
+        xs,
+        () if field is None else field.positions(rod.length_m),
+        [(g.station_m, g.gauge_length_m) for g in gauges],
+        far_end,
+    )
     M, K = bar.mass, bar.stiffness
     solve = banded_solver(K + (4.0 / h**2) * M)
     e0 = end_vector(bar)
@@ -98,6 +123,7 @@ def _setup(
         h=h,
         warnings=tuple(warnings),
         stations_m=xs,
+        gauges=gauges,
         solve=solve,
         g=solve(e0),
         static_end=static_end,
@@ -110,6 +136,8 @@ def solve_fem1d(
     options: FEM1DOptions | None = None,
     stations: Sequence[float] = (),
     field: FieldGrid | None = None,
+    gauges: Sequence[Gauge] = (),
+    far_end_velocity: bool = False,
 ) -> ImpactResult:
     """Solve the impact with the rod as a finite-element bar.
 
@@ -128,6 +156,20 @@ def solve_fem1d(
         never returns) until the grid's last time, one or more round trips after the last
         contact; its histories and summary stop where they stop without a field. None
         (default) records none, and the run is the same.
+    gauges : sequence of Gauge
+        Strain gauges (:class:`~rodimpact.model.gauges.Gauge`): the mean strain over each,
+        (u(x + g/2) - u(x - g/2)) / g from the bar's displacement at the gauge's ends (a point
+        gauge: du/dx as at a station), at every step (``gauge_strain``, shape (n, k)).
+    far_end_velocity : bool
+        Also record the velocity of the bar's last node x = l (Newmark's velocity;
+        ``far_end_velocity``, m/s; zero at a fixed far end).
+
+        With gauges or the far end's velocity, a run that has proven that no further contact is
+        possible keeps stepping, past the time limit, until every wave its last contact sent has
+        passed the farthest section recorded
+        (:func:`~rodimpact.solvers.gauge_series.record_until_s`; the summary's
+        ``recorded_until_s``). Its contact results (and the energy balance, taken at the node
+        where the proof came) are those of the run without them.
 
     Returns
     -------
@@ -139,10 +181,12 @@ def solve_fem1d(
     ------
     rodimpact.solvers.options.OptionError
         The options cannot resolve the contact (too few elements, too long a step).
+    rodimpact.model.gauges.GaugeError
+        A gauge is off the rod.
     """
     options = FEM1DOptions() if options is None else options
     started = _time.perf_counter()
-    setup = _setup(problem, options, stations, field)
+    setup = _setup(problem, options, stations, field, gauges, far_end_velocity)
     for warning in setup.warnings:
         log.warning(warning)
     bar, h, solve, g = setup.bar, setup.h, setup.solve, setup.g
@@ -162,6 +206,8 @@ def solve_fem1d(
         alpha=[0.0],
         station_u=[bar.station_probes @ u],
         station_e=[bar.strain_probes @ u],
+        gauge_e=[] if bar.gauge_probes is None else [bar.gauge_probes @ u],
+        far_v=[] if bar.far_probe is None else [float((bar.far_probe @ v)[0])],
         rod_kinetic=[0.0],
         rod_strain=[0.0],
     )
@@ -169,6 +215,9 @@ def solve_fem1d(
     starts, ends, AL = hist.starts, hist.ends, hist.alpha
     in_contact = True
     t_max = options.max_time_factor * problem.contact_time_estimate()
+    reach = recorded_reach_m(setup.gauges, far_end_velocity, rod.length_m)
+    # the node at which no further contact was proven (where a run that records nothing ends)
+    finished: int | None = None
     status, message = "failed", ""
     t = 0.0
     while True:
@@ -200,13 +249,18 @@ def solve_fem1d(
         AL.append(alpha)
         hist.station_u.append(bar.station_probes @ u)
         hist.station_e.append(bar.strain_probes @ u)
+        if bar.gauge_probes is not None:
+            hist.gauge_e.append(bar.gauge_probes @ u)
+        if bar.far_probe is not None:
+            hist.far_v.append(float((bar.far_probe @ v)[0]))
         hist.rod_kinetic.append(0.5 * v @ (M @ v))
         hist.rod_strain.append(0.5 * u @ (K @ u))
         if recorder is not None:
             recorder.record(t, u)
-        if (
-            not in_contact
-            and ends
+        if in_contact:
+            finished = None  # a contact after the proof (not for a sound one): the run goes on as ever
+        elif finished is None and (
+            ends
             and _no_further_contact(
                 rod,
                 x,
@@ -217,8 +271,14 @@ def solve_fem1d(
                 setup.rod_momentum @ v,
             )
         ):
+            finished = len(hist.t) - 1
             status, message = "completed", f"{len(ends)} contact(s); no further contact possible"
-            break
+        if finished is not None:
+            # a run that records gauges or the far end goes on, without the time limit, until every
+            # wave the last contact sent has passed the farthest section it records
+            if reach is None or t >= record_until_s(ends[-1], reach, rod.wave_speed):
+                break
+            continue
         limit = limit_reached(starts, ends, t, t_max, options)
         if limit:
             status, message = limit
@@ -234,7 +294,10 @@ def solve_fem1d(
             recorder.record(t, u)
         field_data = recorder.datasets(times)
     outcome = Outcome(status, message, _time.perf_counter() - started)
-    return _result(problem, options, setup, hist, outcome, field_data)
+    recorded_until = (
+        record_until_s(ends[-1], reach, rod.wave_speed) if reach is not None and finished is not None else None
+    )
+    return _result(problem, options, setup, hist, outcome, field_data, finished, recorded_until)
 
 
 def _free_displacement(
@@ -306,8 +369,16 @@ def _result(
     hist: _History,
     outcome: Outcome,
     field: dict[str, tuple[NDArray[np.float64], str, str]],
+    finished: int | None = None,
+    recorded_until: float | None = None,
 ) -> ImpactResult:
+    """The run's result. Its energy balance and the rod's energy are those at the node where no
+    further contact was proven (``finished``; the last node when None), where a run that records
+    no gauge ends: a run that records goes on stepping the free bodies (whose energies Newmark's
+    rule conserves to rounding), and its contact results stay those of the run without records.
+    ``recorded_until`` (s): the time the record had to reach, in the summary's ``recorded_until_s``."""
     nodes = hist.nodes()
+    end = len(nodes.time) if finished is None else finished + 1
     kinetic = 0.5 * problem.mass_kg * nodes.w**2
     contact = problem.contact.energy(nodes.alpha)
     rod_kin, rod_str = np.asarray(hist.rod_kinetic), np.asarray(hist.rod_strain)
@@ -339,8 +410,16 @@ def _result(
             "axial strain du/dx at station_x_m (negative in compression; FEM)",
         )
         extra["station_x_m"] = np.asarray(setup.stations_m)
+    if setup.gauges:
+        gauge_series, gauge_summary = gauge_datasets(setup.gauges, np.asarray(hist.gauge_e), "FEM")
+        series.update(gauge_series)
+        extra.update(gauge_summary)
+    if setup.bar.far_probe is not None:
+        series.update(far_end_datasets(np.asarray(hist.far_v), "FEM, the last node's Newmark velocity"))
     if field:
         extra["wave_speed_m_s"] = float(problem.rod.wave_speed)
+    if recorded_until is not None:
+        extra["recorded_until_s"] = float(recorded_until)
     # every located start and end, less the run's first start (t = 0) and a start left open
     events = len(hist.ends) + min(len(hist.starts), len(hist.ends)) - 1
     return hist.result(
@@ -348,8 +427,8 @@ def _result(
         outcome,
         scheme=f"fem1d-{options.element}-newmark",
         dt_s=float(setup.h),
-        energy_error=energy_error(kinetic, contact, rod_kin, rod_str),
-        rod_energy_J=float(rod_kin[-1] + rod_str[-1]),
+        energy_error=energy_error(kinetic[:end], contact[:end], rod_kin[:end], rod_str[:end]),
+        rod_energy_J=float(rod_kin[end - 1] + rod_str[end - 1]),
         n_events=events,
         extra=extra,
         extra_series=series,

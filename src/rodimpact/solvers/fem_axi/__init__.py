@@ -7,6 +7,8 @@ struck end), :mod:`.layers` (how a film or stack is divided through its thicknes
 mesher's imports), :mod:`.film_model` (the film's region and its contact nodes), :mod:`.axisym`
 (the r-weighted elasticity forms), :mod:`.axibody` (one body's Newmark operators),
 :mod:`.farbar` (the rod beyond a few diameters as a 1-D bar joined to the continuum),
+:mod:`.gauges` (where the stations' and gauges' strain is read, and how far the continuum
+must reach for the gauges),
 :mod:`.contact` (the candidate gaps, G = K_eff^-1 B^T and the contact LCP), :mod:`.separation`
 (the end test: the energy bound that no contact can follow), :mod:`.aximodel` (the model
 assembled: both bodies and the contact's candidates), :mod:`.solver`

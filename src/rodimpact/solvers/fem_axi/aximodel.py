@@ -78,7 +78,9 @@ def _mass(basis: Basis, density: float, dynamic: bool) -> sp.spmatrix:
     return axisym_mass(basis, density) if dynamic else sp.csr_matrix((basis.N, basis.N))
 
 
-def build_model(problem: AxiImpact, options: FEMAxiOptions, *, dynamic: bool = True) -> AxiModel:
+def build_model(
+    problem: AxiImpact, options: FEMAxiOptions, *, dynamic: bool = True, continuum_cover_m: float = 0.0
+) -> AxiModel:
     """Mesh and assemble both bodies and the contact's candidate gaps.
 
     Without a film the rod's end face z = 0 is struck, the impactor's sphere touches it at the
@@ -90,6 +92,11 @@ def build_model(problem: AxiImpact, options: FEMAxiOptions, *, dynamic: bool = T
 
     ``dynamic=False`` (a static solve, :mod:`.indentation`) leaves the mass matrices out: the
     bodies get zero masses (the stiffnesses, candidates and gaps are the same bit for bit).
+
+    The rod is a continuum over 0 <= z <= z_c and a 1-D bar beyond (:func:`~.farbar.continuum_length`,
+    from ``continuum_diameters``): ``continuum_cover_m`` (m; the gauges',
+    :func:`~.gauges.continuum_cover_m`) makes the continuum reach at least that far, and 0
+    (default) leaves the model as it is without gauges, bit for bit.
     """
     scales = problem.scales()
     a_contact = scales.contact_radius_m
@@ -104,7 +111,7 @@ def build_model(problem: AxiImpact, options: FEMAxiOptions, *, dynamic: bool = T
     extent = options.contact_extent * a_contact
     R = problem.sphere_radius_m
     film_mesh = None
-    z_c = continuum_length(problem.rod_radius_m, problem.rod_length_m, options.continuum_diameters)
+    z_c = continuum_length(problem.rod_radius_m, problem.rod_length_m, options.continuum_diameters, continuum_cover_m)
     meshed_length = problem.rod_length_m if z_c is None else z_c
     if problem.stack is None:
         rod = rod_mesh(problem.rod_radius_m, meshed_length, fine, extent)

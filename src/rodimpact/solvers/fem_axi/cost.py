@@ -7,11 +7,13 @@ from collections.abc import Mapping
 from typing import Any
 
 from rodimpact.model.problem import ImpactProblem
-from rodimpact.solvers.cost import MIB, SOLVE_S, Cost, contact_duration, horizon
+from rodimpact.solvers.cost import MIB, SOLVE_S, Cost, contact_duration, horizon, recording_end
 from rodimpact.solvers.fem_axi.farbar import BAR_ELEMENTS_PER_RADIUS, continuum_length
+from rodimpact.solvers.fem_axi.gauges import continuum_cover_m
 from rodimpact.solvers.fem_axi.layers import FILM_ASPECT, layer_elements
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact
+from rodimpact.solvers.gauge_series import case_gauges
 
 __all__ = ["fem_axi_cost", "fem_axi_dofs", "fem_axi_indentation_cost"]
 
@@ -59,7 +61,7 @@ def _film_triangles(problem: AxiImpact, fine: float, extent: float, layers: int)
     return 2.0 * sum(counts) * columns + FILM_BAND_TRIANGLES * r_f / spacing
 
 
-def fem_axi_dofs(case: Mapping[str, Any]) -> int:
+def fem_axi_dofs(case: Mapping[str, Any], *, with_gauges: bool = True) -> int:
     """Upper-side estimate of the DOFs of fem_axi's two meshes (rod and impactor), closed form.
 
     The meshes (:mod:`rodimpact.solvers.fem_axi.meshes`) are fine (a_H / ``elements_across``,
@@ -67,7 +69,8 @@ def fem_axi_dofs(case: Mapping[str, Any]) -> int:
     contact point, graded beyond
     at half the distance up to a coarse size (a/4 by a/2 cells in the rod of radius a, R/4
     in the impactor), and coarse elsewhere, over the continuum's length (:mod:`.farbar`; the
-    bar beyond adds one DOF per node). Vector P2 elements carry about 4 DOFs per
+    bar beyond adds one DOF per node; with gauges, the continuum reaches one rod diameter
+    beyond the last gauge, :mod:`.gauges`). Vector P2 elements carry about 4 DOFs per
     triangle, P1 about 1. The 40 stored fem_axi runs have 0.48 to 0.90 of it (free DOFs).
     A film or stack (``contact.film``, ``contact.stack``) adds its layers of columns and the rod's graded band under it
     (:func:`_film_triangles`); its thin-layer law's larger contact radius sizes the rest.
@@ -75,7 +78,11 @@ def fem_axi_dofs(case: Mapping[str, Any]) -> int:
     Parameters
     ----------
     case : mapping
-        A resolved case (``numerics.fem_axi``, ``impactor``, ``rod``).
+        A resolved case (``numerics.fem_axi``, ``impactor``, ``rod``; ``gauges`` when its
+        ``outputs`` list ``gauge_strain``).
+    with_gauges : bool
+        Extend the continuum over the case's gauges, as a run does (default); False: the
+        model without them (the static indentation's).
 
     Returns
     -------
@@ -88,7 +95,8 @@ def fem_axi_dofs(case: Mapping[str, Any]) -> int:
     fine = contact_radius / options.elements_across
     extent = options.contact_extent * options.elements_across
     a, length = problem.rod_radius_m, problem.rod_length_m
-    z_c = continuum_length(a, length, options.continuum_diameters)
+    cover = continuum_cover_m(case_gauges(case), a, length) if with_gauges else 0.0
+    z_c = continuum_length(a, length, options.continuum_diameters, cover)
     bar_dofs = 0.0 if z_c is None else (length - z_c) * BAR_ELEMENTS_PER_RADIUS / a + 1.0
     meshed = length if z_c is None else z_c
     rod = (
@@ -116,6 +124,9 @@ def fem_axi_cost(case: Mapping[str, Any], options: FEMAxiOptions) -> Cost:
     # follow; max(2T, a quarter of the contact) after the contact is the upper-side allowance
     contact = contact_duration(problem)
     span = horizon(problem, options.max_time_factor, contact, max(problem.rod.reflection_period, 0.25 * contact))
+    # a run that records gauges or the far end's velocity steps on to its recording's end
+    # (beyond the time limit)
+    span = max(span, recording_end(case, problem, contact))
     dofs = fem_axi_dofs(case)
     steps = span / step + 1.0
     return Cost(
@@ -137,7 +148,7 @@ def fem_axi_indentation_cost(case: Mapping[str, Any], settings: Mapping[str, Any
     candidate column, each costing a step's solve (upper side: 2.5 s measured where it estimates 9.9 s, the
     heaviest Table 2 ball on the sensor's stack)."""
     options = FEMAxiOptions.from_settings(settings)
-    dofs = fem_axi_dofs({**case, "numerics": {**case["numerics"], "fem_axi": dict(settings)}})
+    dofs = fem_axi_dofs({**case, "numerics": {**case["numerics"], "fem_axi": dict(settings)}}, with_gauges=False)
     columns = INDENTATION_COLUMNS * options.contact_extent * options.elements_across
     return Cost(
         time_step_s=math.nan,

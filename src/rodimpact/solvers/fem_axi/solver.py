@@ -29,12 +29,22 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
+from rodimpact.model.gauges import Gauge
+from rodimpact.solvers.fem_axi.axibody import AxiBody
 from rodimpact.solvers.fem_axi.aximodel import AxiModel, build_model
 from rodimpact.solvers.fem_axi.contact import ContactOperator
 from rodimpact.solvers.fem_axi.film_mesh import layers_within
+from rodimpact.solvers.fem_axi.gauges import STATION_HALF_SPAN, continuum_cover_m, gauge_spans
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact
 from rodimpact.solvers.fem_axi.separation import Flight, SeparationBound
+from rodimpact.solvers.gauge_series import (
+    checked_gauges,
+    far_end_datasets,
+    gauge_datasets,
+    record_until_s,
+    recorded_reach_m,
+)
 from rodimpact.solvers.result import ImpactResult
 from rodimpact.solvers.stepping import Outcome, StepHistory, energy_error, limit_reached
 
@@ -44,17 +54,13 @@ log = logging.getLogger(__name__)
 
 #: Force maxima must stand out by this fraction of the largest force (see _result).
 PEAK_PROMINENCE = 0.02
-#: Half the span of a station's strain, as a fraction of the rod's length: the strain is the
-#: difference of the cross-section mean displacement between the sections this far either
-#: side of the station, over their distance (a section beyond the rod's end is taken at the
-#: end, and the difference at an end is one-sided, over half the span).
-STATION_HALF_SPAN = 1e-4
 
 
 @dataclass(eq=False)
 class _History(StepHistory):
     """The histories every run records, and fem_axi's own: the contact radius, both bodies'
-    kinetic and strain energies, the stations' probes and the LCP solves."""
+    kinetic and strain energies, the stations' and the gauges' probes, the far end's velocity
+    and the LCP solves."""
 
     radius: list[float] = field(default_factory=list)
     kin_i: list[float] = field(default_factory=list)
@@ -62,6 +68,8 @@ class _History(StepHistory):
     kin_r: list[float] = field(default_factory=list)
     str_r: list[float] = field(default_factory=list)
     stations: list[NDArray[np.float64]] = field(default_factory=list)
+    gauges: list[NDArray[np.float64]] = field(default_factory=list)
+    far_v: list[float] = field(default_factory=list)
     n_lcp: int = 0
 
 
@@ -75,7 +83,11 @@ def _crossing(previous: float, last: float, h: float) -> float:
 
 
 def solve_fem_axi(
-    problem: AxiImpact, options: FEMAxiOptions | None = None, stations: Sequence[float] = ()
+    problem: AxiImpact,
+    options: FEMAxiOptions | None = None,
+    stations: Sequence[float] = (),
+    gauges: Sequence[Gauge] = (),
+    far_end_velocity: bool = False,
 ) -> ImpactResult:
     """Solve the impact with the axisymmetric continuum model.
 
@@ -86,6 +98,24 @@ def solve_fem_axi(
     stations : sequence of float
         Fractions of the rod length from the struck end where the cross-section-averaged
         axial displacement (and strain) are recorded, shape (n, k).
+    gauges : sequence of Gauge
+        Strain gauges (:class:`~rodimpact.model.gauges.Gauge`) bonded on the rod's surface
+        r = a: ``gauge_strain`` (n, k) is the difference of u_z(a, z) between the gauge's
+        ends over its length (a point gauge: over the sections STATION_HALF_SPAN L either
+        side, one-sided at an end of the rod, :mod:`.gauges`), ``gauge_mean_strain`` the same
+        of the cross-section mean u_z. The continuum then reaches one rod diameter beyond the
+        last gauge's far end (the rest of a long rod stays a bar; the whole rod is a continuum
+        when less than a diameter would be left): the model, and so every history, differs
+        slightly from a run without gauges.
+    far_end_velocity : bool
+        Also record the cross-section mean axial velocity at z = L (the bar's last node when
+        the far part is a bar; zero at a fixed far end), ``far_end_velocity``, m/s.
+
+        With gauges or the far end's velocity, a run that has proven that no further contact is
+        possible keeps stepping, past the time limit, until every wave its last contact sent has
+        passed the farthest section recorded at the rod's bar speed sqrt(E/rho)
+        (:func:`~rodimpact.solvers.gauge_series.record_until_s`; the summary's
+        ``recorded_until_s``; the energy balance is taken at the node where the proof came).
 
     Returns
     -------
@@ -103,7 +133,9 @@ def solve_fem_axi(
     """
     options = FEMAxiOptions() if options is None else options
     started = _time.perf_counter()
-    model = build_model(problem, options)
+    gauges = checked_gauges(gauges, problem.rod_length_m)
+    cover = continuum_cover_m(gauges, problem.rod_radius_m, problem.rod_length_m)
+    model = build_model(problem, options, continuum_cover_m=cover)
     rod, imp, B_rod, B_imp, gap0, r_c = model.rod, model.impactor, model.B_rod, model.B_imp, model.gap0, model.r_c
     t_contact = model.scales.contact_time_s
     h = options.step(t_contact)
@@ -121,6 +153,8 @@ def solve_fem_axi(
         for z in (s * length, max(s * length - delta, 0.0), min(s * length + delta, length))
     ]
     probes = sp.vstack(rows).tocsr() if rows else None
+    gauge_probes = _gauge_probes(rod, gauges, problem) if gauges else None
+    far_row = rod.section_mean_uz_row(length, problem.rod_radius_m) if far_end_velocity else None
     mean_weights = imp.momentum_weights / (imp.total_mass_kg / (2 * math.pi))
 
     c_rod = math.sqrt(problem.rod_material.youngs_modulus_pa / problem.rod_material.density_kg_m3)
@@ -145,9 +179,16 @@ def solve_fem_axi(
         hist.str_r.append(rod.strain_energy())
         if probes is not None:
             hist.stations.append(probes @ rod.q)
+        if gauge_probes is not None:
+            hist.gauges.append(gauge_probes @ rod.q)
+        if far_row is not None:
+            hist.far_v.append(float((far_row @ rod.v)[0]))
 
     record(0.0, 0.0, 0.0)
     starts, ends, in_contact = hist.starts, hist.ends, True
+    reach = recorded_reach_m(gauges, far_end_velocity, length)
+    # the node at which no further contact was proven (where a run that records nothing ends)
+    finished: int | None = None
     t = 0.0
     status, message = "failed", ""
     bound: SeparationBound | None = None
@@ -173,13 +214,14 @@ def solve_fem_axi(
             in_contact = False
         elif not in_contact and force > 0.0:
             starts.append(t - h)
-            in_contact, flight = True, None
-        if not in_contact and ends:
+            in_contact, flight, finished = True, None, None
+        if not in_contact and ends and finished is None:
             # a step without contact force: the free flight's conserved quantities bound the gaps
             if flight is None:
                 bound = bound or SeparationBound.of(rod, imp, contact)
                 flight = bound.flight(rod, imp)
             if flight.holds(rod, imp):
+                finished = len(hist.t) - 1
                 status, message = (
                     "completed",
                     (
@@ -187,11 +229,18 @@ def solve_fem_axi(
                         f"(energy bound, {t - ends[-1]:.3g} s after the last)"
                     ),
                 )
+        if finished is not None:
+            # a run that records gauges or the far end goes on, without the time limit, until every
+            # wave the last contact sent has passed the farthest section it records (at the rod's
+            # bar speed: the slowest front that matters for the pulse's end)
+            if reach is None or t >= record_until_s(ends[-1], reach, c_rod):
                 break
+            continue
         limit = limit_reached(starts, ends, t, t_max, options)
         if limit:
             status, message = limit
             break
+    recorded_until = record_until_s(ends[-1], reach, c_rod) if reach is not None and finished is not None else None
     return _result(
         problem,
         model,
@@ -200,7 +249,28 @@ def solve_fem_axi(
         Outcome(status, message, _time.perf_counter() - started),
         h,
         delta,
+        gauges,
+        far_row is not None,
+        finished,
+        recorded_until,
     )
+
+
+def _gauge_probes(rod: AxiBody, gauges: tuple[Gauge, ...], problem: AxiImpact) -> sp.csr_matrix:
+    """The gauges' strain rows on the rod's free coordinates, shape (2k, n): at the surface
+    r = a (rows 0..k-1), then of the cross-section mean u_z (rows k..2k-1); each the
+    difference of u_z between the two sections of :func:`~.gauges.gauge_spans` over their
+    distance."""
+    radius, spans = problem.rod_radius_m, gauge_spans(gauges, problem.rod_length_m)
+    end = rod.bar.start_m if rod.bar is not None else problem.rod_length_m
+    if max(high for _, high in spans) > end:
+        raise ValueError(f"a gauge reaches beyond the continuum (z_c = {end:g} m): its surface strain is not modelled")
+    low, high = np.array(spans).T
+    surface = rod.uz_probe_rows(np.vstack([np.full(2 * len(spans), radius), np.concatenate([low, high])]))
+    k = len(spans)
+    scale = sp.diags(1.0 / (high - low))
+    mean = sp.vstack([rod.section_mean_uz_row(z2, radius) - rod.section_mean_uz_row(z1, radius) for z1, z2 in spans])
+    return sp.vstack([scale @ (surface[k:] - surface[:k]), scale @ mean]).tocsr()
 
 
 def _result(
@@ -211,9 +281,18 @@ def _result(
     outcome: Outcome,
     h: float,
     delta: float,
+    gauges: tuple[Gauge, ...] = (),
+    far_end: bool = False,
+    finished: int | None = None,
+    recorded_until: float | None = None,
 ) -> ImpactResult:
+    """The run's result. Its energy balance and the rod's energy are those at the node where no
+    further contact was proven (``finished``; the last node when None), where a run that records
+    nothing ends; ``recorded_until`` (s): the time a run that records had to reach, in the
+    summary's ``recorded_until_s``."""
     rod, imp, length = model.rod, model.impactor, problem.rod_length_m
     nodes = hist.nodes()
+    end = len(nodes.time) if finished is None else finished + 1
     kin_i, str_i = np.asarray(hist.kin_i), np.asarray(hist.str_i)
     kin_r, str_r = np.asarray(hist.kin_r), np.asarray(hist.str_r)
     radius = np.asarray(hist.radius)
@@ -272,14 +351,26 @@ def _result(
             "cross-section mean axial strain at station_x_m (negative in compression)",
         )
         extra["station_x_m"] = np.asarray([s * length for s in stations])
+    if gauges:
+        values = np.asarray(hist.gauges)
+        k = len(gauges)
+        gauge_series, gauge_summary = gauge_datasets(
+            gauges, values[:, :k], "at the rod's surface r = a", mean_strain=values[:, k:]
+        )
+        series.update(gauge_series)
+        extra.update(gauge_summary)
+    if far_end:
+        series.update(far_end_datasets(np.asarray(hist.far_v), "cross-section mean, Newmark's velocity"))
+    if recorded_until is not None:
+        extra["recorded_until_s"] = float(recorded_until)
     # nodes enter the contact one at a time: ripples far smaller than the physical maxima
     return hist.result(
         nodes,
         outcome,
         scheme="fem_axi-newmark-lcp",
         dt_s=h,
-        energy_error=energy_error(kin_i, str_i, kin_r, str_r),
-        rod_energy_J=float(kin_r[-1] + str_r[-1]),
+        energy_error=energy_error(kin_i[:end], str_i[:end], kin_r[:end], str_r[:end]),
+        rod_energy_J=float(kin_r[end - 1] + str_r[end - 1]),
         n_events=len(hist.ends),
         extra=extra,
         extra_series=series,

@@ -9,7 +9,16 @@ from collections.abc import Mapping
 from typing import Any
 
 from rodimpact.model.problem import ImpactProblem
-from rodimpact.solvers.cost import MIB, SOLVE_S, STATION_STEP_BYTES, Cost, contact_duration, horizon
+from rodimpact.solvers.cost import (
+    MIB,
+    SOLVE_S,
+    STATION_STEP_BYTES,
+    Cost,
+    contact_duration,
+    horizon,
+    recorded_probes,
+    recording_end,
+)
 from rodimpact.solvers.sem.grid import CommensurateGrid
 from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
 from rodimpact.solvers.sem.stability import tolerance_step
@@ -35,23 +44,29 @@ def sem_cost(case: Mapping[str, Any], options: SEMOptions | PaperSEMOptions) -> 
     problem = ImpactProblem.from_case(case, estimate=True)
     period = problem.rod.reflection_period
     # the run ends with the contact (its end test looks ahead without stepping)
-    span = horizon(problem, options.max_time_factor, contact_duration(problem), 0.0)
+    contact = contact_duration(problem)
+    span = horizon(problem, options.max_time_factor, contact, 0.0)
     step, work = options.step(problem), 1.0
     if options.automatic_step:
         # the first guess may be floored at a step count; the check halves it down to the
         # step the tolerance asks for
         step, work = min(step, tolerance_step(problem, options.tolerance)), SEM_AUTO_WORK
     raw = span / step
-    stored, needed = min(raw, float(options.max_steps)) + 1.0, raw + 1.0
+    # a run that records gauges or the far end's velocity is continued at its step to its
+    # recording's end: nodes evaluated from d'Alembert's solution, not stepped (counted at a
+    # step's cost, upper side; outside the step budget)
+    extension = max(recording_end(case, problem, contact) - span, 0.0) / step
+    stepped, needed = min(raw, float(options.max_steps)) + 1.0, raw + 1.0
+    stored = stepped + extension
     # a step commensurate with the round trip costs the same at every round trip; only a
     # fixed dt_s that is not sums one history term per round trip since the impact
     commensurate = options.dt_s is None or CommensurateGrid.of(step, period, -1, True) is not None
     rounds = 1.0 + (0.5 * span / period if math.isfinite(period) and not commensurate else 0.0)
-    stations = len(case.get("stations", ()))
+    stations = recorded_probes(case)  # stations, gauges and the far end, when asked for
     return Cost(
         time_step_s=step,
         steps=stored,
-        solve_s=SOLVE_S + work * stored * (SEM_STEP_S + SEM_REFLECTION_S * rounds),
+        solve_s=SOLVE_S + work * stepped * (SEM_STEP_S + SEM_REFLECTION_S * rounds) + extension * SEM_STEP_S,
         mem_mib=stored * (SEM_STEP_BYTES + STATION_STEP_BYTES * stations) / MIB,
         steps_needed=needed,
         step_limit=float(options.max_steps),

@@ -265,6 +265,20 @@ class ForceHistory:
             total -= sign * direction * self.force_array(times - delay)
         return total / (self.impedance * self.wave_speed)
 
+    def velocity_at(self, x: float, times: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Axial velocity du/dt at x (positive away from the struck end), m/s.
+
+        du/dt = (1/Z) sum over waves of sign * P(t - delay), the time derivative of
+        :meth:`displacement_at`. At a free far end x = l the waves towards it and back arrive
+        together with the same sign, v(l, t) = (2/Z) sum_j P(t - (2j + 1) l/a); at a fixed
+        one they cancel.
+        """
+        times = np.asarray(times, dtype=float)
+        total = np.zeros_like(times)
+        for sign, delay, _ in self._waves(x, times):
+            total += sign * self.force_array(times - delay)
+        return total / self.impedance
+
     def rod_displacement(self, times: NDArray[np.float64]) -> NDArray[np.float64]:
         """End displacement u at any times (force beyond the last node held), m."""
         times = np.asarray(times, dtype=float)

@@ -27,12 +27,21 @@ from collections.abc import Sequence
 import numpy as np
 
 from rodimpact.analysis.signals import first_contact_maxima
+from rodimpact.model.gauges import Gauge
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.field import FieldGrid, field_datasets
+from rodimpact.solvers.gauge_series import (
+    checked_gauges,
+    far_end_datasets,
+    gauge_datasets,
+    record_until_s,
+    recorded_reach_m,
+)
 from rodimpact.solvers.result import ImpactResult
 from rodimpact.solvers.sem.grid import commensurate_step
 from rodimpact.solvers.sem.history import ForceHistory
 from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
+from rodimpact.solvers.sem.record import extended_record
 from rodimpact.solvers.sem.stepper import SEMRun, run_fixed_step
 
 __all__ = ["solve_sem"]
@@ -63,6 +72,8 @@ def solve_sem(
     options: SEMOptions | PaperSEMOptions | None = None,
     stations: Sequence[float] = (),
     field: FieldGrid | None = None,
+    gauges: Sequence[Gauge] = (),
+    far_end_velocity: bool = False,
 ) -> ImpactResult:
     """Solve the SEM contact problem.
 
@@ -81,6 +92,19 @@ def solve_sem(
         Record the strain over the whole rod on this grid (:attr:`ImpactResult.field`),
         through d'Alembert's solution driven by the run's contact force; None (default)
         records none, and the run is the same.
+    gauges : sequence of Gauge
+        Strain gauges (:class:`~rodimpact.model.gauges.Gauge`): the mean strain over each,
+        from d'Alembert's solution driven by the run's force (:func:`_with_gauges`), is
+        stored as ``gauge_strain`` (n, k) with ``gauge_x_m`` and ``gauge_length_m``.
+    far_end_velocity : bool
+        Also store the velocity of the far end x = l (``far_end_velocity``, m/s), from the
+        same solution.
+
+        With gauges or the far end's velocity, a completed run's histories go on after its
+        last contact, at its step and with no force, until every wave the contact sent has
+        passed the farthest section recorded (:func:`_recorded`; the summary's
+        ``recorded_until_s``); its contact results, ``n_steps`` (the steps taken) and
+        everything else are those of the run without them.
 
     Returns
     -------
@@ -97,9 +121,16 @@ def solve_sem(
     rodimpact.solvers.sem.stability.UnstableStepError
         The paper scheme's step exceeds its stability limit and ``options.allow_unstable``
         is False.
+    rodimpact.model.gauges.GaugeError
+        A gauge is off the rod.
+    ValueError
+        A station outside [0, 1]; stations or the far end's velocity on a rod of infinite length.
     """
     options = SEMOptions() if options is None else options
     stations = _check_stations(stations, problem)
+    gauges = checked_gauges(gauges, problem.rod.length_m)
+    if far_end_velocity and not math.isfinite(problem.rod.length_m):
+        raise ValueError("far_end_velocity needs a rod of finite length")
     if field is not None:
         field.positions(problem.rod.length_m)  # a rod of finite length, before any step
     started = _time.perf_counter()
@@ -113,7 +144,79 @@ def solve_sem(
             result = run_fixed_step(problem, options, h, stations, started, {"step_choice": "steps_per_contact"})
     else:
         result = _automatic(problem, options, h, stations, started)
-    return result if field is None else _with_field(result, problem, options, field)
+    if field is not None:
+        result = _with_field(result, problem, options, field)
+    if gauges or far_end_velocity:
+        result = _with_gauges(
+            _recorded(result, problem, stations, gauges, far_end_velocity), problem, options, gauges, far_end_velocity
+        )
+    return result
+
+
+def _recorded(
+    result: ImpactResult,
+    problem: ImpactProblem,
+    stations: tuple[float, ...],
+    gauges: tuple[Gauge, ...],
+    far_end_velocity: bool,
+) -> ImpactResult:
+    """A completed run that records gauges or the far end's velocity, continued after its last
+    contact until every wave that contact sent has passed the farthest section it records
+    (:func:`~rodimpact.solvers.gauge_series.record_until_s`, the summary's ``recorded_until_s``;
+    :func:`~rodimpact.solvers.sem.record.extended_record`: the force is zero, the time limit
+    does not apply, the contact results are the run's). A run that did not complete (a limit,
+    a failure) is not continued: what follows its end was not computed."""
+    if result.status != "completed" or not len(result.contact_end_s):
+        return result
+    rod = problem.rod
+    reach = recorded_reach_m(gauges, far_end_velocity, rod.length_m)
+    until = record_until_s(float(result.contact_end_s[-1]), reach, rod.wave_speed)
+    result = extended_record(result, problem, stations, until)
+    return dataclasses.replace(result, extra={**result.extra, "recorded_until_s": until})
+
+
+def _with_gauges(
+    result: ImpactResult,
+    problem: ImpactProblem,
+    options: SEMOptions | PaperSEMOptions,
+    gauges: tuple[Gauge, ...],
+    far_end_velocity: bool,
+) -> ImpactResult:
+    """The result with its gauges' strain and its far end's velocity at its nodes, from
+    d'Alembert's solution driven by the run's force (its nodes, with the scheme's own
+    interpolation: linear in time for ``implicit``, held for ``paper``).
+
+    With the force P(t) at the struck end, the waves reach x with delays (2jl + x)/a (going
+    towards the far end, direction +1, sign s^j) and (2(j+1)l - x)/a (coming back, direction
+    -1, sign s^(j+1)), s = +1 for a free far end and -1 for a fixed one; then
+
+        u(x, t) = (1/Z) sum_waves sign Q(t - delay),   Q(t) = int_0^t P,
+        eps(x, t) = du/dx = -(1/(E A)) sum_waves sign direction P(t - delay),
+        v(x, t) = du/dt = (1/Z) sum_waves sign P(t - delay),
+
+    Z = E A / a. Before the first reflection reaches x (t < (2l - x)/a) only the first wave
+    is there: eps = -P(t - x/a)/(E A). A point gauge reads eps at its station; a gauge of
+    length g, (u(x + g/2) - u(x - g/2))/g, exactly the mean of eps over its length. At the far
+    end v(l, t) = (2/Z) sum_j P(t - (2j + 1) l/a) when it is free, 0 when it is fixed.
+    """
+    rod = problem.rod
+    history = ForceHistory.of_nodes(rod, options.scheme == "implicit", result.time, result.contact_force)
+    t = result.time
+    series, extra = {}, {}
+    if gauges:
+        columns = []
+        for gauge in gauges:
+            if gauge.gauge_length_m > 0.0:
+                low, high = gauge.ends()
+                columns.append(
+                    (history.displacement_at(high, t) - history.displacement_at(low, t)) / gauge.gauge_length_m
+                )
+            else:
+                columns.append(history.strain_at(gauge.station_m, t))
+        series, extra = gauge_datasets(gauges, np.column_stack(columns), "d'Alembert, from the contact force")
+    if far_end_velocity:
+        series.update(far_end_datasets(history.velocity_at(rod.length_m, t), "d'Alembert, from the contact force"))
+    return dataclasses.replace(result, extra={**result.extra, **extra}, extra_series={**result.extra_series, **series})
 
 
 def _with_field(

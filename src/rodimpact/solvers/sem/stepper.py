@@ -16,9 +16,10 @@ from rodimpact.solvers.result import ImpactResult
 from rodimpact.solvers.sem.fastpath import contact_steps, extrapolated
 from rodimpact.solvers.sem.grid import CommensurateGrid
 from rodimpact.solvers.sem.history import ForceHistory
+from rodimpact.solvers.sem.record import run_histories
 from rodimpact.solvers.sem.roots import brent_root
 from rodimpact.solvers.sem.stability import paper_step_limit
-from rodimpact.solvers.stepping import SEPARATION_ROUND_TRIPS, Nodes, Outcome, StepHistory, limit_reached
+from rodimpact.solvers.stepping import SEPARATION_ROUND_TRIPS, Outcome, StepHistory, limit_reached
 
 __all__ = ["SEMRun", "run_fixed_step"]
 
@@ -291,35 +292,6 @@ def run_fixed_step(
     return SEMRun(problem, options, h).finish(stations, started, extra)
 
 
-def _histories(st: _Stepper, nodes: Nodes, stations: tuple[float, ...], rod_energy: np.ndarray) -> tuple[dict, dict]:
-    """Station histories (d'Alembert) and energies as extra series; station positions."""
-    t, alpha = nodes.time, nodes.alpha
-    series = {
-        "impactor_kinetic_energy": (0.5 * st.m * nodes.w**2, "J", "kinetic energy of the impactor"),
-        "contact_energy": (st.law.energy(alpha), "J", "energy stored in the contact, int_0^alpha P (the contact law)"),
-        "rod_energy": (rod_energy, "J", "energy in the rod: work done on it by the contact force"),
-    }
-    extra = {}
-    radius = st.law.contact_radius(alpha)
-    if radius is not None:
-        series["contact_radius"] = (radius, "m", "radius of the contact patch (the contact law; Hertz: sqrt(R alpha))")
-    if stations:
-        length = st.problem.rod.length_m
-        xs = [s * length for s in stations]
-        series["station_displacement"] = (
-            np.column_stack([st.hist.displacement_at(x, t) for x in xs]),
-            "m",
-            "axial displacement of the cross-sections at station_x_m (d'Alembert, from the contact force)",
-        )
-        series["station_strain"] = (
-            np.column_stack([st.hist.strain_at(x, t) for x in xs]),
-            "1",
-            "axial strain du/dx at station_x_m (negative in compression; d'Alembert)",
-        )
-        extra["station_x_m"] = np.asarray(xs)
-    return series, extra
-
-
 def _scales(problem: ImpactProblem) -> dict[str, float]:
     """The case's scales, stored so that presentation never recomputes physics."""
     rigid = problem.rigid_contact
@@ -344,8 +316,8 @@ def _result(
     mean_force = 0.5 * (p[1:] + p[:-1]) if st.implicit else p[:-1]
     rod_work = np.concatenate([[0.0], np.cumsum(mean_force * np.diff(u))])
     rod_energy = float(rod_work[-1])
-    series, extra = _histories(st, nodes, stations, rod_work)
     problem = st.problem
+    series, extra = run_histories(st.m, st.law, st.hist, problem.rod.length_m, nodes, stations, rod_work)
     ke_in = problem.kinetic_energy_J
     ke_out = 0.5 * problem.mass_kg * st.w[-1] ** 2
     contact_left = float(problem.contact.energy(nodes.alpha[-1]))

@@ -1,0 +1,165 @@
+"""A set's calibration, presented: its tables and its figure, from its HDF5 file only
+(:mod:`rodimpact.storage.calibrations`). Labelled throughout as what it is: a fit, not a
+prediction. The fitted model's errors are in-sample; the held-out predictions (each case's
+measurements predicted by the fit without that case) are the estimate of how the calibrated
+model would predict a new test. A fit the data cannot identify, or one held at a bound, says
+so in the tables' ``warning`` column, in their captions and in the figure's title.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import textwrap
+from html import escape
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from rodimpact.present.film_tables import write_provenance_with_files
+from rodimpact.present.table_formats import html_tables, markdown_table, panels
+from rodimpact.present.tables import write_table
+from rodimpact.storage.atomic import atomic_output
+from rodimpact.storage.calibrations import StoredCalibration, read_calibration
+
+__all__ = ["FIT_LABEL", "calibration_frames", "make_calibration_artifacts"]
+
+log = logging.getLogger(__name__)
+
+#: What every artifact of a calibration says it is.
+FIT_LABEL = "A fit, not a prediction"
+
+
+def _verdict(stored: StoredCalibration) -> str:
+    """The fit's status and warnings in one paragraph."""
+    scalars, warnings = stored.scalars, list(stored.described["warnings"])
+    verdict = f"Status: {scalars['status']} ({scalars['message']})."
+    if not scalars["identifiable"]:
+        verdict += " The data do not identify these constants: do not use the values."
+    if warnings:
+        verdict += " " + " ".join(warnings)
+    return verdict
+
+
+def calibration_frames(stored: StoredCalibration) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """The constants' table and the measurements' table of a stored calibration.
+
+    Returns
+    -------
+    (DataFrame, DataFrame)
+        Per constant: ``parameter, unit, low, high, source, start, value, standard_error,
+        relative_standard_error_pct, correlation, at_bound, warning``. Per measurement:
+        ``case_id, quantity, quantity_words, unit, measured, fitted, residual_pct,
+        held_out_predicted, held_out_error_pct, held_out_status``.
+    """
+    a, params = stored.arrays, stored.described["parameters"]
+    names = [p["path"] for p in params]
+    warning = "; ".join(stored.described["warnings"]) or None
+    constants = pd.DataFrame(
+        {
+            "parameter": names,
+            "unit": [p["unit"] for p in params],
+            "low": a["low"],
+            "high": a["high"],
+            "source": [p["source"] for p in params],
+            "start": a["start"],
+            "value": a["values"],
+            "standard_error": a["standard_errors"],
+            "relative_standard_error_pct": 100.0 * a["standard_errors"] / np.abs(a["values"]),
+            "correlation": [
+                ", ".join(f"{other}: {a['correlation'][j, k]:+.2f}" for k, other in enumerate(names) if k != j) or "–"
+                for j in range(len(names))
+            ],
+            "at_bound": a["at_bound"].astype(bool),
+            "warning": warning,
+        }
+    )
+    rows = stored.described["observations"]
+    loo = stored.described["loo"]
+    norm = np.asarray([r["norm"] for r in rows], bool)
+    measured = np.where(norm, math.nan, a["measured"])
+    fitted = a["predicted"]
+    measurements = pd.DataFrame(
+        {
+            "case_id": [r["case"] for r in rows],
+            "quantity": [r["quantity"] for r in rows],
+            "quantity_words": [r["words"] for r in rows],
+            "unit": [r["unit"] for r in rows],
+            "measured": measured,
+            "fitted": fitted,
+            "residual_pct": np.where(norm, fitted, a["in_sample_error_pct"]),
+            "held_out_predicted": a["held_out_predicted"],
+            "held_out_error_pct": np.where(norm, a["held_out_predicted"], a["held_out_error_pct"]),
+            "held_out_status": loo["row_status"],
+        }
+    )
+    return constants, measurements
+
+
+def make_calibration_artifacts(
+    calibration: str | Path,
+    title: str,
+    *,
+    csv: str | Path,
+    parameters_csv: str | Path,
+    md: str | Path,
+    html: str | Path,
+    pdf: str | Path,
+    png: str | Path,
+    provenance: str | Path,
+) -> None:
+    """The calibration's tables (per measurement: ``csv``; per constant: ``parameters_csv``;
+    both in ``md`` and ``html``) and its figure (``pdf``, ``png``), from its file only."""
+    from rodimpact.present.calibration_figures import plot_calibration
+    from rodimpact.present.figures import save_figure
+    from rodimpact.storage.sidecar import provenance_record
+
+    stored = read_calibration(calibration)
+    constants, measurements = calibration_frames(stored)
+    heading = f"{FIT_LABEL}: {title}"
+    caption = (
+        f"{heading}. The constants fitted by {stored.scalars['method']} to the measurements "
+        f"(docs/calibration.md): fitted values with their standard errors and correlations, each "
+        f"measurement's fitted value and error, and its prediction by the fit made without its case "
+        f"(leave-one-out). {_verdict(stored)}"
+    )
+    constant_views = panels(
+        constants,
+        f"{heading}: the constants",
+        ["parameter", "unit"],
+        ["low", "high", "value", "standard_error", "relative_standard_error_pct", "correlation", "at_bound"],
+    )
+    measurement_views = panels(
+        measurements,
+        f"{heading}: the measurements",
+        ["case_id", "quantity_words", "unit"],
+        ["measured", "fitted", "residual_pct", "held_out_predicted", "held_out_error_pct", "held_out_status"],
+    )
+    write_table(measurements, csv=csv)
+    with atomic_output(html) as tmp:
+        tmp.write_text(
+            f"<p>{escape(caption)}</p>\n"
+            + html_tables(constants, constant_views)
+            + html_tables(measurements, measurement_views),
+            encoding="utf-8",
+        )
+    with atomic_output(parameters_csv) as tmp:
+        constants.to_csv(tmp, index=False, float_format="%.10g")
+    with atomic_output(md) as tmp:
+        tmp.write_text(
+            f"{textwrap.fill(caption, 100)}\n\n{markdown_table(constants)}\n\n{markdown_table(measurements)}\n",
+            encoding="utf-8",
+        )
+    record = {**provenance_record([], [pdf, png]), "input_files": [{"path": str(calibration), "kind": "calibration"}]}
+    save_figure(
+        plot_calibration(constants, measurements, heading, _verdict(stored)),
+        pdf=pdf,
+        png=png,
+        provenance=record,
+        title=heading,
+    )
+    write_provenance_with_files(
+        provenance, [], [csv, parameters_csv, md, html, pdf, png], {"calibration": [str(calibration)]}
+    )
+    log.info("%s: %s, %d measurements", heading, stored.scalars["status"], len(measurements))
