@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["DEFAULT_THRESHOLD", "HistoryComparison", "compare_force_histories", "threshold_crossings"]
+__all__ = ["DEFAULT_THRESHOLD", "HistoryComparison", "compare_force_histories", "crossing", "threshold_crossings"]
 
 #: The fraction of a signal's peak at which its contact starts and ends, by default: above a
 #: few per cent of noise on a piezo or gauge trace, low enough to lose little of the contact.
@@ -65,8 +65,8 @@ class HistoryComparison:
     model_N: NDArray[np.float64]
 
 
-def _crossing(t: NDArray[np.float64], f: NDArray[np.float64], i: int, level: float) -> float:
-    """Where f crosses ``level`` between samples i and i + 1 (linear)."""
+def crossing(t: NDArray[np.float64], f: NDArray[np.float64], i: int, level: float) -> float:
+    """Where f crosses ``level`` between samples i and i + 1 (linear), in the unit of ``t``."""
     return float(t[i] + (level - f[i]) * (t[i + 1] - t[i]) / (f[i + 1] - f[i]))
 
 
@@ -94,7 +94,7 @@ def threshold_crossings(time_s: ArrayLike, force_N: ArrayLike, threshold: float)
             f"force: the signal must start and end below {threshold:g} of its peak "
             f"({level:.4g} N) to read a contact from it"
         )
-    return _crossing(t, f, int(rises[0]), level), _crossing(t, f, int(falls[-1]), level)
+    return crossing(t, f, int(rises[0]), level), crossing(t, f, int(falls[-1]), level)
 
 
 def compare_force_histories(

@@ -44,6 +44,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from rodimpact.analysis.history_compare import crossing as _crossing
+
 __all__ = [
     "ARRIVAL_FRACTION",
     "ARRIVAL_SAMPLES",
@@ -138,11 +140,6 @@ class SignalComparison:
     time_s: NDArray[np.float64]
     measured: NDArray[np.float64]
     model: NDArray[np.float64]
-
-
-def _crossing(t: NDArray[np.float64], f: NDArray[np.float64], i: int, level: float) -> float:
-    """Where f crosses ``level`` between samples i and i + 1 (linear)."""
-    return float(t[i] + (level - f[i]) * (t[i + 1] - t[i]) / (f[i + 1] - f[i]))
 
 
 def _crest(t: NDArray[np.float64], g: NDArray[np.float64], noise: float, top: int | None = None) -> tuple[float, float]:
