@@ -294,7 +294,7 @@ def _pulse_rows(
             ),
             _value(
                 "strain_integral_microstrain_us",
-                "time integral of the strain over the first pulse (its impulse over -EA)",
+                "time integral of the first pulse's strain",
                 "µstrain·µs",
                 1e12 * measured.integral,
                 1e12 * model.integral,

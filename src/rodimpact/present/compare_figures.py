@@ -114,7 +114,7 @@ def plot_compare_set(
                     **_method_style(method),
                 )
             words, unit = rows["quantity_words"].iloc[0], rows["unit"].iloc[0]
-            ax.set_ylabel(f"{words} ({unit})")
+            ax.set_ylabel(textwrap.fill(f"{words} ({unit})", 42))
             ax.set_xlabel(x_label)
             ax.grid(alpha=0.3)
             if logarithmic:
