@@ -23,7 +23,7 @@ import pandas as pd
 
 from rodimpact.analysis.history_compare import HistoryComparison
 from rodimpact.analysis.measured import MeasuredHistory
-from rodimpact.analysis.observations import QUANTITY_ORDER, SCALARS, force_comparison, observed
+from rodimpact.analysis.observations import QUANTITY_ORDER, force_comparison, observed
 from rodimpact.contact.laws import law_of
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.registry import METHODS
@@ -31,7 +31,6 @@ from rodimpact.storage.runs import RunRecord
 
 __all__ = [
     "COLUMNS",
-    "QUANTITIES",
     "X_AXES",
     "X_NAMES",
     "compare_frame",
@@ -40,10 +39,6 @@ __all__ = [
     "model_label",
     "x_axis",
 ]
-
-#: Measured scalars a case may give, and what a run says of them (one place:
-#: :mod:`rodimpact.analysis.observations`).
-QUANTITIES = SCALARS
 
 
 def model_label(config: Mapping[str, Any], method: str) -> str:
