@@ -121,3 +121,18 @@ def test_the_shipped_gauge_records_are_what_the_tool_makes(shipped_project: Proj
         np.testing.assert_allclose(shipped.time_s, 1e-6 * np.round(times, 3), rtol=1e-12)
         np.testing.assert_allclose(shipped.values, strains, rtol=1e-5, atol=1e-12)
         assert "SYNTHETIC" in spec["note"] and "synthetic" in spec["path"]
+
+
+def test_measurements_weighted_two_ways_are_warned_of() -> None:
+    """A record's readings carry the noise's uncertainty; a value typed in has none and counts by
+    its relative error: a fit that mixes the two says so; one kind alone, or norms, does not."""
+    from rodimpact.analysis.observations import Observed
+    from rodimpact.jobs.calibrate import mixed_scales_warning
+
+    record = Observed("strain_peak_microstrain", "peak", "microstrain", -77.0, -76.9, -0.1, 0.2)
+    typed = Observed("contact_time_us", "contact time", "µs", 77.2, 77.0, -0.3)
+    norm = Observed("strain_l2_pct", "strain, L2 error", "%", float("nan"), float("nan"), 2.0)
+    warning = mixed_scales_warning([record, typed, norm])
+    assert warning is not None and warning.startswith("1 of 2 measurements (contact_time_us)")
+    assert mixed_scales_warning([record, record]) is None
+    assert mixed_scales_warning([typed, norm]) is None

@@ -33,7 +33,7 @@ from rodimpact.config.paths import with_setting
 from rodimpact.jobs.runner import SolverFailed, run_case
 from rodimpact.storage.calibrations import StoredCalibration, write_calibration
 
-__all__ = ["SetModel", "calibration_parameters", "run_calibration"]
+__all__ = ["SetModel", "calibration_parameters", "mixed_scales_warning", "run_calibration"]
 
 log = logging.getLogger(__name__)
 
@@ -118,6 +118,23 @@ def _scale(row: Observed) -> float:
     return row.measured_sd if math.isfinite(row.measured_sd) and row.measured_sd > 0.0 else abs(row.measured)
 
 
+def mixed_scales_warning(rows: Sequence[Observed]) -> str | None:
+    """A sentence when some measurements are weighted by their records' noise and others, with
+    no noise estimate, by their own size: the fit then weighs the two kinds against each other
+    by that choice alone, and its standard errors are no better than the choice. None otherwise."""
+    values = [row for row in rows if row.quantity not in NORMS]
+    relative = [row.quantity for row in values if not (math.isfinite(row.measured_sd) and row.measured_sd > 0.0)]
+    if not relative or len(relative) == len(values):
+        return None
+    named = ", ".join(sorted(set(relative)))
+    return (
+        f"{len(relative)} of {len(values)} measurements ({named}) have no noise estimate (a value with no "
+        "record, or a record without 8 quiet samples before its pulse) and count by their relative error, the "
+        "others in their records' standard uncertainties: the weights of the two kinds, and so the standard "
+        "errors, rest on that choice"
+    )
+
+
 def _start(parameter: Parameter) -> float:
     """Where the fit starts: the declared start, else the middle of the bounds."""
     return 0.5 * (parameter.low + parameter.high) if parameter.start is None else parameter.start
@@ -138,7 +155,7 @@ def calibration_parameters(block: Mapping[str, Any]) -> list[Parameter]:
 
 
 def _stored(
-    set_name: str, model: SetModel, words: list[Observed], fit: Calibration, loo: LeaveOneOut
+    set_name: str, model: SetModel, words: list[Observed], fit: Calibration, loo: LeaveOneOut, warnings: list[str]
 ) -> StoredCalibration:
     """What the calibration file holds (:mod:`rodimpact.storage.calibrations`)."""
     params = fit.parameters
@@ -155,7 +172,7 @@ def _stored(
         "condition_number": float(fit.condition_number),
     }
     described = {
-        "warnings": list(fit.warnings),
+        "warnings": [*fit.warnings, *warnings],
         "parameters": [{"path": p.name, "unit": p.unit, "source": p.source} for p in params],
         "observations": [
             # the words without what depends on the constants (x/c at the start's modulus)
@@ -223,10 +240,13 @@ def run_calibration(
     start = np.asarray([_start(p) for p in parameters], float)
     words = model.observe(start)
     observations = model.observations(words)
+    warnings = [w for w in (mixed_scales_warning(words),) if w]
+    for warning in warnings:
+        log.warning("calibration of %s: %s", set_name, warning)
     cache: dict = {}
     fit = calibrate(model, observations, parameters, cache=cache)
     log.info("calibration of %s: %s (%s); values %s", set_name, fit.status, fit.message, fit.values)
     loo = leave_one_out(model, observations, parameters, fit, cache=cache)
     config = {"calibrate": dict(block), "cases": [dict(c) for c in fitted]}
-    write_calibration(out, _stored(set_name, model, words, fit, loo), config=config)
+    write_calibration(out, _stored(set_name, model, words, fit, loo, warnings), config=config)
     return fit
