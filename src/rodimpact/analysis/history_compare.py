@@ -23,7 +23,14 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["DEFAULT_THRESHOLD", "HistoryComparison", "compare_force_histories", "crossing", "threshold_crossings"]
+__all__ = [
+    "DEFAULT_THRESHOLD",
+    "HistoryComparison",
+    "aligned_errors",
+    "compare_force_histories",
+    "crossing",
+    "threshold_crossings",
+]
 
 #: The fraction of a signal's peak at which its contact starts and ends, by default: above a
 #: few per cent of noise on a piezo or gauge trace, low enough to lose little of the contact.
@@ -97,6 +104,35 @@ def threshold_crossings(time_s: ArrayLike, force_N: ArrayLike, threshold: float)
     return crossing(t, f, int(rises[0]), level), crossing(t, f, int(falls[-1]), level)
 
 
+def aligned_errors(
+    measured_time_s: NDArray[np.float64],
+    measured: NDArray[np.float64],
+    model_time_s: NDArray[np.float64],
+    model: NDArray[np.float64],
+    shift_s: float,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], float, float]:
+    """A record shifted by ``shift_s`` against a computed signal (module docstring): the computed
+    time points inside the shifted record, the record interpolated there, the computed values,
+    and the relative L2 and max-norm errors of the computed signal (L2: NaN for a record that is
+    zero there).
+
+    Raises
+    ------
+    ValueError
+        The shifted record and the computed signal overlap in fewer than two time points.
+    """
+    aligned = measured_time_s + shift_s
+    inside = (model_time_s >= aligned[0]) & (model_time_s <= aligned[-1])
+    if inside.sum() < 2:
+        raise ValueError("the aligned records do not overlap")
+    t, computed = model_time_s[inside], model[inside]
+    record = np.interp(t, aligned, measured)
+    difference = computed - record
+    norm = float(np.sqrt(np.trapezoid(record**2, t)))
+    l2_error = float(np.sqrt(np.trapezoid(difference**2, t))) / norm if norm > 0 else float("nan")
+    return t, record, computed, l2_error, float(np.max(np.abs(difference))) / float(np.max(np.abs(measured)))
+
+
 def compare_force_histories(
     measured_time_s: ArrayLike,
     measured_N: ArrayLike,
@@ -130,19 +166,12 @@ def compare_force_histories(
     m_start, m_end = threshold_crossings(tm, fm, threshold)
     c_start, c_end = threshold_crossings(tc, fc, threshold)
     shift = c_start - m_start
-    aligned = tm + shift
-    inside = (tc >= aligned[0]) & (tc <= aligned[-1])
-    if inside.sum() < 2:
-        raise ValueError("the aligned records do not overlap")
-    t, model = tc[inside], fc[inside]
-    measured = np.interp(t, aligned, fm)
-    difference = model - measured
-    norm = float(np.sqrt(np.trapezoid(measured**2, t)))
+    t, measured, model, l2_error, max_error = aligned_errors(tm, fm, tc, fc, shift)
     return HistoryComparison(
         threshold=threshold,
         shift_s=shift,
-        l2_error=float(np.sqrt(np.trapezoid(difference**2, t))) / norm,
-        max_error=float(np.max(np.abs(difference))) / float(np.max(np.abs(fm))),
+        l2_error=l2_error,
+        max_error=max_error,
         measured_contact_time_s=m_end - m_start,
         model_contact_time_s=c_end - c_start,
         measured_peak_N=float(fm.max()),

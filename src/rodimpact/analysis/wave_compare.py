@@ -44,6 +44,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from rodimpact.analysis.history_compare import aligned_errors
 from rodimpact.analysis.history_compare import crossing as _crossing
 
 __all__ = [
@@ -305,21 +306,14 @@ def compare_signals(
         measured_pulse = first_pulse(tm, fm, threshold)
         model_pulse = first_pulse(tc[window], fc[window], threshold)
         shift = model_pulse.arrival_s - measured_pulse.arrival_s
-    aligned = tm + shift
-    inside = (tc >= aligned[0]) & (tc <= aligned[-1])
-    if inside.sum() < 2:
-        raise ValueError("the aligned records do not overlap")
-    t, computed = tc[inside], fc[inside]
-    record = np.interp(t, aligned, fm)
-    difference = computed - record
-    norm = float(np.sqrt(np.trapezoid(record**2, t)))
+    t, record, computed, l2_error, max_error = aligned_errors(tm, fm, tc, fc, shift)
     return SignalComparison(
         threshold=threshold,
         measured_pulse=measured_pulse,
         model_pulse=model_pulse,
         shift_s=shift,
-        l2_error=float(np.sqrt(np.trapezoid(difference**2, t))) / norm if norm > 0 else float("nan"),
-        max_error=float(np.max(np.abs(difference))) / float(np.max(np.abs(fm))),
+        l2_error=l2_error,
+        max_error=max_error,
         time_s=t,
         measured=record,
         model=computed,
