@@ -14,7 +14,8 @@ from rodimpact.analysis.measured import read_history
 from rodimpact.config.calibration import with_method
 from rodimpact.config.paths import with_setting
 from rodimpact.config.project import Project
-from rodimpact.jobs.calibrate import SetModel, calibration_parameters, run_calibration
+from rodimpact.jobs.calibrate import calibration_parameters, observations_of, run_calibration
+from rodimpact.jobs.calibration_model import SetModel
 from rodimpact.storage.calibrations import read_calibration
 from rodimpact.tools.synthetic_history import SyntheticRecord, synthetic_history, write_synthetic_history
 
@@ -97,7 +98,7 @@ def test_two_standard_errors_cover_the_true_constants_over_noise_seeds(
             for c in cases
         }
         model = SetModel(cases, block, numerics, records)
-        fit = calibrate(model, model.observations(model.observe(start)), parameters)
+        fit = calibrate(model, observations_of(model.rows, model.observe(start)), parameters)
         assert fit.success, (seed, fit.status, fit.message)
         for name, value, error in zip([p.name for p in fit.parameters], fit.values, fit.standard_errors, strict=True):
             covered[name] += abs(value - TRUE[name]) <= 2.0 * error

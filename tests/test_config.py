@@ -580,17 +580,6 @@ MALFORMED = {
         "'r10_l30_film_cal' needs a law calibrated by the continuum (from: fem_axi_indentation) on a stack "
         "(contact.stack)",
     ),
-    "sensor fit of an unknown reading": (
-        _set("config/config.yaml", "sensor", "fit", "reading", "r10_l30_sensr_cal"),
-        "config/config.yaml: field 'sensor.fit.reading': unknown reading 'r10_l30_sensr_cal'; readings: r10_l30, "
-        "r10_l301, r10_l301_film, r10_l30_cal, r10_l30_film, r10_l30_film_cal, r10_l30_sensor, r10_l30_sensor_cal, "
-        "r1_l30, r1_l301, r1_l301_film, r1_l30_film, r1_l30_sensor, r1_l30_sensor_cal",
-    ),
-    "sensor fit of a layer the stack lacks": (
-        _set("config/config.yaml", "sensor", "fit", "layer", "glue"),
-        "config/config.yaml: field 'sensor.fit.layer': case 'ball_3.16mm-r10_l30_sensor_cal': its stack has no "
-        "layer named 'glue'",
-    ),
     "work precision on an unknown case": (
         _set("config/config.yaml", "work_precision", "cases", ["model", "modle"]),
         "config/config.yaml: field 'work_precision.cases[1]': unknown case 'modle'",

@@ -51,8 +51,6 @@ SMALLER = {
     ("stability", "map", "impedance_kg_s"),
     ("numerics", "fem_axi", "steps_per_contact"),
     ("numerics", "fem_axi", "elements_across"),
-    ("sensor", "fit", "apply_to"),
-    ("sensor", "fit", "thickness_grid_m"),
     # .test has no reading calibrated without the sensor (r10_l30_film_cal, r10_l30_cal)
     ("sensor", "film_table", "film_calibrated"),
     ("sensor", "film_table", "no_film_calibrated"),

@@ -37,8 +37,6 @@ from rodimpact.present.artifacts import (  # noqa: E402
 )
 from rodimpact.present.figures import METHOD_LABELS  # noqa: E402
 from rodimpact.present.forces import export_forces  # noqa: E402
-from rodimpact.present.sensor_figures import plot_sensor_fit  # noqa: E402
-from rodimpact.present.sensor_tables import sensor_fit_frame  # noqa: E402
 from rodimpact.present.study_figures import order_text, quantity_words  # noqa: E402
 from rodimpact.present.table2_drawing import SECOND_CONTACT_LABEL, short_source  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
@@ -368,47 +366,6 @@ def test_every_prediction_drawn_names_its_model(table2_figures, which) -> None:
     assert any(METHOD_LABELS["fem_axi"] in label for label in sensor)  # the continuum, the headline
     assert any("calibrated by the continuum" in label for label in sensor)
     assert any("band" in label and "continuum" in label for label in sensor)
-
-
-def test_the_sensor_fit_figure_is_journal_ready_and_says_it_is_a_fit() -> None:
-    """The fit's figure: one panel per reading, its title and legend say it is a fit, with the
-    fitted thickness, and the held-out predictions are drawn on the fitted reading only."""
-    grid = np.array([3e-6, 1.5e-5, 5e-5])
-    stack = {"layers": [{"name": "glue", "thickness_m": 1.5e-5, "thickness_range_m": [3e-6, 5e-5]}]}
-    cases, fitted, applied = {}, [], []
-    for reading, scale, group in (("a", 1.0, fitted), ("b", 1.3, applied)):
-        for i, (mass, measured) in enumerate(((1e-4, 36.0), (1e-3, 60.0), (8e-3, 111.0))):
-            case_id = f"ball{i}-{reading}"
-            cases[case_id] = {
-                "id": case_id,
-                "row": f"ball{i}",
-                "impactor": {"mass_kg": mass},
-                "contact": {"stack": stack},
-            }
-            times = scale * measured * np.array([0.85, 0.95, 1.2])
-            group.append(
-                CaseBand(
-                    case_id,
-                    measured,
-                    float(times[1]),
-                    np.empty((0, 1)),
-                    np.empty(0),
-                    {"glue: thickness_m": grid},
-                    {"glue: thickness_m": times},
-                    ("glue: thickness_m",),
-                )
-            )
-    frame, summary = sensor_fit_frame(fitted, applied, cases, "glue", {c: c[-1] for c in cases})
-    fig = plot_sensor_fit(frame, summary, {"a": "The reading fitted", "b": "Another reading"})
-    assert_journal_ready(fig)
-    panels = [ax for ax in fig.axes if ax.get_visible()]
-    assert len(panels) == 2 and "(the fit)" in panels[0].get_title() and "applied" in panels[1].get_title()
-    labels = [t.get_text() for t in fig.legends[0].get_texts()]
-    assert any(label.startswith("FIT: glue") and "µm" in label for label in labels), labels
-    assert "A fit, not a prediction" in fig._suptitle.get_text()
-    held = [line for ax in panels for line in ax.lines if "held out" in line.get_label()]
-    assert len(held) == 1 and held[0].axes is panels[0]
-    matplotlib.pyplot.close(fig)
 
 
 def test_short_source_cuts_long_sources_at_a_word() -> None:

@@ -203,6 +203,28 @@ def _parameter(document: dict, index: int = 0) -> dict:
             "5 constants to fit from 4 measurement(s)",
         ),
         (
+            lambda d: d["calibrate"].update(variants=["r10_l30"]),
+            "field 'calibrate.variants[0]'",
+            "'r10_l30' is no variant of set 'gauge_example'",
+        ),
+        (
+            lambda d: _parameter(d).update(grid=[1.8e11, 2.0e11, 2.3e11]),
+            "field 'calibrate.parameters[0].grid'",
+            "a grid fits one constant, and 2 are fitted",
+        ),
+        (
+            lambda d: d["calibrate"]["parameters"].pop(1) and _parameter(d).update(grid=[1.8e11, 2.0e11, 2.2e11]),
+            "field 'calibrate.parameters[0].grid'",
+            "the grid must run from the least bound to the largest",
+        ),
+        (
+            lambda d: (
+                d["calibrate"]["parameters"].pop(1) and _parameter(d).update(grid=[1.8e11, 2.1e11, 2.0e11, 2.3e11])
+            ),
+            "field 'calibrate.parameters[0].grid'",
+            "the grid must increase",
+        ),
+        (
             lambda d: d["calibrate"].update(quantities=["peak_force_n"]),
             "field 'calibrate.quantities[0]'",
             "gives 'peak_force_n'",

@@ -124,10 +124,6 @@ def _expected_report(workdir: Path) -> dict[str, list[str]]:
             "What to see",
             "sensor_band/{reading}/*.h5",
         ]
-    if config.get("sensor", {}).get("fit"):
-        expected["results/tables/sensor_fit.csv"] = ["A fit, not a prediction", "Held out", "never extrapolates"]
-        for ext in ("png", "pdf"):
-            expected[f"results/figures/sensor_fit.{ext}"] = ["A fit, not a prediction", "Purple rings"]
     expected["results/tables/film_band.csv"] = ["prediction band", "Against the paper"]
     expected["results/tables/film_indentation.csv"] = ["calibrated by the continuum", "Against the paper"]
     for ext in ("png", "pdf"):

@@ -5,7 +5,8 @@
 
 
 rule calibrate:
-    """One set's declared constants fitted to its measurements, and each case held out in turn."""
+    """One set's declared constants fitted to its measurements, each case held out in turn, and
+    the cases of its apply_to predicted at the fitted constants."""
     input:
         case=lambda w: sorted({case_file_of(c["id"]) for c in calibration_cases_of(w.set)}),
         records=lambda w: compare_histories(w.set),
@@ -23,7 +24,7 @@ rule calibrate:
     resources:
         **calibration_resources(),
     params:
-        code=SRC_CALIBRATE,
+        code=calibration_sources,
         set_name="{set}",
         cases=lambda w: calibration_cases_of(w.set),
         block=lambda w: PROJECT.calibrate[w.set],

@@ -43,9 +43,10 @@ from snakemake.utils import Paramspace
 from rodimpact.analysis.studies import level_case, map_point_case, map_point_names, reference_case
 from rodimpact.analysis.measured import RECORDS, SIGNAL_RECORDS, measured_cases
 from rodimpact.analysis.sweeps import sweep_frame, sweep_point_case, sweep_points
-from rodimpact.config.calibration import calibration_cases, expected_evaluations, with_method
+from rodimpact.config.calibration import applied_cases, calibration_cases, expected_evaluations, with_method
 from rodimpact.config.checks import swept_methods
 from rodimpact.contact.laws import LAWS, law_of
+from rodimpact.contact.tabulated import CURVE_NUMERICS
 from rodimpact.solvers.field import FIELD_OUTPUT
 from rodimpact.solvers.registry import METHODS as METHOD_REGISTRY
 from rodimpact.plumbing.locks import register_run
@@ -211,7 +212,7 @@ FILM_VARIANTS = [v for v in READING_SET_OF if all(law_of(c.get("contact")).needs
 CURVE_FILES = {"indentation": "results/indentation/{group}/{case}.h5"}
 # ... the settings each rule computes a curve with (a sweep point's batch computes its own), and
 # its cost model (module:function, imported when a batch needs it: the continuum's modules are heavy)
-CURVE_SETTINGS = {"indentation": config["numerics"]["fem_axi"]}
+CURVE_SETTINGS = {rule: config["numerics"][method] for rule, method in CURVE_NUMERICS.items()}
 CURVE_COSTS = {"indentation": "rodimpact.solvers.fem_axi.cost:fem_axi_indentation_cost"}
 _NO_CURVE_FILE = [law for law in LAWS.values() if law.needs.curve_rule not in (None, *CURVE_FILES)]
 if _NO_CURVE_FILE:

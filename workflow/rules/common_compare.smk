@@ -76,26 +76,49 @@ def compare_targets():
 
 # The calibrated sets (calibrate.smk): the compared sets whose case file declares `calibrate:`.
 CALIBRATED_SETS = [name for name in COMPARE_SETS if name in PROJECT.calibrate]
-SRC_CALIBRATE = sources("rodimpact.jobs.calibrate", "rodimpact.jobs.logs")
+SRC_CALIBRATE = ("rodimpact.jobs.calibrate", "rodimpact.jobs.logs")
+
+
+def calibration_sources(wildcards):
+    """Params function: the code digest of a set's calibration: its job, its method's solver and,
+    where a rule computes its cases' law's curve (again at every trial), that code (CURVE_CODE)."""
+    rules = sorted({curve_rule_of(c) for c in calibration_cases_of(wildcards.set)} - {None})
+    method = PROJECT.calibrate[wildcards.set]["method"]
+    return sources(
+        *SRC_CALIBRATE, METHOD_REGISTRY[method].solver_module, *(module for r in rules for module in CURVE_CODE[r])
+    )
+
+
 SRC_CALIBRATION_ARTIFACTS = sources("rodimpact.present.calibration_artifacts", "rodimpact.jobs.logs")
 
 
 def calibration_cases_of(set_name):
-    """The cases a set's calibration fits (those giving one of its quantities)."""
-    return calibration_cases(PROJECT.cases_in(set_name), PROJECT.calibrate[set_name])
+    """The cases a set's calibration runs: those it fits (giving one of its quantities), then
+    those it predicts at the fitted constants (its apply_to)."""
+    cases, block = PROJECT.cases_in(set_name), PROJECT.calibrate[set_name]
+    return [*calibration_cases(cases, block), *applied_cases(cases, block)]
 
 
 def calibration_resources():
-    """A calibration job's resources: its method's runs of every fitted case, each repeated as
-    often as a fit and its leave-one-out are expected to evaluate it (expected_evaluations)."""
+    """A calibration job's resources: its method's runs of every case, each repeated once per
+    value of a grid, or as often as a fit and its leave-one-out are expected to evaluate it
+    (expected_evaluations); with its law's curve computed as often, where a rule computes one."""
 
-    def runs(set_name):
+    def estimate(set_name):
         block = PROJECT.calibrate[set_name]
         cases = calibration_cases_of(set_name)
-        repeats = expected_evaluations(len(block["parameters"]), len(cases))
-        return [(with_method(case, block["method"], config["numerics"]), block["method"], repeats) for case in cases]
+        fitted = calibration_cases(PROJECT.cases_in(set_name), block)
+        grid = next((p["grid"] for p in block["parameters"] if p.get("grid")), None)
+        repeats = len(grid) if grid else expected_evaluations(len(block["parameters"]), len(fitted))
+        runs = [(with_method(c, block["method"], config["numerics"]), block["method"], repeats) for c in cases]
+        curves = [
+            (c, {"rule": curve_rule_of(c), "settings": CURVE_SETTINGS[curve_rule_of(c)]})
+            for c in cases
+            if curve_rule_of(c) is not None
+        ]
+        return _estimate_batch(runs, None, curves * repeats)
 
-    return _resources(lambda w: estimate_sequence(runs(w.set)))
+    return _resources(lambda w: estimate(w.set))
 
 
 def calibration_targets():

@@ -1,28 +1,13 @@
-# The sensor's helpers (sensor.smk, tables.smk, figures.smk): its readings, bands and fit, the
-# film's tables and figure, the readings' targets. Included after common.smk.
+# The sensor's helpers (sensor.smk, tables.smk, figures.smk): its readings and bands, the film's
+# tables and figure, the readings' targets. Included after common.smk.
 
-# The sensor as built (sensor.smk): the readings config["sensor"] names, checked by the
+# The sensor as built (sensor.smk): the readings config["sensor"]["band"] names, checked by the
 # configuration (rodimpact.config.checks.check_sensor), and their cases' band files.
 SENSOR = config.get("sensor", {})
-SENSOR_FIT = SENSOR.get("fit")
 SRC_SENSOR = sources("rodimpact.jobs.sensor_band", "rodimpact.jobs.logs")
 SRC_SENSOR_TABLES = sources("rodimpact.present.sensor_artifacts", "rodimpact.jobs.logs")
-
-
-def _sensor_readings():
-    """Reading -> whether its cases get the whole band (else the fit's grid only); the
-    configuration checked them (rodimpact.config.checks.check_sensor)."""
-    readings = {v: True for v in SENSOR.get("band", [])}
-    for v in [SENSOR_FIT["reading"], *SENSOR_FIT.get("apply_to", [])] if SENSOR_FIT else []:
-        readings.setdefault(v, False)
-    return readings
-
-
-SENSOR_READINGS = _sensor_readings()
+SENSOR_READINGS = list(SENSOR.get("band", []))
 SENSOR_READING_OF = {c["id"]: v for v in SENSOR_READINGS for c in PROJECT.cases.values() if c.get("variant") == v}
-SENSOR_GRID = {f"{SENSOR_FIT['layer']}: thickness_m": SENSOR_FIT["thickness_grid_m"]} if SENSOR_FIT else {}
-# the readings the fit reads: the one it is fitted on and those it is applied to
-SENSOR_FIT_READINGS = [SENSOR_FIT["reading"], *SENSOR_FIT.get("apply_to", [])] if SENSOR_FIT else []
 
 
 def sensor_variants(set_name):
@@ -55,11 +40,8 @@ def sensor_targets():
     targets = []
     if not all(v in READING_SET_OF for v in SENSOR_READINGS):
         return targets
-    if any(SENSOR_READINGS.values()):
+    if SENSOR_READINGS:
         targets += expand("results/tables/sensor_band.{ext}", ext=["csv", "md", "provenance.json"])
-    if SENSOR_FIT:
-        targets += expand("results/tables/sensor_fit.{ext}", ext=["csv", "md", "json", "provenance.json"])
-        targets += expand("results/figures/sensor_fit.{ext}", ext=["pdf", "png", "provenance.json"])
     return targets
 
 

@@ -76,9 +76,7 @@ rule fig_readings:
         bands=lambda w: expand(
             "results/studies/film_band_{variant}.h5", variant=[v for v in FILM_VARIANTS if READING_SET_OF[v] == w.set]
         ),
-        sensor_bands=lambda w: sensor_band_dirs(
-            [v for v, band in SENSOR_READINGS.items() if band and v in sensor_variants(w.set)]
-        ),
+        sensor_bands=lambda w: sensor_band_dirs([v for v in SENSOR_READINGS if v in sensor_variants(w.set)]),
     output:
         pdf=report(
             "results/figures/{set}_contact_time.pdf",
@@ -133,9 +131,7 @@ rule fig_readings:
         code=SRC_PRESENT,
         runs=lambda w: set_reading_runs(w.set),
         sweep_runs=lambda w: sweep_point_runs(PROJECT.sweeps_in(w.set)),
-        sensor_bands=lambda w: sensor_band_files(
-            [v for v, band in SENSOR_READINGS.items() if band and v in sensor_variants(w.set)]
-        ),
+        sensor_bands=lambda w: sensor_band_files([v for v in SENSOR_READINGS if v in sensor_variants(w.set)]),
         variants=lambda w: READING_SETS[w.set],
         film_variants=lambda w: [v for v in FILM_VARIANTS if READING_SET_OF[v] == w.set],
         sensors=lambda w: sensor_variants(w.set),

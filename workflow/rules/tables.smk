@@ -83,7 +83,7 @@ rule film_table:
     input:
         runs=run_batches([run for v in FILM_TABLE.values() for run in reading_runs(v)] if FILM_TABLE_SETS else []),
         band=f"results/studies/film_band_{FILM_TABLE.get('film')}.h5",
-        sensor_bands=sensor_band_dirs([v for v in [FILM_TABLE.get("sensor_calibrated")] if SENSOR_READINGS.get(v)]),
+        sensor_bands=sensor_band_dirs([v for v in [FILM_TABLE.get("sensor_calibrated")] if v in SENSOR_READINGS]),
     output:
         csv=report(
             "results/tables/{set}_film.csv",
@@ -108,7 +108,7 @@ rule film_table:
         **PRESENTATION_RESOURCES,
     params:
         code=SRC_PRESENT,
-        sensor_bands=sensor_band_files([v for v in [FILM_TABLE.get("sensor_calibrated")] if SENSOR_READINGS.get(v)]),
+        sensor_bands=sensor_band_files([v for v in [FILM_TABLE.get("sensor_calibrated")] if v in SENSOR_READINGS]),
         runs=[run for v in FILM_TABLE.values() for run in reading_runs(v)] if FILM_TABLE_SETS else [],
         variants=FILM_TABLE,
     script:

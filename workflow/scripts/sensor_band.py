@@ -1,5 +1,5 @@
-"""Snakemake adapter: the sensor stack's band (and the fit's grid) of each case of one reading by the
-calibrated SEM (one file per case in the rule's output directory)."""
+"""Snakemake adapter: the sensor stack's band of each case of one reading by the calibrated SEM
+(one file per case in the rule's output directory)."""
 
 from rodimpact.jobs.logs import script_logging
 from rodimpact.jobs.sensor_band import sensor_bands_into
@@ -11,7 +11,5 @@ with script_logging(snakemake.log[0], outputs=snakemake.output):  # `snakemake`:
         params.variant,
         snakemake.output.bands,
         params.numerics,
-        grid=params.grid,
-        band=params.band,
         curve_files=params.curves,
     )

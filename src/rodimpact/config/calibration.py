@@ -12,7 +12,13 @@ the file, the case where one is at fault, and the field, when:
 * a case is not legal at a bound (its material outside the materials' schema, its contact law
   refusing the value, or the method unable to run it): the bounds leave the setting's declared
   range;
+* ``variants`` or ``apply_to`` names no variant of the set, or a variant in both;
+* a ``grid`` is not increasing from the least bound to the largest, or is given with more than
+  one constant fitted;
 * the set gives fewer measurements than there are constants to fit.
+
+The cases predicted at the fitted constants (``apply_to``) are checked at the bounds as the
+fitted ones are.
 """
 
 from __future__ import annotations
@@ -27,17 +33,42 @@ from rodimpact.config.checks import check_run
 from rodimpact.config.paths import PathError, with_setting
 from rodimpact.config.project import ConfigError
 from rodimpact.config.schema import Schemas, format_path
+from rodimpact.contact.laws import bodies_contact, law_of
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.options import OptionError
 
-__all__ = ["calibration_cases", "check_calibration", "expected_evaluations", "observation_count", "with_method"]
+__all__ = [
+    "applied_cases",
+    "calibration_cases",
+    "check_calibration",
+    "expected_evaluations",
+    "observation_count",
+    "with_method",
+]
 
 _MATERIAL_SCHEMA = "materials.schema.yaml"
 
 
 def calibration_cases(cases: Sequence[Mapping[str, Any]], block: Mapping[str, Any]) -> list[Mapping[str, Any]]:
-    """The cases a calibration fits: the set's cases that give at least one of its quantities."""
-    return [c for c in measured_cases(list(cases)) if any(gives(c, q) for q in block["quantities"])]
+    """The cases a calibration fits: the set's cases (of the block's ``variants``, when it names
+    some) that give at least one of its quantities."""
+    return _giving(cases, block, block.get("variants"))
+
+
+def applied_cases(cases: Sequence[Mapping[str, Any]], block: Mapping[str, Any]) -> list[Mapping[str, Any]]:
+    """The cases a calibration predicts at its fitted constants without fitting them: the set's
+    cases of the block's ``apply_to`` variants that give at least one of its quantities."""
+    return _giving(cases, block, block.get("apply_to") or [])
+
+
+def _giving(
+    cases: Sequence[Mapping[str, Any]], block: Mapping[str, Any], variants: Sequence[str] | None
+) -> list[Mapping[str, Any]]:
+    return [
+        c
+        for c in measured_cases(list(cases))
+        if (variants is None or c.get("variant") in variants) and any(gives(c, q) for q in block["quantities"])
+    ]
 
 
 def observation_count(cases: Sequence[Mapping[str, Any]], block: Mapping[str, Any]) -> int:
@@ -86,6 +117,19 @@ def check_calibration(
             raise error(
                 f"no measured case of set {set_name!r} gives {quantity!r}", field=f"calibrate.quantities[{index}]"
             )
+    known = sorted({str(c["variant"]) for c in cases if c.get("variant")})
+    for key in ("variants", "apply_to"):
+        for index, variant in enumerate(block.get(key) or []):
+            if variant not in known:
+                raise error(
+                    f"{variant!r} is no variant of set {set_name!r}; its variants: {', '.join(known) or 'none'}",
+                    field=f"calibrate.{key}[{index}]",
+                )
+    both = sorted(set(block.get("variants") or []) & set(block.get("apply_to") or []))
+    if both:
+        raise error(
+            f"{', '.join(both)} both fitted and applied: a case is one or the other", field="calibrate.apply_to"
+        )
     fitted = calibration_cases(cases, block)
     method = block["method"]
     for index, parameter in enumerate(block["parameters"]):
@@ -96,7 +140,8 @@ def check_calibration(
         start = parameter.get("start")
         if start is not None and not low <= float(start) <= high:
             raise error(f"{float(start):g} lies outside the bounds [{low:g}, {high:g}]", field=f"{where}.start")
-        for case in fitted:
+        _check_grid(parameter, low, high, len(block["parameters"]), where, error)
+        for case in [*fitted, *applied_cases(cases, block)]:
             for bound in (low, high):
                 try:
                     changed = with_setting(case, parameter["path"], bound)
@@ -122,9 +167,34 @@ def check_calibration(
         )
 
 
+def _check_grid(
+    parameter: Mapping[str, Any], low: float, high: float, count: int, where: str, error: Callable[..., ConfigError]
+) -> None:
+    """A parameter's ``grid``: of the only constant fitted, increasing, from its least bound to its largest."""
+    grid = parameter.get("grid")
+    if grid is None:
+        return
+    if count != 1:
+        raise error(f"a grid fits one constant, and {count} are fitted", field=f"{where}.grid")
+    values = [float(v) for v in grid]
+    if any(b <= a for a, b in zip(values, values[1:], strict=False)):
+        raise error(f"the grid must increase, got {values}", field=f"{where}.grid")
+    if values[0] != low or values[-1] != high:
+        raise error(
+            f"the grid must run from the least bound to the largest ({low:g} to {high:g}), got {values[0]:g} to "
+            f"{values[-1]:g}",
+            field=f"{where}.grid",
+        )
+
+
 def _illegal(case: Mapping[str, Any], method: str, schemas: Schemas, numerics: Mapping[str, Any]) -> str | None:
     """Why ``case`` is not legal, or None: its materials against their schema, its law, and the
-    method's checks of its options against the case."""
+    method's checks of its options against the case. A law whose curve a rule computes (the
+    continuum's indentation, again at every trial of a fit) is checked as the bodies that rule
+    indents, under their analytic law."""
+    if law_of(case.get("contact")).needs.curve_rule is not None:
+        contact = bodies_contact(case.get("contact"))
+        case = {**{k: v for k, v in case.items() if k != "contact"}, **({"contact": contact} if contact else {})}
     for body in ("impactor", "rod"):
         problem = schemas.first_problem(
             {k: v for k, v in case[body]["material"].items() if k != "name"},

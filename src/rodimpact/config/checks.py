@@ -219,16 +219,12 @@ def check_stability(
 
 
 def check_sensor(study: Mapping[str, Any] | None, cases: Mapping[str, dict], error: Callable[..., Exception]) -> None:
-    """Check config.yaml's ``sensor`` against the cases (``error`` as above): each reading it
-    names has cases, every one calibrated by the continuum (a law that needs a curve) on a
-    ``stack``, and the fitted layer is a layer of each."""
+    """Check config.yaml's ``sensor`` against the cases (``error`` as above): each reading its
+    ``band`` names has cases, every one calibrated by the continuum (a law that needs a curve) on
+    a ``stack``."""
     if not study:
         return
-    fit = study.get("fit")
     named = [(f"sensor.band[{i}]", v) for i, v in enumerate(study.get("band", []))]
-    if fit:
-        named += [("sensor.fit.reading", fit["reading"])]
-        named += [(f"sensor.fit.apply_to[{i}]", v) for i, v in enumerate(fit.get("apply_to", []))]
     readings = sorted({c["variant"] for c in cases.values() if c.get("variant")})
     for field, variant in named:
         members = [c for c in cases.values() if c.get("variant") == variant]
@@ -241,10 +237,6 @@ def check_sensor(study: Mapping[str, Any] | None, cases: Mapping[str, dict], err
                     f"case {case['id']!r} of the reading {variant!r} needs a law calibrated by the continuum "
                     "(from: fem_axi_indentation) on a stack (contact.stack)",
                     field=field,
-                )
-            if fit and fit["layer"] not in [layer["name"] for layer in contact["stack"]["layers"]]:
-                raise error(
-                    f"case {case['id']!r}: its stack has no layer named {fit['layer']!r}", field="sensor.fit.layer"
                 )
     _check_film_readings(study, cases, readings, error)
 

@@ -34,7 +34,7 @@ from rodimpact.contact.law import ContactLaw, LawSettings, Needs
 from rodimpact.contact.stack import StackSettings
 from rodimpact.settings.declare import REQUIRED, OptionError, setting
 
-__all__ = ["CURVE_SOURCES", "CurveMissing", "TabulatedLaw", "TabulatedSettings", "pchip_slopes"]
+__all__ = ["CURVE_NUMERICS", "CURVE_SOURCES", "CurveMissing", "TabulatedLaw", "TabulatedSettings", "pchip_slopes"]
 
 log = logging.getLogger(__name__)
 
@@ -45,6 +45,8 @@ _GX, _GW = 0.5 * (_GX + 1.0), 0.5 * _GW
 
 #: Where a curve may come from -> the workflow rule that computes it.
 CURVE_SOURCES = {"fem_axi_indentation": "indentation"}
+#: That rule -> the method whose numerics (``numerics.<method>``) are its settings.
+CURVE_NUMERICS = {"indentation": "fem_axi"}
 
 
 def _hermite(x, x0, x1, y0, y1, d0, d1):

@@ -3,9 +3,10 @@ its bookkeeping.
 
 What lives here: :mod:`.runner` (solve one run and store it), :mod:`.batch` (several runs in
 one job), :mod:`.band` (the film's prediction band, thin-layer law), :mod:`.sensor_band` (the
-sensor stack's band and the fit's grid by the law the continuum calibrates), :mod:`.indentation` (the continuum's
+sensor stack's band by the law the continuum calibrates), :mod:`.indentation` (the continuum's
 indentation as a contact-law curve), :mod:`.calibrate` (a set's declared constants fitted to its
-measurements, with leave-one-out), :mod:`.cases` (the case files' contents),
+measurements, with leave-one-out), :mod:`.calibration_model` (what a calibration fits: the set's
+quantities run at its constants, or read between runs on a grid), :mod:`.cases` (the case files' contents),
 :mod:`.resources` (threads, memory and time of a job, estimated from its case), :mod:`.logs`
 (the scripts' logging), :mod:`.timing` (how a timed run is repeated) and :mod:`.machine` (the
 machine a timing ran on).

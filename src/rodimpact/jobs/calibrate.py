@@ -1,15 +1,14 @@
 """One set's calibration job: its declared constants fitted to its measurements, with
 leave-one-out, written to one HDF5 file (:mod:`rodimpact.storage.calibrations`).
 
-The model (:class:`SetModel`) runs every fitted case with the block's method at a vector of the
-constants (each set by its path, :mod:`rodimpact.config.paths`), in memory, storing nothing,
-and reads each case's fitted quantities from the run as the comparison tables read them
-(:func:`rodimpact.analysis.observations.observed`): one place says what "the computed arrival
-at the gauge" is, for a table and for a fit alike. A value's residual is relative to the
-measured value; an error norm (a quantity ending in ``_pct``) is a relative error already, its
-measured value 0 and its scale 100 %. The fit and its leave-one-out are
-:func:`rodimpact.analysis.calibration.calibrate` and
-:func:`rodimpact.analysis.calibration_loo.leave_one_out`, sharing one cache of runs.
+The model (:mod:`rodimpact.jobs.calibration_model`) runs every fitted case with the block's
+method at a vector of the constants, in memory, storing nothing, or reads it between runs made
+once on a constant's ``grid``. A value's residual is relative to the measured value; an error
+norm (a quantity ending in ``_pct``) is a relative error already, its measured value 0 and its
+scale 100 %. The fit and its leave-one-out are :func:`rodimpact.analysis.calibration.calibrate`
+and :func:`rodimpact.analysis.calibration_loo.leave_one_out`, sharing one cache of runs. The
+cases of the block's ``apply_to`` are then predicted at the fitted constants, with the standard
+error their covariance gives (:class:`Applied`).
 """
 
 from __future__ import annotations
@@ -23,92 +22,28 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from rodimpact.analysis.calibration import Calibration, ModelFailure, Observation, Parameter, calibrate
+from rodimpact.analysis.calibration import STEP, Calibration, Observation, Parameter, calibrate
 from rodimpact.analysis.calibration_loo import LeaveOneOut, leave_one_out
-from rodimpact.analysis.measured import RECORDS, MeasuredHistory, read_history
-from rodimpact.analysis.observations import NORMS, Observed, gives, observed
-from rodimpact.config.calibration import calibration_cases, with_method
-from rodimpact.config.measured import record_outputs
-from rodimpact.config.paths import with_setting
-from rodimpact.jobs.runner import SolverFailed, run_case
+from rodimpact.analysis.measured import RECORDS, read_history
+from rodimpact.analysis.observations import NORMS, Observed
+from rodimpact.config.calibration import applied_cases, calibration_cases
+from rodimpact.jobs.calibration_model import GridModel, SetModel
+from rodimpact.present.artifact_common import case_in_words
 from rodimpact.storage.calibrations import StoredCalibration, write_calibration
 
-__all__ = ["SetModel", "calibration_parameters", "mixed_scales_warning", "run_calibration"]
+__all__ = [
+    "Applied",
+    "calibration_parameters",
+    "mixed_scales_warning",
+    "observations_of",
+    "propagated_standard_errors",
+    "run_calibration",
+]
+
+#: What a calibration fits: a set's model, run at every trial or read between runs on a grid.
+Model = SetModel | GridModel
 
 log = logging.getLogger(__name__)
-
-
-class SetModel:
-    """The fitted quantities of a set's cases at a vector of its constants (module docstring).
-
-    Parameters
-    ----------
-    cases : sequence of mapping
-        The fitted cases, resolved.
-    block : mapping
-        The set's ``calibrate`` block.
-    numerics : mapping
-        The global numerics per method.
-    records : mapping
-        Case id -> its records, read, by their key in the ``measured`` block.
-    """
-
-    def __init__(
-        self,
-        cases: Sequence[Mapping[str, Any]],
-        block: Mapping[str, Any],
-        numerics: Mapping[str, Any],
-        records: Mapping[str, Mapping[str, MeasuredHistory]],
-    ) -> None:
-        self.block, self.records = block, records
-        self.method = str(block["method"])
-        self.paths = [str(p["path"]) for p in block["parameters"]]
-        self.cases = [self._as_run(case, numerics) for case in cases]
-        self.rows = [(case["id"], q) for case in self.cases for q in block["quantities"] if gives(case, q)]
-
-    def _as_run(self, case: Mapping[str, Any], numerics: Mapping[str, Any]) -> dict[str, Any]:
-        """The case as the method runs it here: its outputs only those the records need."""
-        run = with_method(case, self.method, numerics)
-        run["outputs"] = list(dict.fromkeys(["contact_force", *record_outputs(case)]))
-        return run
-
-    def observe(self, theta: NDArray[np.float64]) -> list[Observed]:
-        """Every fitted measurement against the runs at ``theta``, in the order of :attr:`rows`.
-
-        Raises
-        ------
-        ModelFailure
-            A run failed (its solver's status and message), or a signal could not be read.
-        """
-        found: list[Observed] = []
-        for case in self.cases:
-            changed = case
-            for path, value in zip(self.paths, np.asarray(theta, float), strict=True):
-                changed = with_setting(changed, path, float(value))
-            try:
-                result = run_case(changed, self.method)
-                series = {name: array for name, (array, _, _) in result.series(changed["outputs"]).items()}
-                rows = observed(changed, series, result.summary(), self.records.get(case["id"]))
-            except (SolverFailed, KeyError, ValueError) as problem:
-                raise ModelFailure(
-                    f"case {case['id']!r} at {dict(zip(self.paths, theta, strict=True))}: {problem}"
-                ) from None
-            by_quantity = {row.quantity: row for row in rows}
-            found += [by_quantity[q] for cid, q in self.rows if cid == case["id"]]
-        return found
-
-    def __call__(self, theta: NDArray[np.float64]) -> NDArray[np.float64]:
-        """The predicted value of every fitted measurement (a norm's value in %)."""
-        return np.asarray([row.error_pct if row.is_norm else row.computed for row in self.observe(theta)], float)
-
-    def observations(self, rows: Sequence[Observed]) -> list[Observation]:
-        """The measurements, from the rows :meth:`observe` gave (the records read as the model reads them)."""
-        return [
-            Observation(cid, row.quantity, 0.0, 100.0)
-            if row.quantity in NORMS
-            else Observation(cid, row.quantity, row.measured, _scale(row))
-            for (cid, _), row in zip(self.rows, rows, strict=True)
-        ]
 
 
 def _scale(row: Observed) -> float:
@@ -154,8 +89,43 @@ def calibration_parameters(block: Mapping[str, Any]) -> list[Parameter]:
     ]
 
 
+def _words(rows: Sequence[Observed], model: Model) -> list[dict[str, Any]]:
+    """Each measurement's case (its id and in words), quantity, words and unit (the words without
+    what depends on the constants: x/c at the start's modulus)."""
+    cases = {case["id"]: case for case in model.cases}
+    return [
+        {
+            "case": cid,
+            "case_words": case_in_words(cases[cid]),
+            "quantity": quantity,
+            "words": row.words.split(" (x/c")[0],
+            "unit": row.unit,
+            "norm": quantity in NORMS,
+        }
+        for (cid, quantity), row in zip(model.rows, rows, strict=True)
+    ]
+
+
+def observations_of(ids: Sequence[tuple[str, str]], rows: Sequence[Observed]) -> list[Observation]:
+    """The measurements a fit compares, from the rows a model observed (the records read as the
+    model reads them): a value against its scale (:func:`_scale`), a norm against 0 at 100 %."""
+    return [
+        Observation(cid, row.quantity, 0.0, 100.0)
+        if row.quantity in NORMS
+        else Observation(cid, row.quantity, row.measured, _scale(row))
+        for (cid, _), row in zip(ids, rows, strict=True)
+    ]
+
+
 def _stored(
-    set_name: str, model: SetModel, words: list[Observed], fit: Calibration, loo: LeaveOneOut, warnings: list[str]
+    set_name: str,
+    model: Model,
+    words: list[Observed],
+    fit: Calibration,
+    loo: LeaveOneOut,
+    warnings: list[str],
+    applied: Applied | None,
+    grids: Mapping[str, Sequence[float]],
 ) -> StoredCalibration:
     """What the calibration file holds (:mod:`rodimpact.storage.calibrations`)."""
     params = fit.parameters
@@ -173,19 +143,13 @@ def _stored(
     }
     described = {
         "warnings": [*fit.warnings, *warnings],
-        "parameters": [{"path": p.name, "unit": p.unit, "source": p.source} for p in params],
-        "observations": [
-            # the words without what depends on the constants (x/c at the start's modulus)
-            {
-                "case": o.case,
-                "quantity": o.quantity,
-                "words": w.words.split(" (x/c")[0],
-                "unit": w.unit,
-                "norm": o.quantity in NORMS,
-            }
-            for o, w in zip(fit.observations, words, strict=True)
+        "parameters": [
+            {"path": p.name, "unit": p.unit, "source": p.source, "grid": list(map(float, grids.get(p.name, [])))}
+            for p in params
         ],
+        "observations": _words(words, model),
         "loo": {"cases": list(loo.cases), "status": list(loo.status), "row_status": list(loo.row_status)},
+        "applied": [] if applied is None else _words(applied.rows, applied.model),
     }
     arrays = {
         "low": [p.low for p in params],
@@ -198,14 +162,93 @@ def _stored(
         "correlation": fit.correlation,
         "measured": [o.measured for o in fit.observations],
         "scale": [o.scale for o in fit.observations],
+        "start_predicted": model(np.asarray([_start(p) for p in params], float)),
         "predicted": fit.predicted,
         "residuals": fit.residuals,
         "held_out_predicted": loo.held_out_predicted,
         "held_out_error_pct": loo.held_out_error_pct,
         "in_sample_error_pct": loo.in_sample_error_pct,
         "loo_values": loo.values,
+        **(applied.arrays() if applied is not None else Applied.empty()),
     }
     return StoredCalibration(scalars, described, {k: np.asarray(v, float) for k, v in arrays.items()})
+
+
+class Applied:
+    """The cases a calibration predicts at its fitted constants without fitting them
+    (``apply_to``): each measurement's value by the model at the start and at the fit, with
+    the standard error the constants' covariance gives it, and the error against the measurement.
+
+    Parameters
+    ----------
+    model : SetModel or GridModel
+        The model of those cases.
+    fit : Calibration
+        The fit whose constants are applied.
+    """
+
+    def __init__(self, model: Model, fit: Calibration) -> None:
+        self.model = model
+        self.rows = model.observe(np.asarray([_start(p) for p in fit.parameters], float))
+        self.measured = np.asarray([0.0 if row.is_norm else row.measured for row in self.rows], float)
+        self.norm = np.asarray([row.is_norm for row in self.rows], bool)
+        self.start_predicted = model(np.asarray([_start(p) for p in fit.parameters], float))
+        self.predicted = model(fit.values)
+        self.standard_errors = propagated_standard_errors(model, fit)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            relative = 100.0 * (self.predicted - self.measured) / np.abs(self.measured)
+        self.error_pct = np.where(self.norm, self.predicted, relative)
+
+    def arrays(self) -> dict[str, NDArray[np.float64]]:
+        return {
+            "applied_measured": self.measured,
+            "applied_start_predicted": self.start_predicted,
+            "applied_predicted": self.predicted,
+            "applied_standard_errors": self.standard_errors,
+            "applied_error_pct": self.error_pct,
+        }
+
+    @staticmethod
+    def empty() -> dict[str, NDArray[np.float64]]:
+        names = ("measured", "start_predicted", "predicted", "standard_errors", "error_pct")
+        return {f"applied_{name}": np.zeros(0) for name in names}
+
+
+def propagated_standard_errors(model: Model, fit: Calibration) -> NDArray[np.float64]:
+    """The standard error of each of ``model``'s predictions that the fitted constants'
+    covariance gives (linearised: sqrt of diag(G Cov G^T), G the predictions' derivatives in the
+    constants by a central difference of :data:`~rodimpact.analysis.calibration.STEP` of each
+    constant's bounds, one-sided at a bound); NaN where the covariance is."""
+    values = np.asarray(fit.values, float)
+    columns = []
+    for k, p in enumerate(fit.parameters):
+        h = STEP * (p.high - p.low)
+        low, high = values.copy(), values.copy()
+        low[k], high[k] = max(p.low, values[k] - h), min(p.high, values[k] + h)
+        columns.append((model(high) - model(low)) / (high[k] - low[k]))
+    g = np.column_stack(columns)
+    return np.sqrt(np.einsum("ij,jk,ik->i", g, np.asarray(fit.covariance, float), g))
+
+
+def _model(
+    cases: Sequence[Mapping[str, Any]], block: Mapping[str, Any], numerics: Mapping[str, Any]
+) -> tuple[Model, dict[str, list[float]]]:
+    """The model of ``cases``: a :class:`GridModel` on the constant that declares a grid, else a
+    :class:`SetModel`; and the grid by the constant's path."""
+    records = {
+        case["id"]: {
+            key: read_history(case["measured"][key]["path"], case["measured"][key], key)
+            for key in RECORDS
+            if case["measured"].get(key)
+        }
+        for case in cases
+    }
+    model = SetModel(cases, block, numerics, records)
+    grids = {str(p["path"]): [float(v) for v in p["grid"]] for p in block["parameters"] if p.get("grid")}
+    if grids:
+        (grid,) = grids.values()
+        return GridModel(model, grid), grids
+    return model, grids
 
 
 def run_calibration(
@@ -215,7 +258,8 @@ def run_calibration(
     numerics: Mapping[str, Any],
     out: str | Path,
 ) -> Calibration:
-    """Fit the set's constants, hold out each case in turn, and write the file ``out``.
+    """Fit the set's constants, hold out each case in turn, predict the cases of ``apply_to`` at
+    the fitted constants, and write the file ``out``.
 
     A fit that does not converge, or that the data cannot identify, is still written: its
     status, message and warnings are the result (failure is data); the table and the report
@@ -224,22 +268,13 @@ def run_calibration(
     Raises
     ------
     ModelFailure
-        The model failed at the start, where nothing can be fitted.
+        The model failed at the start (or at a grid value), where nothing can be fitted.
     """
-    fitted = calibration_cases(cases, block)
-    records = {
-        case["id"]: {
-            key: read_history(case["measured"][key]["path"], case["measured"][key], key)
-            for key in RECORDS
-            if case["measured"].get(key)
-        }
-        for case in fitted
-    }
-    model = SetModel(fitted, block, numerics, records)
+    model, grids = _model(calibration_cases(cases, block), block, numerics)
     parameters = calibration_parameters(block)
     start = np.asarray([_start(p) for p in parameters], float)
     words = model.observe(start)
-    observations = model.observations(words)
+    observations = observations_of(model.rows, words)
     warnings = [w for w in (mixed_scales_warning(words),) if w]
     for warning in warnings:
         log.warning("calibration of %s: %s", set_name, warning)
@@ -247,6 +282,12 @@ def run_calibration(
     fit = calibrate(model, observations, parameters, cache=cache)
     log.info("calibration of %s: %s (%s); values %s", set_name, fit.status, fit.message, fit.values)
     loo = leave_one_out(model, observations, parameters, fit, cache=cache)
-    config = {"calibrate": dict(block), "cases": [dict(c) for c in fitted]}
-    write_calibration(out, _stored(set_name, model, words, fit, loo, warnings), config=config)
+    others = applied_cases(cases, block)
+    applied = Applied(_model(others, block, numerics)[0], fit) if others else None
+    config = {
+        "calibrate": dict(block),
+        "cases": [dict(c) for c in calibration_cases(cases, block)],
+        "applied": [dict(c) for c in others],
+    }
+    write_calibration(out, _stored(set_name, model, words, fit, loo, warnings, applied, grids), config=config)
     return fit

@@ -20,7 +20,7 @@ from rodimpact.storage.curves import ContactCurve, read_contact_curve
 from rodimpact.storage.provenance import file_sha256
 from rodimpact.storage.runs import write_run
 
-__all__ = ["SolverFailed", "Timing", "run_case", "run_to_file", "run_config"]
+__all__ = ["SolverFailed", "Timing", "run_case", "run_config", "run_to_file", "with_curve"]
 
 log = logging.getLogger(__name__)
 
@@ -83,7 +83,7 @@ def _failure_record(error: BaseException) -> tuple[dict, dict]:
     return {"time": (np.zeros(1), "s", "time since first contact")}, summary
 
 
-def _with_curve(case: Mapping[str, Any], curve: str | Path | ContactCurve | None) -> Mapping[str, Any]:
+def with_curve(case: Mapping[str, Any], curve: str | Path | ContactCurve | None) -> Mapping[str, Any]:
     """The case with its law's curve (read from the file ``curve``, or the curve itself,
     computed in the job) when the law needs one (its ``needs.curve_rule``), the case itself otherwise."""
     contact = case.get("contact") or {}
@@ -162,7 +162,7 @@ def run_to_file(
         config["run"]["case_file"] = (
             dict(case_file) if isinstance(case_file, Mapping) else case_file_reference(case_file, case["id"])
         )
-    case = _with_curve(case, contact_curve)
+    case = with_curve(case, contact_curve)
     if isinstance(contact_curve, ContactCurve):
         config["run"]["contact_curve"] = {"computed_in_job": True, "summary": dict(contact_curve.summary)}
     elif contact_curve is not None:

@@ -10,11 +10,11 @@ the case's ball on the stack so changed (:func:`~rodimpact.jobs.indentation.inde
 then the SEM with that curve as its law.
 
 The band evaluates the nominal stack (with the case's own curve, the ``indentation`` rule's,
-when the rule hands it over), each parameter at the two ends of its range with the
-others nominal (and at ``grid`` values for the parameter the inverse analysis fits), and the
-two corners where every parameter sits at the end that lengthens (shortens) the contact, read
-from its own axis. Where the time is monotone along every axis (recorded: ``monotone``), those
-two corners bound it over the box, if the parameters act independently of each other's values.
+when the rule hands it over), each parameter at the two ends of its range with the others
+nominal, and the two corners where every parameter sits at the end that lengthens (shortens)
+the contact, read from its own axis. Where the time is monotone along every axis (recorded:
+``monotone``), those two corners bound it over the box, if the parameters act independently of
+each other's values.
 """
 
 from __future__ import annotations
@@ -150,9 +150,7 @@ def sensor_band(
     case: Mapping[str, Any],
     settings: Mapping[str, Any] | None = None,
     method: str = "sem",
-    grid: Mapping[str, Sequence[float]] | None = None,
     *,
-    band: bool = True,
     nominal_curve: Mapping[str, Any] | None = None,
 ) -> CaseBand:
     """The band of one case (see the module docstring).
@@ -165,26 +163,16 @@ def sensor_band(
         ``numerics.fem_axi`` of the continuum's indentation.
     method : str
         The 1-D method that runs the calibrated law.
-    grid : mapping, optional
-        Parameter name -> more values along its axis (the inverse analysis's grid).
-    band : bool
-        False: only the axes of ``grid`` (to apply a fitted value), no corners (the band's
-        min and max are then NaN).
     nominal_curve : mapping, optional
         The case's own calibrated curve (the ``indentation`` rule's), for the nominal stack:
         computed again when not given.
     """
     parameters = stack_parameters(case)
-    if not band:
-        parameters = [p for p in parameters if p.name in (grid or {})]
     names = tuple(p.name for p in parameters)
-    unknown = sorted(set(grid or {}) - set(names))
-    if unknown:
-        raise KeyError(f"grid: {unknown} are no constants of case {case['id']!r}'s stack; its constants: {list(names)}")
     nominal_us = calibrated_time_us(case, settings, method, nominal_curve)
     axis_values, axis_us = {}, {}
     for p in parameters:
-        values = sorted({p.low, p.nominal, p.high, *map(float, (grid or {}).get(p.name, ()))})
+        values = sorted({p.low, p.nominal, p.high})
         times = [
             nominal_us if v == p.nominal else calibrated_time_us(with_values(case, {p.name: v}), settings, method)
             for v in values
@@ -196,9 +184,7 @@ def sensor_band(
         values, times = axis_values[p.name], axis_us[p.name]
         at_low, at_high = times[values == p.low][0], times[values == p.high][0]
         longer[p.name] = (p.high, p.low) if at_high >= at_low else (p.low, p.high)
-    corners = np.array(
-        [[longer[n][0] for n in names], [longer[n][1] for n in names]] if band else np.empty((0, len(names)))
-    )
+    corners = np.array([[longer[n][0] for n in names], [longer[n][1] for n in names]])
     corner_us = np.array(
         [calibrated_time_us(with_values(case, dict(zip(names, c))), settings, method) for c in corners]
     )
@@ -236,9 +222,7 @@ def sensor_band_to_file(
     path: str,
     settings: Mapping[str, Any] | None = None,
     method: str = "sem",
-    grid: Mapping[str, Sequence[float]] | None = None,
     *,
-    band: bool = True,
     curve_file: str | None = None,
 ) -> None:
     """:func:`sensor_band` of ``case``, written atomically to ``path``; the nominal stack's law
@@ -257,7 +241,7 @@ def sensor_band_to_file(
         nominal = curve.law_curve()
     write_band(
         path,
-        [sensor_band(case, settings, method, grid, band=band, nominal_curve=nominal)],
+        [sensor_band(case, settings, method, nominal_curve=nominal)],
         variant=variant,
         method=method,
         config=dict(case),
@@ -270,9 +254,7 @@ def sensor_bands_into(
     directory: str | Path,
     settings: Mapping[str, Any] | None = None,
     method: str = "sem",
-    grid: Mapping[str, Sequence[float]] | None = None,
     *,
-    band: bool = True,
     curve_files: Mapping[str, str] | None = None,
 ) -> list[Path]:
     """:func:`sensor_band_to_file` of every case of one reading, to ``directory/{case}.h5`` (the
@@ -287,8 +269,6 @@ def sensor_bands_into(
                 str(tmp / f"{case['id']}.h5"),
                 settings,
                 method,
-                grid,
-                band=band,
                 curve_file=(curve_files or {}).get(case["id"]),
             )
     return [directory / f"{case['id']}.h5" for case in cases]

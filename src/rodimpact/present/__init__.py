@@ -8,8 +8,8 @@ panels of chosen columns), :mod:`.table_views` (which columns each table shows),
 figure: contact time against ball mass per reading of the rod; the figure assembled, what each panel
 shows), :mod:`.film_tables` and :mod:`.film_figures` (the sensor
 film: Table 2 with and without it, its prediction bands, the indentation curves, the contact
-force), :mod:`.sensor_tables`, :mod:`.sensor_figures` and :mod:`.sensor_artifacts` (the sensor as built:
-its band from the continuum and the fit of its bond line), :mod:`.compare`, :mod:`.compare_figures` and
+force), :mod:`.sensor_tables` and :mod:`.sensor_artifacts` (the sensor as built: its band from the
+continuum), :mod:`.compare`, :mod:`.compare_figures` and
 :mod:`.compare_artifacts` (any case set against its measurements: its table, its figure, a figure per
 measured record), :mod:`.calibration_artifacts` and :mod:`.calibration_figures` (a set's calibration: its tables and
 figure, labelled a fit, not a prediction), :mod:`.study_figures` (error against run time, the

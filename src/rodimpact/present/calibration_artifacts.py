@@ -42,6 +42,18 @@ def _verdict(stored: StoredCalibration) -> str:
     return verdict
 
 
+def _mean_abs(values: pd.Series) -> str:
+    """The mean of |values| (%, finite ones) in words, "not available" without any."""
+    finite = np.abs(values.to_numpy(float))
+    finite = finite[np.isfinite(finite)]
+    return f"{finite.mean():.3g} %" if finite.size else "not available"
+
+
+def _error_pct(predicted: np.ndarray, measured: np.ndarray) -> np.ndarray:
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return 100.0 * (np.asarray(predicted, float) - measured) / np.abs(measured)
+
+
 def calibration_frames(stored: StoredCalibration) -> tuple[pd.DataFrame, pd.DataFrame]:
     """The constants' table and the measurements' table of a stored calibration.
 
@@ -49,9 +61,13 @@ def calibration_frames(stored: StoredCalibration) -> tuple[pd.DataFrame, pd.Data
     -------
     (DataFrame, DataFrame)
         Per constant: ``parameter, unit, low, high, source, start, value, standard_error,
-        relative_standard_error_pct, correlation, at_bound, warning``. Per measurement:
-        ``case_id, quantity, quantity_words, unit, measured, fitted, residual_pct,
-        held_out_predicted, held_out_error_pct, held_out_status``.
+        relative_standard_error_pct, correlation, at_bound, warning``. Per measurement, the
+        fitted ones, then those predicted at the fitted constants (``apply_to``): ``role``
+        (``fitted`` or ``applied``), ``case_id, case_words, quantity, quantity_words, unit, measured,
+        start_predicted`` (the model at the start), ``start_error_pct, fitted`` (at the fitted
+        constants), ``fitted_standard_error`` (of an applied prediction, from the constants'
+        covariance), ``residual_pct`` (the error at the fitted constants: in sample for a
+        fitted row), ``held_out_predicted, held_out_error_pct, held_out_status`` (fitted rows).
     """
     a, params = stored.arrays, stored.described["parameters"]
     names = [p["path"] for p in params]
@@ -78,22 +94,50 @@ def calibration_frames(stored: StoredCalibration) -> tuple[pd.DataFrame, pd.Data
     rows = stored.described["observations"]
     loo = stored.described["loo"]
     norm = np.asarray([r["norm"] for r in rows], bool)
-    measured = np.where(norm, math.nan, a["measured"])
     fitted = a["predicted"]
     measurements = pd.DataFrame(
         {
+            "role": "fitted",
             "case_id": [r["case"] for r in rows],
+            "case_words": [r["case_words"] for r in rows],
             "quantity": [r["quantity"] for r in rows],
             "quantity_words": [r["words"] for r in rows],
             "unit": [r["unit"] for r in rows],
-            "measured": measured,
+            "measured": np.where(norm, math.nan, a["measured"]),
+            "start_predicted": a["start_predicted"],
+            "start_error_pct": np.where(norm, a["start_predicted"], _error_pct(a["start_predicted"], a["measured"])),
             "fitted": fitted,
+            "fitted_standard_error": math.nan,
             "residual_pct": np.where(norm, fitted, a["in_sample_error_pct"]),
             "held_out_predicted": a["held_out_predicted"],
             "held_out_error_pct": np.where(norm, a["held_out_predicted"], a["held_out_error_pct"]),
             "held_out_status": loo["row_status"],
         }
     )
+    applied = stored.described["applied"]
+    if applied:
+        norm = np.asarray([r["norm"] for r in applied], bool)
+        start = a["applied_start_predicted"]
+        others = pd.DataFrame(
+            {
+                "role": "applied",
+                "case_id": [r["case"] for r in applied],
+                "case_words": [r["case_words"] for r in applied],
+                "quantity": [r["quantity"] for r in applied],
+                "quantity_words": [r["words"] for r in applied],
+                "unit": [r["unit"] for r in applied],
+                "measured": np.where(norm, math.nan, a["applied_measured"]),
+                "start_predicted": start,
+                "start_error_pct": np.where(norm, start, _error_pct(start, a["applied_measured"])),
+                "fitted": a["applied_predicted"],
+                "fitted_standard_error": a["applied_standard_errors"],
+                "residual_pct": a["applied_error_pct"],
+                "held_out_predicted": math.nan,
+                "held_out_error_pct": math.nan,
+                "held_out_status": None,
+            }
+        )
+        measurements = pd.concat([measurements, others], ignore_index=True)
     return constants, measurements
 
 
@@ -122,8 +166,22 @@ def make_calibration_artifacts(
         f"{heading}. The constants fitted by {stored.scalars['method']} to the measurements "
         f"(docs/calibration.md): fitted values with their standard errors and correlations, each "
         f"measurement's fitted value and error, and its prediction by the fit made without its case "
-        f"(leave-one-out). {_verdict(stored)}"
+        f"(leave-one-out)."
     )
+    fitted_rows = measurements[measurements["role"] == "fitted"]
+    caption += (
+        f" Mean |error| over the {len(fitted_rows)} fitted measurement(s): {_mean_abs(fitted_rows['residual_pct'])} "
+        f"in sample, {_mean_abs(fitted_rows['held_out_error_pct'])} held out."
+    )
+    applied = sorted({row["case"] for row in stored.described["applied"]})
+    if applied:
+        caption += (
+            f" Below the fitted cases, {len(applied)} case(s) not fitted, predicted at the fitted constants "
+            "with the standard error the constants' uncertainty gives: a transfer to another set-up, not a "
+            "check of the fit."
+        )
+    caption += f" {_verdict(stored)}"
+    shown = measurements if len(set(measurements["role"])) > 1 else measurements.drop(columns="role")
     constant_views = panels(
         constants,
         f"{heading}: the constants",
@@ -133,8 +191,19 @@ def make_calibration_artifacts(
     measurement_views = panels(
         measurements,
         f"{heading}: the measurements",
-        ["case_id", "quantity_words", "unit"],
-        ["measured", "fitted", "residual_pct", "held_out_predicted", "held_out_error_pct", "held_out_status"],
+        ["case_words", "quantity_words", "unit"],
+        [
+            "measured",
+            "start_predicted",
+            "start_error_pct",
+            "fitted",
+            "fitted_standard_error",
+            "residual_pct",
+            "held_out_predicted",
+            "held_out_error_pct",
+            "held_out_status",
+        ],
+        by="role",
     )
     write_table(measurements, csv=csv)
     with atomic_output(html) as tmp:
@@ -148,7 +217,7 @@ def make_calibration_artifacts(
         constants.to_csv(tmp, index=False, float_format="%.10g")
     with atomic_output(md) as tmp:
         tmp.write_text(
-            f"{textwrap.fill(caption, 100)}\n\n{markdown_table(constants)}\n\n{markdown_table(measurements)}\n",
+            f"{textwrap.fill(caption, 100)}\n\n{markdown_table(constants)}\n\n{markdown_table(shown)}\n",
             encoding="utf-8",
         )
     record = {**provenance_record([], [pdf, png]), "input_files": [{"path": str(calibration), "kind": "calibration"}]}

@@ -19,8 +19,10 @@ __all__ = ["plot_calibration"]
 def plot_calibration(
     constants: pd.DataFrame, measurements: pd.DataFrame, title: str, verdict: str
 ) -> matplotlib.figure.Figure:
-    """Left: each measurement's error in % of the measured value, by the fitted model (filled)
-    and by the fit made without its case (open: leave-one-out), one row per case and quantity.
+    """Left: each measurement's error in % of the measured value, by the model at the start
+    (crosses), by the fitted model (filled) and by the fit made without its case (open:
+    leave-one-out), one row per case and quantity; below a dashed line, the cases predicted at
+    the fitted constants without being fitted (triangles, with two standard errors).
     Right: each constant's fitted value with two standard errors, against its bounds (scaled to
     0-1 of the bounds' width; the start marked).
 
@@ -34,27 +36,45 @@ def plot_calibration(
         Its status and warnings, printed under the title.
     """
     rows = len(measurements)
+    labels = [
+        textwrap.fill(f"{case}: {words.split(' (')[0]}", 60)
+        for case, words in zip(measurements["case_words"], measurements["quantity_words"], strict=True)
+    ]
     fig, (left, right) = plt.subplots(
         1,
         2,
-        figsize=(10.5, 2.4 + 0.38 * max(rows, len(constants) * 1.5)),
+        figsize=(11.5, 2.6 + 0.1 * sum(label.count("\n") + 3 for label in labels) + 0.4 * len(constants)),
         width_ratios=(3, 2),
         layout="constrained",
     )
     y = np.arange(rows)[::-1]
-    labels = [
-        textwrap.fill(f"{case}: {words.split(' (')[0]}", 46)
-        for case, words in zip(measurements["case_id"], measurements["quantity_words"], strict=True)
-    ]
     left.axvline(0.0, color="0.5", lw=0.8)
-    left.plot(measurements["residual_pct"], y, "o", color="C0", label="fitted model (in sample)")
+    fitted = (measurements["role"] == "fitted").to_numpy()
+    left.plot(measurements["start_error_pct"], y, "x", color="0.45", label="model at the start")
+    left.plot(measurements["residual_pct"][fitted], y[fitted], "o", color="C0", label="fitted model (in sample)")
     left.plot(
-        measurements["held_out_error_pct"], y, "o", mfc="none", color="C3", label="fit without this case (held out)"
+        measurements["held_out_error_pct"][fitted],
+        y[fitted],
+        "o",
+        mfc="none",
+        color="C3",
+        label="fit without this case (held out)",
     )
+    if not fitted.all():
+        left.errorbar(
+            measurements["residual_pct"][~fitted],
+            y[~fitted],
+            xerr=2.0 * (100.0 * measurements["fitted_standard_error"] / measurements["measured"].abs())[~fitted],
+            fmt="^",
+            color="C2",
+            capsize=3,
+            label="not fitted, predicted (± 2 standard errors)",
+        )
+        left.axhline(y[fitted].min() - 0.5, color="0.7", lw=0.8, ls="--")
     left.set_yticks(y, labels, fontsize=7.5)
     left.set_xlabel("error against the measurement (%)")
     left.grid(alpha=0.3, axis="x")
-    left.legend(fontsize=8, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, frameon=False)
+    left.legend(fontsize=7.5, loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, frameon=False)
     yc = np.arange(len(constants))[::-1]
     width = (constants["high"] - constants["low"]).to_numpy(float)
     low = constants["low"].to_numpy(float)
@@ -76,7 +96,7 @@ def plot_calibration(
     right.set_yticks(
         yc,
         [
-            textwrap.fill(f"{p} = {v:.4g} ± {s:.2g} {u}".rstrip(), 34)
+            textwrap.fill(f"{p} = {v:.4g} ± {s:.2g} {u}".rstrip(), 34, break_long_words=False)
             for p, v, s, u in zip(
                 constants["parameter"], constants["value"], constants["standard_error"], constants["unit"], strict=True
             )

@@ -117,7 +117,7 @@ _ORDINALS = ("1st", "2nd", "3rd")
 
 #: Columns that name in words what another column names by its id: a table for people shows the
 #: words only (:func:`words_only`), under the id's header; the CSV keeps both.
-WORDS_FOR = {"method": "method_label", "quantity": "quantity_words"}
+WORDS_FOR = {"method": "method_label", "quantity": "quantity_words", "case_id": "case_words"}
 #: Columns another column already says in words: the case id (its ball and its reading have
 #: their own columns), the contact law's id (the method's words name the law).
 SAID_BY = {"case_id": ("row",), "contact_law": ("method_label",)}
@@ -139,6 +139,7 @@ STUDY_QUANTITY_WORDS = {
 COLUMNS: dict[str, Column] = {
     # what a row is
     "case_id": Column("Case", fmt=_TEXT),
+    "case_words": Column("Case", fmt=_TEXT),
     "row": Column("Ball", fmt=_TEXT),
     "variant": Column("Reading", fmt=_TEXT),
     "method": Column("Method", fmt=_TEXT, words={name: spec.label for name, spec in METHODS.items()}),
@@ -208,7 +209,10 @@ COLUMNS: dict[str, Column] = {
     "relative_standard_error_pct": Column("Standard error", "%", ".2g"),
     "correlation": Column("Correlation with the others", fmt=_TEXT),
     "at_bound": Column("At a bound", fmt=_TEXT),
+    "start_predicted": Column("Model at the start", fmt=".5g"),
+    "start_error_pct": Column("Model at the start, error", "%", ".3g"),
     "fitted": Column("Fitted model", fmt=".5g"),
+    "fitted_standard_error": Column("Fitted model's standard error", fmt=".2g"),
     "residual_pct": Column("Fitted model's error", "%", ".3g"),
     "held_out_predicted": Column("Predicted held out", fmt=".5g"),
     "held_out_status": Column("Held-out fit", fmt=_TEXT),

@@ -55,13 +55,13 @@ class CaseBand:
 
     @property
     def band_min_us(self) -> float:
-        """The least corner's time, us (NaN with no corner: axes only)."""
-        return float(np.min(self.corner_us)) if np.size(self.corner_us) else float("nan")
+        """The least corner's time, us."""
+        return float(np.min(self.corner_us))
 
     @property
     def band_max_us(self) -> float:
-        """The greatest corner's time, us (NaN with no corner: axes only)."""
-        return float(np.max(self.corner_us)) if np.size(self.corner_us) else float("nan")
+        """The greatest corner's time, us."""
+        return float(np.max(self.corner_us))
 
     @property
     def monotone(self) -> bool:

@@ -3,16 +3,21 @@ table and figure read.
 
 Layout: root attributes ``set``, ``method``, ``status``, ``message``, ``success``,
 ``identifiable``, ``warnings_json``, ``evaluations``, ``dof``, ``s2``, ``condition_number``,
-``parameters_json`` (each constant's path, unit, source), ``observations_json`` (each
-measurement's case, quantity, words and unit), ``loo_json`` (the held-out cases and their
-statuses, each row's status), the provenance (``code_version``, ``library_versions``,
-``config_json``: the block and the cases, ``created_utc``) and ``data_sha256`` over every
-dataset (checked on read); datasets:
+``parameters_json`` (each constant's path, unit, source and grid, empty without one),
+``observations_json`` (each measurement's case, quantity, words and unit), ``loo_json`` (the
+held-out cases and their statuses, each row's status), ``applied_json`` (each measurement of
+the cases predicted at the fitted constants, as ``observations_json``), the provenance
+(``code_version``, ``library_versions``, ``config_json``: the block and the cases,
+``created_utc``) and ``data_sha256`` over every dataset (checked on read); datasets:
 
 - per constant (p,): ``low``, ``high``, ``start``, ``values``, ``standard_errors``, ``at_bound``;
   ``covariance``, ``correlation`` (p, p);
-- per measurement (n,): ``measured``, ``scale``, ``predicted``, ``residuals``,
-  ``held_out_predicted``, ``held_out_error_pct``, ``in_sample_error_pct``;
+- per measurement (n,): ``measured``, ``scale``, ``start_predicted`` (the model at the
+  start), ``predicted``, ``residuals``, ``held_out_predicted``, ``held_out_error_pct``,
+  ``in_sample_error_pct``;
+- per applied measurement (a,), empty without any: ``applied_measured``,
+  ``applied_start_predicted``, ``applied_predicted``, ``applied_standard_errors``,
+  ``applied_error_pct``;
 - per held-out case (k, p): ``loo_values``.
 """
 
@@ -50,7 +55,7 @@ _SCALARS = (
     "condition_number",
 )
 #: Its JSON attributes.
-_JSON = ("warnings", "parameters", "observations", "loo")
+_JSON = ("warnings", "parameters", "observations", "loo", "applied")
 
 
 @dataclass(frozen=True)
