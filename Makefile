@@ -13,6 +13,9 @@
 #   make convergence-separate   the study's separate cases (levels over a minute each, not in
 #                make paper) -> results/tables/work_precision_separate*.{csv,md,html}
 #   make stability     only the stress cases and the stability map -> results/tables/stability.csv
+#   make sensor-axes   each constant of the sensor stack along its range by the continuum (not in
+#                make paper: the check that the band's corners bound the time) ->
+#                results/tables/sensor_band_axes.{csv,md,html}
 #   make report        make paper, then the self-contained HTML report -> results/report.html
 #                      (every table and figure with its caption; the benchmarks too if they exist)
 #   make test-tools    install what some tests use beyond Python, when missing (as root):
@@ -32,7 +35,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-from-lock
 CORES  ?= 2
 
-.PHONY: paper test test-cluster test-tools browser latex bench convergence convergence-separate stability report report-check readme-images provenance env clean distclean
+.PHONY: paper test test-cluster test-tools browser latex bench convergence convergence-separate stability sensor-axes report report-check readme-images provenance env clean distclean
 
 $(STAMP): environment.lock pyproject.toml
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info[:2] == (3, 11) else "rodimpact needs Python 3.11 (environment.lock is for 3.11), found " + sys.version.split()[0])'
@@ -73,6 +76,9 @@ convergence-separate: $(STAMP)
 
 stability: $(STAMP)
 	$(BIN)/snakemake -j$(CORES) results/tables/stability.csv results/figures/stability_map.png
+
+sensor-axes: $(STAMP)
+	$(BIN)/snakemake -j$(CORES) results/tables/sensor_band_axes.csv results/tables/sensor_band_axes.md
 
 # After the build (a no-op when it is up to date), so the report never shows stale results;
 # the benchmarks are not rebuilt (make bench), only reported when they exist.

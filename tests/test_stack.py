@@ -9,7 +9,8 @@
   law's contact time when the two meshes are the same, to their discretisation error when
   they are not;
 - fem_axi converges through the sensor's 6 um electrodes (film_layers 1, 2, 4);
-- the band's parameters of the sensor as built (jobs.sensor_band).
+- the band's parameters of the sensor as built (jobs.sensor_band), and its corners by the
+  analytic law's directions equal to those by the continuum's axes.
 """
 
 from __future__ import annotations
@@ -29,7 +30,7 @@ from rodimpact.contact.laws import build_law
 from rodimpact.contact.stack import HertzStackLaw, Stack
 from rodimpact.jobs.indentation import indentation_curve
 from rodimpact.jobs.runner import run_case
-from rodimpact.jobs.sensor_band import calibrated_time_us, stack_parameters, with_values
+from rodimpact.jobs.sensor_band import calibrated_time_us, sensor_band, stack_parameters, with_values
 from rodimpact.model.materials import Material
 from rodimpact.solvers.fem_axi.film_mesh import layer_elements
 from rodimpact.solvers.fem_axi.indentation import static_indentation
@@ -411,3 +412,30 @@ def test_with_values_changes_both_electrodes_and_not_the_case(shipped_project):
     uneven["contact"]["stack"]["layers"][2]["thickness_m"] = 8e-6
     with pytest.raises(ValueError, match="differ in thickness or range"):
         stack_parameters(uneven)
+
+
+def test_the_bands_corners_by_the_analytic_law_are_the_continuums(shipped_project, tmp_path):
+    """The default band takes each constant's lengthening end from the stack's analytic law
+    (jobs.sensor_band.law_longer_high); make sensor-axes reads it from the continuum's own axis.
+    On the heaviest ball, on a coarse continuum (elements_across 4, ~11 s for both), the time is
+    monotone along every range, the two give the same end for every constant, so the same corners
+    and the same band to the bit; the band file keeps the axes only when computed, and the axes'
+    table says the same."""
+    from rodimpact.present.sensor_tables import sensor_axes_frame
+    from rodimpact.storage.bands import read_band, write_band
+
+    case = shipped_project.cases["ball_12.73mm-r10_l30_sensor_cal"]
+    coarse = {**shipped_project.config["numerics"]["fem_axi"], "elements_across": 4}
+    with_axes, by_law = sensor_band(case, coarse, axes=True), sensor_band(case, coarse)
+    continuum = tuple(bool(with_axes.axis_us[n][-1] >= with_axes.axis_us[n][0]) for n in with_axes.parameters)
+    assert with_axes.monotone and by_law.monotone is None and not by_law.axis_us
+    assert with_axes.law_longer_high == by_law.law_longer_high == continuum
+    np.testing.assert_array_equal(with_axes.corner_parameters, by_law.corner_parameters)
+    np.testing.assert_array_equal(with_axes.corner_us, by_law.corner_us)
+    for band in (with_axes, by_law):
+        write_band(tmp_path / "band.h5", [band], variant="v", method="sem", config={})
+        (read,) = read_band(tmp_path / "band.h5")[1]
+        assert read.monotone == band.monotone and read.law_longer_high == band.law_longer_high
+        (tmp_path / "band.h5").unlink()
+    frame = sensor_axes_frame([("v", with_axes), ("v", by_law)], {})
+    assert len(frame) == len(with_axes.parameters) and frame["monotone"].all() and frame["agree"].all()

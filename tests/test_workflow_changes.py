@@ -178,11 +178,11 @@ def test_a_new_experiment_with_measurements_gets_its_comparison(tmp_path: Path) 
     targets = [
         "results/tables/compare_my_lab.csv",
         "results/figures/compare_my_lab.png",
-        "results/figures/compare_my_lab_my_ball.png",
+        "results/figures/compare_my_lab_force.png",
     ]
     run = snakemake(project, "-j2", *targets, timeout=BUILD_TIMEOUT_S)
     assert run.returncode == 0, run.describe()
-    assert job_stats(run.output) == {"case_file": 1, "solve": 1, "compare": 1, "compare_history": 1}, run.describe()
+    assert job_stats(run.output) == {"case_file": 1, "solve": 1, "compare": 1, "compare_signal": 1}, run.describe()
     table = pd.read_csv(project / targets[0])
     assert set(table["quantity"]) == {
         "contact_time_us",
@@ -302,14 +302,13 @@ def test_changed_case_value_reruns_only_that_case(changed: DotTestBuild) -> None
         "solve_map": 3,
         "stability_map": 1,
         "forces": 1,
-        "fig_force_fit": 1,
         "wave_map": 1,
     }, run.describe()
     assert pending(rows := summary(changed.project, workdir=DOTTEST), "case_file") == {"results/cases/model.yaml"}
     assert pending(rows, "solve") == {run_batch("model", m) for m in ("sem", "sem_paper", "fem1d", "fem_axi")}
     assert pending(rows, "paper_model") == {
         f"results/figures/{name}.{ext}"
-        for name in ("fig2_contact_force", "fig4_midrod_displacement")
+        for name in ("fig2_contact_force", "fig4_midrod_displacement", "force_fit_model")
         for ext in ("pdf", "png", "provenance.json")
     } | {f"results/tables/fig2_comparison.{ext}" for ext in ("csv", "md", "html", "provenance.json")}
     assert not {p for p in pending(rows) if "table2" in p or "ball_" in p}

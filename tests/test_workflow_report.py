@@ -149,12 +149,11 @@ def _expected_report(workdir: Path) -> dict[str, list[str]]:
         ]
         for ext in ("png", "pdf"):
             expected[f"results/figures/compare_{name}.{ext}"] = ["measured values (black", "What to see"]
-            for case in (c for c in cases if c["measured"].get("force_history")):
-                expected[f"results/figures/compare_{name}_{case['id']}.{ext}"] = [
-                    "measured contact force against time",
-                    "What to see",
-                ]
-            for ending, key in (("strain", "strain_history"), ("velocity", "velocity_history")):
+            for ending, key in (
+                ("force", "force_history"),
+                ("strain", "strain_history"),
+                ("velocity", "velocity_history"),
+            ):
                 if any(c["measured"].get(key) for c in cases):
                     expected[f"results/figures/compare_{name}_{ending}.{ext}"] = [
                         "One case's measured record",

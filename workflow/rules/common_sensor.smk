@@ -20,19 +20,20 @@ def sensor_variants(set_name):
     }
 
 
-def sensor_band_files(variants):
-    """The band files of every case of the given readings (one directory per reading, by the rule sensor_band)."""
+def sensor_band_files(variants, study="sensor_band"):
+    """The band files of every case of the given readings (one directory per reading, by the rule
+    sensor_band; ``study`` sensor_band_axes: with the constants' ranges by the continuum)."""
     return [
-        f"results/studies/sensor_band/{reading}/{case}.h5"
+        f"results/studies/{study}/{reading}/{case}.h5"
         for v in variants
         for case, reading in SENSOR_READING_OF.items()
         if reading == v
     ]
 
 
-def sensor_band_dirs(variants):
+def sensor_band_dirs(variants, study="sensor_band"):
     """The directories of the given readings' bands (rule sensor_band's outputs)."""
-    return sorted({os.path.dirname(f) for f in sensor_band_files(variants)})
+    return sorted({os.path.dirname(f) for f in sensor_band_files(variants, study)})
 
 
 def sensor_targets():

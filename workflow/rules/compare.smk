@@ -1,8 +1,9 @@
 # Every case set of targets.sets whose cases carry measurements (measured: contact time, peak
-# force, rebound velocity, a force history; rodimpact.analysis.measured) against its runs, with
-# no set named here: results/tables/compare_{set}.*, results/figures/compare_{set}.*, and for
-# each case with a measured force history results/figures/compare_{set}_{case}.*. The history
-# files are inputs: a changed record reruns its comparison.
+# force, rebound velocity, a force, strain or velocity history; rodimpact.analysis.measured)
+# against its runs, with no set named here: results/tables/compare_{set}.*,
+# results/figures/compare_{set}.*, and for each kind of history the set measures
+# results/figures/compare_{set}_{force,strain,velocity}.*, a row per case. The history files
+# are inputs: a changed record reruns its comparison.
 
 
 rule compare:
@@ -63,50 +64,10 @@ rule compare:
         "../scripts/compare.py"
 
 
-rule compare_history:
-    """One case's measured force history against each of its methods' forces, and their difference."""
-    input:
-        runs=run_batches(lambda w: compare_case_runs(w.set, w.case)),
-        history=lambda w: PROJECT.cases[w.case]["measured"]["force_history"]["path"],
-    output:
-        pdf=report(
-            "results/figures/compare_{set}_{case}.pdf",
-            caption="../report/compare_history.rst",
-            category="Comparison with measurements",
-            subcategory="{set}",
-            labels={"set": "{set}", "artifact": "Force history: {case}", "format": "PDF"},
-        ),
-        png=report(
-            "results/figures/compare_{set}_{case}.png",
-            caption="../report/compare_history.rst",
-            category="Comparison with measurements",
-            subcategory="{set}",
-            labels={"set": "{set}", "artifact": "Force history: {case}", "format": "PNG"},
-        ),
-        provenance="results/figures/compare_{set}_{case}.provenance.json",
-    log:
-        "logs/figures/compare_{set}_{case}.log",
-    wildcard_constraints:
-        set=one_of(COMPARE_SETS),
-        case=one_of(HISTORY_CASES),
-    group:
-        GROUP_TABLES
-    conda:
-        "../envs/rodimpact.yaml"
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    params:
-        code=SRC_COMPARE,
-        runs=lambda w: compare_case_runs(w.set, w.case),
-    script:
-        "../scripts/compare_history.py"
-
-
 rule compare_signal:
-    """A set's measured strains at a gauge, or velocities, against each method's signals and their
-    difference, one row per case (for fem_axi's strain, the section's mean beside the surface's);
-    one job, as every row reads the same set's runs."""
+    """A set's measured forces, strains at a gauge, or velocities, against each method's signals
+    and their difference, one row per case (for fem_axi's strain, the section's mean beside the
+    surface's); one job, as every row reads the same set's runs."""
     input:
         runs=run_batches(lambda w: signal_runs(w.set, w.ending)),
         records=lambda w: compare_histories(w.set),

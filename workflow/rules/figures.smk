@@ -3,10 +3,12 @@
 
 rule paper_model:
     """Fig. 2 (contact force against time), its numbers (contact time and maxima per method against
-    the SEM and the paper's) and Fig. 4 (displacement of the cross-section at half the rod length),
-    from the runs of the case 'model' by every method it runs: one job, as they read the same runs."""
+    the SEM and the paper's), Fig. 4 (displacement of the cross-section at half the rod length) and
+    the closed form of the force handed on drawn over it, from the runs of the case 'model' by
+    every method it runs: one job, as they read the same runs."""
     input:
         runs=run_batches(lambda w: runs_of([PROJECT.cases["model"]])),
+        forces=lambda w: f"results/forces/{PROJECT.cases['model']['set']}",
     output:
         fig2_pdf=report(
             "results/figures/fig2_contact_force.pdf",
@@ -48,6 +50,19 @@ rule paper_model:
             labels={"artifact": "Fig. 4: displacement half-way along the rod", "format": "PNG"},
         ),
         fig4_provenance="results/figures/fig4_midrod_displacement.provenance.json",
+        force_fit_pdf=report(
+            "results/figures/force_fit_model.pdf",
+            caption="../report/force_fit.rst",
+            category="The force handed on",
+            labels={"artifact": "Contact force and its closed form", "format": "PDF"},
+        ),
+        force_fit_png=report(
+            "results/figures/force_fit_model.png",
+            caption="../report/force_fit.rst",
+            category="The force handed on",
+            labels={"artifact": "Contact force and its closed form", "format": "PNG"},
+        ),
+        force_fit_provenance="results/figures/force_fit_model.provenance.json",
     log:
         "logs/figures/paper_model.log",
     group:
@@ -61,6 +76,7 @@ rule paper_model:
         code=SRC_PRESENT,
         runs=lambda w: runs_of([PROJECT.cases["model"]]),
         fraction=0.5,
+        jsons=lambda w: force_files([PROJECT.cases["model"]], "json"),
     script:
         "../scripts/paper_model.py"
 

@@ -2,7 +2,8 @@
 # cases, P(t) as CSV under its provenance, and a Chebyshev closed form with its measured error,
 # in results/forces/{set}/{case}/{method}.{csv,json}. Reading a run and fitting it takes a
 # fraction of a second, so one job exports a whole case set (its directory), with one
-# provenance sidecar. The closed form drawn over the force: results/figures/force_fit_model.{pdf,png}.
+# provenance sidecar. The closed form drawn over the force of the case 'model' is drawn by the job
+# that draws its other figures (figures.smk, rule paper_model: results/figures/force_fit_model.*).
 SRC_FORCES = sources("rodimpact.present.forces", "rodimpact.jobs.logs")
 
 
@@ -31,39 +32,3 @@ rule forces:
         names=lambda w: [f"{c['id']}/{m}" for c in PROJECT.cases_in(w.set) for m in c["methods"]],
     script:
         "../scripts/force_export.py"
-
-
-rule fig_force_fit:
-    """The closed form of the contact force over the computed force, case 'model', every method."""
-    input:
-        runs=run_batches(lambda w: runs_of([PROJECT.cases["model"]])),
-        forces=lambda w: f"results/forces/{PROJECT.cases['model']['set']}",
-    output:
-        pdf=report(
-            "results/figures/force_fit_model.pdf",
-            caption="../report/force_fit.rst",
-            category="The force handed on",
-            labels={"artifact": "Contact force and its closed form", "format": "PDF"},
-        ),
-        png=report(
-            "results/figures/force_fit_model.png",
-            caption="../report/force_fit.rst",
-            category="The force handed on",
-            labels={"artifact": "Contact force and its closed form", "format": "PNG"},
-        ),
-        provenance="results/figures/force_fit_model.provenance.json",
-    log:
-        "logs/figures/force_fit_model.log",
-    group:
-        GROUP_TABLES
-    conda:
-        "../envs/rodimpact.yaml"
-    threads: 1
-    resources:
-        **PRESENTATION_RESOURCES,
-    params:
-        code=SRC_PRESENT,
-        runs=lambda w: runs_of([PROJECT.cases["model"]]),
-        jsons=lambda w: force_files([PROJECT.cases["model"]], "json"),
-    script:
-        "../scripts/fig_force_fit.py"

@@ -12,4 +12,5 @@ with script_logging(snakemake.log[0], outputs=snakemake.output):  # `snakemake`:
         snakemake.output.bands,
         params.numerics,
         curve_files=params.curves,
+        axes=params.axes,
     )

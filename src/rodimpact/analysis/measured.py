@@ -94,9 +94,9 @@ RECORDS: dict[str, RecordKind] = {
         RecordKind("velocity_history", "velocity", VELOCITY_UNITS, "m/s", "velocity"),
     )
 }
-#: The records that a comparison draws in a figure of their own beside the force history's
+#: The records a comparison draws, each kind in a figure of its own
 #: (``results/figures/compare_{set}_{ending}``, a row per case): ending -> key.
-SIGNAL_RECORDS = {"strain": "strain_history", "velocity": "velocity_history"}
+SIGNAL_RECORDS = {"force": "force_history", "strain": "strain_history", "velocity": "velocity_history"}
 #: The fewest rows a history must keep to be compared.
 MIN_ROWS = 8
 #: The most rows kept without a declared thinning (``every``): 10^6 rows read in well under a

@@ -10,11 +10,15 @@ the case's ball on the stack so changed (:func:`~rodimpact.jobs.indentation.inde
 then the SEM with that curve as its law.
 
 The band evaluates the nominal stack (with the case's own curve, the ``indentation`` rule's,
-when the rule hands it over), each parameter at the two ends of its range with the others
-nominal, and the two corners where every parameter sits at the end that lengthens (shortens)
-the contact, read from its own axis. Where the time is monotone along every axis (recorded:
-``monotone``), those two corners bound it over the box, if the parameters act independently of
-each other's values.
+when the rule hands it over) and the two corners where every parameter sits at the end that
+lengthens (shortens) the contact. Which end that is comes from the analytic law of the case's
+bodies (the stack's thin-layer law, :func:`law_longer_high`: a run of the SEM at each end of the
+range, the others nominal), which is too soft to give the time but not its direction. With
+``axes`` (the named target ``make sensor-axes``) the band also evaluates each parameter at the
+two ends of its range by the continuum, reads the lengthening end from that axis and records
+whether the time is monotone along every axis (``monotone``) and whether the two directions
+agree. Where the time is monotone along every axis, the two corners bound it over the box, if
+the parameters act independently of each other's values.
 """
 
 from __future__ import annotations
@@ -29,6 +33,7 @@ from typing import Any
 
 import numpy as np
 
+from rodimpact.contact.laws import bodies_contact
 from rodimpact.jobs.indentation import indentation_curve
 from rodimpact.jobs.runner import run_case
 from rodimpact.storage.atomic import atomic_directory
@@ -38,6 +43,7 @@ from rodimpact.storage.curves import read_contact_curve
 __all__ = [
     "StackParameter",
     "calibrated_time_us",
+    "law_longer_high",
     "sensor_band",
     "sensor_band_to_file",
     "sensor_bands_into",
@@ -146,12 +152,27 @@ def calibrated_time_us(
     return 1e6 * run_case(with_curve, method).contact_time_s
 
 
+def law_longer_high(case: Mapping[str, Any], parameter: StackParameter, method: str = "sem") -> bool:
+    """Whether the high end of ``parameter``'s range lengthens the contact (its low end otherwise),
+    by ``method`` with the analytic law of the case's bodies (the stack's thin-layer law,
+    :func:`~rodimpact.contact.laws.bodies_contact`): a second's work where the continuum's
+    indentation takes several."""
+    contact = bodies_contact(case.get("contact"))
+    bodies = {**case, "contact": contact}
+    low, high = (
+        run_case(with_values(bodies, {parameter.name: value}), method).contact_time_s
+        for value in (parameter.low, parameter.high)
+    )
+    return bool(high >= low)
+
+
 def sensor_band(
     case: Mapping[str, Any],
     settings: Mapping[str, Any] | None = None,
     method: str = "sem",
     *,
     nominal_curve: Mapping[str, Any] | None = None,
+    axes: bool = False,
 ) -> CaseBand:
     """The band of one case (see the module docstring).
 
@@ -166,24 +187,31 @@ def sensor_band(
     nominal_curve : mapping, optional
         The case's own calibrated curve (the ``indentation`` rule's), for the nominal stack:
         computed again when not given.
+    axes : bool
+        Also each constant's range by the continuum, the others nominal (two more indentations
+        per constant): the corners are then each constant's lengthening end by the continuum's
+        own axis, and the band records whether the time is monotone along every axis. Without
+        the axes the lengthening ends are the analytic law's (:func:`law_longer_high`).
     """
     parameters = stack_parameters(case)
     names = tuple(p.name for p in parameters)
     nominal_us = calibrated_time_us(case, settings, method, nominal_curve)
+    by_law = tuple(law_longer_high(case, p, method) for p in parameters)
     axis_values, axis_us = {}, {}
-    for p in parameters:
+    for p in parameters if axes else ():
         values = sorted({p.low, p.nominal, p.high})
         times = [
             nominal_us if v == p.nominal else calibrated_time_us(with_values(case, {p.name: v}), settings, method)
             for v in values
         ]
         axis_values[p.name], axis_us[p.name] = np.asarray(values), np.asarray(times)
-    # each parameter's end that lengthens the contact, from its own axis
+    # each parameter's end that lengthens the contact: from its own axis, else by the analytic law
     longer = {}
-    for p in parameters:
-        values, times = axis_values[p.name], axis_us[p.name]
-        at_low, at_high = times[values == p.low][0], times[values == p.high][0]
-        longer[p.name] = (p.high, p.low) if at_high >= at_low else (p.low, p.high)
+    for p, high_longer in zip(parameters, by_law, strict=True):
+        if axes:
+            values, times = axis_values[p.name], axis_us[p.name]
+            high_longer = bool(times[values == p.high][0] >= times[values == p.low][0])
+        longer[p.name] = (p.high, p.low) if high_longer else (p.low, p.high)
     corners = np.array([[longer[n][0] for n in names], [longer[n][1] for n in names]])
     corner_us = np.array(
         [calibrated_time_us(with_values(case, dict(zip(names, c))), settings, method) for c in corners]
@@ -198,6 +226,7 @@ def sensor_band(
         axis_values=axis_values,
         axis_us=axis_us,
         parameters=names,
+        law_longer_high=by_law,
     )
     log.info(
         "case %s: nominal %.2f us, band %.2f-%.2f us over %d constants, monotone along every axis: %s",
@@ -206,12 +235,21 @@ def sensor_band(
         band.band_min_us,
         band.band_max_us,
         len(names),
-        band.monotone,
+        "not computed" if band.monotone is None else band.monotone,
     )
-    if not band.monotone:
+    if band.monotone is False:
         log.warning(
             "case %s: the contact time is not monotone along some constant's range; the corners may not bound it",
             band.case_id,
+        )
+    disagree = [
+        p.name for p, high in zip(parameters, by_law, strict=True) if axes and (longer[p.name][0] == p.high) != high
+    ]
+    if disagree:
+        log.warning(
+            "case %s: the continuum and the analytic law lengthen the contact at opposite ends of %s",
+            band.case_id,
+            disagree,
         )
     return band
 
@@ -224,6 +262,7 @@ def sensor_band_to_file(
     method: str = "sem",
     *,
     curve_file: str | None = None,
+    axes: bool = False,
 ) -> None:
     """:func:`sensor_band` of ``case``, written atomically to ``path``; the nominal stack's law
     from ``curve_file`` (the case's ``indentation`` output) when given.
@@ -241,7 +280,7 @@ def sensor_band_to_file(
         nominal = curve.law_curve()
     write_band(
         path,
-        [sensor_band(case, settings, method, nominal_curve=nominal)],
+        [sensor_band(case, settings, method, nominal_curve=nominal, axes=axes)],
         variant=variant,
         method=method,
         config=dict(case),
@@ -256,6 +295,7 @@ def sensor_bands_into(
     method: str = "sem",
     *,
     curve_files: Mapping[str, str] | None = None,
+    axes: bool = False,
 ) -> list[Path]:
     """:func:`sensor_band_to_file` of every case of one reading, to ``directory/{case}.h5`` (the
     nominal stack's law from ``curve_files[case id]`` where given), the directory appearing whole
@@ -270,5 +310,6 @@ def sensor_bands_into(
                 settings,
                 method,
                 curve_file=(curve_files or {}).get(case["id"]),
+                axes=axes,
             )
     return [directory / f"{case['id']}.h5" for case in cases]

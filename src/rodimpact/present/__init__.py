@@ -11,8 +11,9 @@ film: Table 2 with and without it, its prediction bands, the indentation curves,
 force), :mod:`.sensor_tables` and :mod:`.sensor_artifacts` (the sensor as built: its band from the
 continuum), :mod:`.compare`, :mod:`.compare_figures` and
 :mod:`.compare_artifacts` (any case set against its measurements: its table, its figure, a figure per
-measured record), :mod:`.calibration_artifacts` and :mod:`.calibration_figures` (a set's calibration: its tables and
-figure, labelled a fit, not a prediction), :mod:`.study_figures` (error against run time, the
+kind of measured record, a row per case), :mod:`.calibration_artifacts` and
+:mod:`.calibration_figures` (a set's calibration: its tables and figure, labelled a fit, not a
+prediction), :mod:`.study_figures` (error against run time, the
 stability map), :mod:`.wave_figures`
 (the strain over the rod against time: its figure and its artifact), :mod:`.forces` (each
 run's contact force as CSV, and its closed form as JSON) and

@@ -1,25 +1,27 @@
-"""A case set's comparison with its measurements, written: its table, its figure, and one
-figure per measured record, force, strain at a gauge or velocity (:mod:`.compare`,
-:mod:`.compare_figures`), from the set's stored runs and measured files only."""
+"""A case set's comparison with its measurements, written: its table, its figure, and a
+figure per kind of measured record, force, strain at a gauge or velocity, a row per case
+(:mod:`.compare`, :mod:`.compare_figures`), from the set's stored runs and measured files only."""
 
 from __future__ import annotations
 
 import logging
 from collections.abc import Mapping, Sequence
 from pathlib import Path
+from typing import Any
 
-from rodimpact.analysis.history_compare import DEFAULT_THRESHOLD
+from rodimpact.analysis.history_compare import DEFAULT_THRESHOLD, HistoryComparison
 from rodimpact.analysis.measured import RECORDS, MeasuredHistory, read_history
 from rodimpact.analysis.observations import signal_comparison
+from rodimpact.analysis.wave_compare import SignalComparison
 from rodimpact.present.compare import compare_frame, compare_summary, history_comparison, x_axis
 from rodimpact.present.film_tables import write_provenance_with_files
 from rodimpact.present.table_formats import markdown_table, panels
 from rodimpact.present.tables import write_table
 from rodimpact.solvers.registry import METHODS
 from rodimpact.storage.atomic import atomic_output
-from rodimpact.storage.runs import read_run
+from rodimpact.storage.runs import RunRecord, read_run
 
-__all__ = ["SIGNAL_FIGURES", "make_compare_figure", "make_compare_table", "make_history_figure", "make_signal_figure"]
+__all__ = ["SIGNAL_FIGURES", "make_compare_figure", "make_compare_table", "make_signal_figure"]
 
 log = logging.getLogger(__name__)
 
@@ -124,43 +126,9 @@ def make_compare_figure(
     write_provenance_with_files(provenance, records, [pdf, png], {"measured records": _history_files(records)})
 
 
-def make_history_figure(
-    runs: Sequence[str | Path], *, pdf: str | Path, png: str | Path, provenance: str | Path
-) -> None:
-    """One case's measured force history against each method's (every run of ``runs`` is of
-    that case; :func:`~rodimpact.present.compare_figures.plot_history_overlay`).
-
-    Raises
-    ------
-    ValueError
-        The runs are of several cases, or their case has no measured history.
-    """
-    from rodimpact.present.compare_figures import plot_history_overlay
-    from rodimpact.present.figures import save_figure
-    from rodimpact.storage.sidecar import provenance_record
-
-    records = [read_run(p) for p in runs]
-    cases = {r.case_id for r in records}
-    histories = _histories(records)
-    if len(cases) != 1 or not histories or "force_history" not in next(iter(histories.values())):
-        raise ValueError(f"runs: one case with a measured force history expected, got {sorted(cases)}")
-    ((case_id, found),) = histories.items()
-    history = found["force_history"]
-    threshold = float(records[0].config["measured"]["force_history"].get("threshold", DEFAULT_THRESHOLD))
-    comparisons = [(r.method, history_comparison(r, history, threshold)) for r in records]
-    description = str(records[0].config.get("description") or case_id)
-    save_figure(
-        plot_history_overlay(comparisons, description, history.note),
-        pdf=pdf,
-        png=png,
-        provenance=provenance_record(records, [pdf, png]),
-        title=f"{case_id}: measured and computed force",
-    )
-    write_provenance_with_files(provenance, records, [pdf, png], {"measured records": _history_files(records)})
-
-
 #: A record's figure: its key -> (the signal in words, the y label, the scale to its unit).
 SIGNAL_FIGURES = {
+    "force_history": ("force", "contact force $P$ (N)", 1.0),
     "strain_history": ("strain", "axial strain at the gauge (µstrain)", 1e6),
     "velocity_history": ("velocity", "velocity (m/s)", 1.0),
 }
@@ -175,9 +143,9 @@ def make_signal_figure(
     png: str | Path,
     provenance: str | Path,
 ) -> None:
-    """A set's measured strain or velocity records against each method's signals, one row per
-    case (``key``: ``strain_history`` or ``velocity_history``; every run of ``runs`` is of a
-    case with such a record; :func:`~rodimpact.present.compare_figures.plot_signal_overlays`).
+    """A set's measured force, strain or velocity records against each method's signals, one
+    row per case (``key``: a key of :data:`SIGNAL_FIGURES`; every run of ``runs`` is of a case
+    with such a record; :func:`~rodimpact.present.compare_figures.plot_signal_overlays`).
 
     Raises
     ------
@@ -199,7 +167,7 @@ def make_signal_figure(
             raise ValueError(f"runs: case {case_id!r} has no measured {key}")
         runs_of_case = [r for r in records if r.case_id == case_id]
         spec, history = runs_of_case[0].config["measured"][key], histories[case_id][key]
-        comparisons = [(r, signal_comparison(key, spec, r.series, r.summary, history)) for r in runs_of_case]
+        comparisons = [(r, _record_comparison(key, spec, r, history)) for r in runs_of_case]
         description = str(runs_of_case[0].config.get("description") or case_id)
         panels.append((comparisons, spec, description, history.note))
     words, ylabel, scale = SIGNAL_FIGURES[key]
@@ -214,3 +182,15 @@ def make_signal_figure(
         title=title,
     )
     write_provenance_with_files(provenance, records, [pdf, png], {"measured records": _history_files(records)})
+
+
+def _record_comparison(
+    key: str, spec: Mapping[str, Any], record: RunRecord, history: MeasuredHistory
+) -> HistoryComparison | SignalComparison:
+    """A run's signal against the record ``key`` names: a force aligned at ``threshold`` of each
+    peak, as the comparison table aligns it (:func:`~rodimpact.present.compare.history_comparison`);
+    a strain or velocity on its first pulse (:func:`~rodimpact.analysis.observations.signal_comparison`).
+    """
+    if key == "force_history":
+        return history_comparison(record, history, float(spec.get("threshold", DEFAULT_THRESHOLD)))
+    return signal_comparison(key, spec, record.series, record.summary, history)

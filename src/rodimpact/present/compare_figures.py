@@ -1,4 +1,5 @@
-"""The figures of a case set against its measurements: one for the set, one per measured record."""
+"""The figures of a case set against its measurements: one for the set, one per kind of measured
+record (a row per case)."""
 
 from __future__ import annotations
 
@@ -15,6 +16,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
+from numpy.typing import NDArray  # noqa: E402
 
 from rodimpact.analysis.history_compare import HistoryComparison  # noqa: E402
 from rodimpact.analysis.observations import gauge_column  # noqa: E402
@@ -22,7 +24,7 @@ from rodimpact.analysis.wave_compare import SignalComparison  # noqa: E402
 from rodimpact.present.table2_figures import short_source  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
 
-__all__ = ["plot_compare_set", "plot_history_overlay", "plot_signal_overlays"]
+__all__ = ["plot_compare_set", "plot_signal_overlays"]
 
 #: The measured scalars drawn, in this order, each in its row of panels.
 _DRAWN = (
@@ -140,70 +142,23 @@ def plot_compare_set(
     return fig
 
 
-def plot_history_overlay(
-    comparisons: Sequence[tuple[str, HistoryComparison]], title: str, note: str = ""
-) -> matplotlib.figure.Figure:
-    """A measured force history and each method's, aligned (upper panel), and their difference
-    computed minus measured (lower panel), against the computed time.
-
-    Parameters
-    ----------
-    comparisons : sequence of (method, HistoryComparison)
-        Each method's comparison with the same measured history.
-    title : str
-        The case in words.
-    note : str
-        How the history was measured (in the title).
-    """
-    fig, (upper, lower) = plt.subplots(
-        2, 1, figsize=(6.5, 6.0), sharex=True, height_ratios=(2, 1), layout="constrained"
-    )
-    drawn_measured = False
-    for method, result in comparisons:
-        t_us = 1e6 * result.time_s
-        if not drawn_measured:
-            upper.plot(
-                t_us,
-                result.measured_N,
-                color="k",
-                lw=1.0,
-                label=f"measured (aligned at {result.threshold:g} of its peak)",
-            )
-            drawn_measured = True
-        style = _method_style(method)
-        label = METHODS[method].label if method in METHODS else method
-        upper.plot(t_us, result.model_N, lw=1.4, label=f"{label}: L2 error {100 * result.l2_error:.1f} %", **style)
-        lower.plot(t_us, result.model_N - result.measured_N, lw=1.0, label=label, **style)
-    upper.set_ylabel("contact force $P$ (N)")
-    upper.legend(fontsize=8, loc="upper right")
-    upper.grid(alpha=0.3)
-    lower.axhline(0.0, color="0.5", lw=0.8)
-    lower.set_ylabel("computed − measured (N)")
-    lower.set_xlabel("time since the computed contact began (µs)")
-    lower.grid(alpha=0.3)
-    # the note's opening only: how the record was made, not the command that made it
-    upper.set_title(textwrap.fill(title + (f" — {textwrap.shorten(note, 120)}" if note else ""), 80), fontsize=9)
-    if not comparisons:
-        upper.text(0.5, 0.5, "no run to compare", transform=upper.transAxes, ha="center")
-    return fig
-
-
 def plot_signal_overlays(
-    panels: Sequence[tuple[Sequence[tuple[Any, SignalComparison]], Mapping[str, Any], str, str]],
+    panels: Sequence[tuple[Sequence[tuple[Any, HistoryComparison | SignalComparison]], Mapping[str, Any], str, str]],
     ylabel: str,
     scale: float,
     title: str,
 ) -> matplotlib.figure.Figure:
-    """A set's measured strain or velocity records, one row per case: the record and each
-    method's signal (left), and their difference, computed minus measured (right), against the
-    time since the impact.
+    """A set's measured force, strain or velocity records, one row per case: the record and
+    each method's signal (left), and their difference, computed minus measured (right), against
+    the time since the impact.
 
     Parameters
     ----------
     panels : sequence of (comparisons, spec, description, note)
-        Per case: each run (its ``method``, ``series`` and ``summary``) with its comparison, the
-        record's block (``station_m`` and ``gauge_length_m`` of a gauge; ``of`` of a velocity),
-        the case in words and how the record was made.
+        Per case: each run (its ``method``, ``series`` and ``summary``) with its comparison (a
+        force's :class:`HistoryComparison`, a strain's or velocity's :class:`SignalComparison`),
+        the record's block (``station_m`` and ``gauge_length_m`` of a gauge; ``of`` of a
+        velocity), the case in words and how the record was made.
     ylabel : str
         The signal in words, with its unit.
     scale : float
@@ -223,13 +178,14 @@ def plot_signal_overlays(
             if float(spec.get("gauge_length_m", 0.0)) > 0:
                 where += f", {1e3 * float(spec['gauge_length_m']):.3g} mm long"
             description = f"{description} ({where})"
-        # the note's opening only: how the record was made, not the command that made it
-        text = description + (f" — {textwrap.shorten(note, 90)}" if note else "")
+        # the note's opening only, before any parenthesis: how the record was made, not the
+        # command that made it
+        text = description + (f" — {textwrap.shorten(note.split(' (', 1)[0], 90)}" if note else "")
         signal.set_title(textwrap.fill(text, 95), fontsize=8, loc="left")
         signal.set_ylabel(ylabel, fontsize=8.5)
         difference.set_ylabel(f"computed − measured ({unit})" if unit else "computed − measured", fontsize=8.5)
-    for ax in axes[-1]:
-        ax.set_xlabel("time since the impact (µs)")
+    for ax in axes.flat:  # every row has its own time range: each axis its own label
+        ax.set_xlabel("time since the impact (µs)", fontsize=8.5)
     if not panels:
         axes[0, 0].text(0.5, 0.5, "no record to compare", transform=axes[0, 0].transAxes, ha="center")
     handles: dict[str, object] = {}
@@ -245,15 +201,15 @@ def _signal_row(signal, difference, comparisons, spec: Mapping[str, Any], scale:
     """One case's record and each method's signal (``signal``), and their difference."""
     for index, (run, result) in enumerate(comparisons):
         t_us = 1e6 * result.time_s
+        measured, model, aligned = _traces(result)
         if index == 0:
-            aligned = "aligned on the first arrival" if result.measured_pulse is not None else "on its own clock"
-            signal.plot(t_us, scale * result.measured, color="k", lw=1.0, label=f"measured ({aligned})")
+            signal.plot(t_us, scale * measured, color="k", lw=1.0, label=f"measured ({aligned})")
         style = _method_style(run.method)
         label = METHODS[run.method].label if run.method in METHODS else run.method
-        signal.plot(t_us, scale * result.model, lw=1.3, label=label, **style)
+        signal.plot(t_us, scale * model, lw=1.3, label=label, **style)
         difference.plot(
             t_us,
-            scale * (result.model - result.measured),
+            scale * (model - measured),
             lw=0.9,
             label=f"{label}: L2 error {100 * result.l2_error:.1f} %",
             **style,
@@ -273,3 +229,15 @@ def _signal_row(signal, difference, comparisons, spec: Mapping[str, Any], scale:
     difference.legend(fontsize=7, loc="best")
     for ax in (signal, difference):
         ax.grid(alpha=0.3)
+
+
+def _traces(
+    result: HistoryComparison | SignalComparison,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], str]:
+    """A comparison's record and computed signal at its time points, and how the record was
+    aligned, in words: a force at its threshold of each peak (as the comparison table aligns
+    it), a wave signal on its first pulse's arrival, an impactor's velocity not at all."""
+    if isinstance(result, HistoryComparison):
+        return result.measured_N, result.model_N, f"aligned at {result.threshold:g} of its peak"
+    aligned = "aligned on the first arrival" if result.measured_pulse is not None else "on its own clock"
+    return result.measured, result.model, aligned

@@ -1,16 +1,19 @@
 """Prediction bands as HDF5 files: the outputs of the workflow's ``film_band`` and ``sensor_band`` rules.
 
 A band file holds, for one or more cases, the contact time at the nominal constants, at
-corners of the box of their ranges, and along each constant's range with the others nominal
-(the evidence that the contact time is monotone in each, so that the corners bound it).
-Layout: one group per case (its id), with
+corners of the box of their ranges, and, where computed, along each constant's range with the
+others nominal (the evidence that the contact time is monotone in each, so that the corners
+bound it). Layout: one group per case (its id), with
 
 - attributes ``measured_us`` (NaN when none), ``nominal_us``, ``band_min_us``,
-  ``band_max_us``, ``monotone`` (True when the contact time is monotone along every axis),
-  ``parameters_json`` (the constants' names, in the order of ``corner_parameters``' columns);
+  ``band_max_us``, ``monotone`` (True when the contact time is monotone along every axis; absent
+  without axes), ``parameters_json`` (the constants' names, in the order of
+  ``corner_parameters``' columns), ``law_longer_high_json`` (per constant, whether its high end
+  lengthens the contact by the analytic law of the case's bodies; empty when not computed);
 - datasets ``corner_parameters`` (k, p): the constants of each corner (the film band's eight
   corners of (film_modulus_pa, film_poisson_ratio, film_thickness_m); the sensor band's two),
-  ``corner_us`` (k,); ``axis_values_{i}`` (j,) and ``axis_us_{i}`` (j,) for each constant i;
+  ``corner_us`` (k,); ``axis_values_{i}`` (j,) and ``axis_us_{i}`` (j,) for each constant i
+  whose axis was computed;
 
 and root attributes ``variant``, ``method``, ``code_version``, ``library_versions``,
 ``config_json`` (the cases), ``created_utc`` and ``data_sha256`` (checked on read).
@@ -42,7 +45,9 @@ BAND_PARAMETERS = ("film_modulus_pa", "film_poisson_ratio", "film_thickness_m")
 @dataclass(frozen=True)
 class CaseBand:
     """The band of one case (see the module docstring for the fields; times in microseconds).
-    ``parameters`` names the constants (the film band's :data:`BAND_PARAMETERS` by default)."""
+    ``parameters`` names the constants (the film band's :data:`BAND_PARAMETERS` by default);
+    ``axis_values`` and ``axis_us`` may be empty (the axes not computed), and
+    ``law_longer_high`` is empty or has an entry per constant."""
 
     case_id: str
     measured_us: float
@@ -52,6 +57,7 @@ class CaseBand:
     axis_values: dict[str, NDArray[np.float64]]
     axis_us: dict[str, NDArray[np.float64]]
     parameters: tuple[str, ...] = field(default=BAND_PARAMETERS)
+    law_longer_high: tuple[bool, ...] = ()
 
     @property
     def band_min_us(self) -> float:
@@ -64,8 +70,11 @@ class CaseBand:
         return float(np.max(self.corner_us))
 
     @property
-    def monotone(self) -> bool:
-        """The contact time is monotone along each constant's range (the others nominal)."""
+    def monotone(self) -> bool | None:
+        """The contact time is monotone along each constant's range (the others nominal); None
+        when the axes were not computed."""
+        if not self.axis_us:
+            return None
         return all(np.all(np.diff(t) >= 0) or np.all(np.diff(t) <= 0) for t in self.axis_us.values())
 
 
@@ -75,8 +84,9 @@ def _arrays(band: CaseBand) -> dict[str, NDArray[np.float64]]:
         "corner_us": np.asarray(band.corner_us, float),
     }
     for index, name in enumerate(band.parameters):
-        arrays[f"axis_values_{index}"] = np.asarray(band.axis_values[name], float)
-        arrays[f"axis_us_{index}"] = np.asarray(band.axis_us[name], float)
+        if name in band.axis_us:
+            arrays[f"axis_values_{index}"] = np.asarray(band.axis_values[name], float)
+            arrays[f"axis_us_{index}"] = np.asarray(band.axis_us[name], float)
     return arrays
 
 
@@ -84,6 +94,8 @@ def _sha256(bands: list[CaseBand]) -> str:
     digest = hashlib.sha256()
     for band in bands:
         digest.update(band.case_id.encode() + b"\0" + json.dumps(list(band.parameters)).encode())
+        if band.law_longer_high:  # (a band without it hashes as before)
+            digest.update(json.dumps(list(band.law_longer_high)).encode())
         digest.update(np.asarray([band.measured_us, band.nominal_us], "<f8").tobytes())
         for name, array in sorted(_arrays(band).items()):
             digest.update(name.encode() + np.ascontiguousarray(array, "<f8").tobytes())
@@ -114,10 +126,12 @@ def write_band(path: str | Path, bands: list[CaseBand], *, variant: str, method:
                         "nominal_us": band.nominal_us,
                         "band_min_us": band.band_min_us,
                         "band_max_us": band.band_max_us,
-                        "monotone": band.monotone,
                         "parameters_json": json.dumps(list(band.parameters)),
+                        "law_longer_high_json": json.dumps(list(band.law_longer_high)),
                     }
                 )
+                if band.monotone is not None:
+                    group.attrs["monotone"] = band.monotone
                 for name, array in _arrays(band).items():
                     group.create_dataset(name, data=array)
     return path
@@ -137,8 +151,9 @@ def read_band(path: str | Path) -> tuple[str, list[CaseBand]]:
             bands = []
             for case_id, group in h5.items():
                 names = tuple(json.loads(str(group.attrs["parameters_json"])))
-                axis_values = {n: group[f"axis_values_{i}"][()] for i, n in enumerate(names)}
-                axis_us = {n: group[f"axis_us_{i}"][()] for i, n in enumerate(names)}
+                axis_values = {n: group[f"axis_values_{i}"][()] for i, n in enumerate(names) if f"axis_us_{i}" in group}
+                axis_us = {n: group[f"axis_us_{i}"][()] for i, n in enumerate(names) if f"axis_us_{i}" in group}
+                longer = tuple(json.loads(str(group.attrs.get("law_longer_high_json", "[]"))))
                 bands.append(
                     CaseBand(
                         case_id,
@@ -149,6 +164,7 @@ def read_band(path: str | Path) -> tuple[str, list[CaseBand]]:
                         axis_values,
                         axis_us,
                         names,
+                        longer,
                     )
                 )
     except (OSError, KeyError) as error:
