@@ -64,6 +64,7 @@ rule sensor_band_table:
     params:
         code=SRC_SENSOR_TABLES,
         bands=sensor_band_files(SENSOR_READINGS),
+        study="sensor_band",
     script:
         "../scripts/sensor_band_table.py"
 
@@ -92,5 +93,6 @@ rule sensor_band_axes_table:
     params:
         code=SRC_SENSOR_TABLES,
         bands=sensor_band_files(SENSOR_READINGS, "sensor_band_axes"),
+        study="sensor_band_axes",
     script:
-        "../scripts/sensor_band_axes_table.py"
+        "../scripts/sensor_band_table.py"

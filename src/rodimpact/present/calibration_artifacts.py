@@ -54,6 +54,41 @@ def _error_pct(predicted: np.ndarray, measured: np.ndarray) -> np.ndarray:
         return 100.0 * (np.asarray(predicted, float) - measured) / np.abs(measured)
 
 
+def _measurements(
+    role: str,
+    rows: list[dict],
+    measured: np.ndarray,
+    start: np.ndarray,
+    fitted: np.ndarray,
+    standard_error: np.ndarray | float,
+    error_pct: np.ndarray,
+    held_out: dict | None = None,
+) -> pd.DataFrame:
+    """The measurements of one role (:func:`calibration_frames`): a norm's row shows its value as
+    its error, and has no measured value."""
+    norm = np.asarray([r["norm"] for r in rows], bool)
+    held = held_out or {"held_out_predicted": math.nan, "held_out_error_pct": math.nan, "held_out_status": None}
+    if held_out:
+        held = {**held, "held_out_error_pct": np.where(norm, held["held_out_predicted"], held["held_out_error_pct"])}
+    return pd.DataFrame(
+        {
+            "role": role,
+            "case_id": [r["case"] for r in rows],
+            "case_words": [r["case_words"] for r in rows],
+            "quantity": [r["quantity"] for r in rows],
+            "quantity_words": [r["words"] for r in rows],
+            "unit": [r["unit"] for r in rows],
+            "measured": np.where(norm, math.nan, measured),
+            "start_predicted": start,
+            "start_error_pct": np.where(norm, start, _error_pct(start, measured)),
+            "fitted": fitted,
+            "fitted_standard_error": standard_error,
+            "residual_pct": np.where(norm, fitted, error_pct),
+            **held,
+        }
+    )
+
+
 def calibration_frames(stored: StoredCalibration) -> tuple[pd.DataFrame, pd.DataFrame]:
     """The constants' table and the measurements' table of a stored calibration.
 
@@ -91,51 +126,31 @@ def calibration_frames(stored: StoredCalibration) -> tuple[pd.DataFrame, pd.Data
             "warning": warning,
         }
     )
-    rows = stored.described["observations"]
     loo = stored.described["loo"]
-    norm = np.asarray([r["norm"] for r in rows], bool)
-    fitted = a["predicted"]
-    measurements = pd.DataFrame(
-        {
-            "role": "fitted",
-            "case_id": [r["case"] for r in rows],
-            "case_words": [r["case_words"] for r in rows],
-            "quantity": [r["quantity"] for r in rows],
-            "quantity_words": [r["words"] for r in rows],
-            "unit": [r["unit"] for r in rows],
-            "measured": np.where(norm, math.nan, a["measured"]),
-            "start_predicted": a["start_predicted"],
-            "start_error_pct": np.where(norm, a["start_predicted"], _error_pct(a["start_predicted"], a["measured"])),
-            "fitted": fitted,
-            "fitted_standard_error": math.nan,
-            "residual_pct": np.where(norm, fitted, a["in_sample_error_pct"]),
+    measurements = _measurements(
+        "fitted",
+        stored.described["observations"],
+        a["measured"],
+        a["start_predicted"],
+        a["predicted"],
+        math.nan,
+        a["in_sample_error_pct"],
+        held_out={
             "held_out_predicted": a["held_out_predicted"],
-            "held_out_error_pct": np.where(norm, a["held_out_predicted"], a["held_out_error_pct"]),
+            "held_out_error_pct": a["held_out_error_pct"],
             "held_out_status": loo["row_status"],
-        }
+        },
     )
     applied = stored.described["applied"]
     if applied:
-        norm = np.asarray([r["norm"] for r in applied], bool)
-        start = a["applied_start_predicted"]
-        others = pd.DataFrame(
-            {
-                "role": "applied",
-                "case_id": [r["case"] for r in applied],
-                "case_words": [r["case_words"] for r in applied],
-                "quantity": [r["quantity"] for r in applied],
-                "quantity_words": [r["words"] for r in applied],
-                "unit": [r["unit"] for r in applied],
-                "measured": np.where(norm, math.nan, a["applied_measured"]),
-                "start_predicted": start,
-                "start_error_pct": np.where(norm, start, _error_pct(start, a["applied_measured"])),
-                "fitted": a["applied_predicted"],
-                "fitted_standard_error": a["applied_standard_errors"],
-                "residual_pct": a["applied_error_pct"],
-                "held_out_predicted": math.nan,
-                "held_out_error_pct": math.nan,
-                "held_out_status": None,
-            }
+        others = _measurements(
+            "applied",
+            applied,
+            a["applied_measured"],
+            a["applied_start_predicted"],
+            a["applied_predicted"],
+            a["applied_standard_errors"],
+            a["applied_error_pct"],
         )
         measurements = pd.concat([measurements, others], ignore_index=True)
     return constants, measurements
