@@ -4,7 +4,7 @@ from pathlib import Path
 
 import pytest
 
-from rodimpact.plumbing.sources import module_sources, source_digest
+from rodimpact.plumbing.sources import imported_modules, module_sources, source_digest
 
 SRC = Path(__file__).resolve().parents[1] / "src"
 
@@ -78,3 +78,56 @@ def test_a_module_imported_anew_enters_the_digest(tmp_path):
         handle.write("\nimport rodimpact.present.figures  # noqa: E402\n")
     assert any(f.endswith("present/figures.py") for f in module_sources(copy, entry))
     assert source_digest(copy, entry) != before
+
+
+def _imports_by_ast(module: str, text: str, is_package: bool) -> set[str]:
+    """What Python's own parser says ``text`` imports (the reference for the text scan)."""
+    import ast
+
+    package = module if is_package else module.rpartition(".")[0]
+    found: set[str] = set()
+    for node in ast.walk(ast.parse(text)):
+        if isinstance(node, ast.Import):
+            found.update(alias.name for alias in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            anchor = package.split(".")
+            base = (
+                ".".join(anchor[: len(anchor) - (node.level - 1)] + ([node.module] if node.module else []))
+                if node.level
+                else node.module or ""
+            )
+            found.add(base)
+            found.update(f"{base}.{alias.name}" for alias in node.names)
+    return found
+
+
+def test_the_text_scan_finds_what_the_parser_finds_in_every_package_file():
+    """Every file of the package imports the same package modules by the text scan as by
+    :mod:`ast` (the scan may also find a word after "import" at a docstring line's start, never a
+    module of the package that is not imported), and so do the forms the package does not use
+    yet: continued lines, comments in a parenthesised list, several names and aliases, relative
+    imports from a package, imports inside a function."""
+    files = sorted((SRC / "rodimpact").rglob("*.py"))
+    assert len(files) > 100
+    for path in files:
+        module = ".".join(path.relative_to(SRC).with_suffix("").parts).removesuffix(".__init__")
+        text = path.read_text(encoding="utf-8")
+        is_package = path.name == "__init__.py"
+        scanned, parsed = (
+            {m for m in found if m.startswith("rodimpact")}
+            for found in (imported_modules(module, text, is_package), _imports_by_ast(module, text, is_package))
+        )
+        assert scanned == parsed, (path, scanned ^ parsed)
+    forms = (
+        "import a.b as c, d\n"
+        "from x.y import (p,  # a comment\n    q as r,\n)\n"
+        "from .. import s\n"
+        "from .t import u, \\\n    v\n"
+        "def f():\n    import w.z\n    from . import k; import m\n"
+    )
+    scanned = imported_modules("pkg.sub.mod", forms)
+    parsed = _imports_by_ast("pkg.sub.mod", forms, False)
+    assert scanned == parsed, scanned ^ parsed
+    assert imported_modules("pkg.sub", "from . import q\n", True) == _imports_by_ast(
+        "pkg.sub", "from . import q\n", True
+    )
