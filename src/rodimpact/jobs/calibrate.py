@@ -16,6 +16,7 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -27,7 +28,7 @@ from rodimpact.analysis.calibration_loo import LeaveOneOut, leave_one_out
 from rodimpact.analysis.measured import RECORDS, read_history
 from rodimpact.analysis.observations import NORMS, Observed
 from rodimpact.config.calibration import applied_cases, calibration_cases
-from rodimpact.jobs.calibration_model import GridModel, SetModel
+from rodimpact.jobs.calibration_model import GridModel, SetModel, predicted_values
 from rodimpact.present.artifact_common import case_in_words
 from rodimpact.storage.calibrations import StoredCalibration, write_calibration
 
@@ -174,32 +175,55 @@ def _stored(
     return StoredCalibration(scalars, described, {k: np.asarray(v, float) for k, v in arrays.items()})
 
 
+@dataclass(frozen=True, eq=False)
 class Applied:
     """The cases a calibration predicts at its fitted constants without fitting them
     (``apply_to``): each measurement's value by the model at the start and at the fit, with
     the standard error the constants' covariance gives it, and the error against the measurement.
 
-    Parameters
+    Attributes
     ----------
     model : SetModel or GridModel
         The model of those cases.
-    fit : Calibration
-        The fit whose constants are applied.
+    rows : list of Observed
+        Their measurements as the model reads them, shape (a,).
+    measured, start_predicted, predicted, standard_errors, error_pct : ndarray, shape (a,)
+        The measured value (0 for a norm), the model's at the start and at the fitted constants,
+        the latter's standard error, and its error (% of the measured value; a norm's own value).
     """
 
-    def __init__(self, model: Model, fit: Calibration) -> None:
-        self.model = model
-        self.rows = model.observe(np.asarray([_start(p) for p in fit.parameters], float))
-        self.measured = np.asarray([0.0 if row.is_norm else row.measured for row in self.rows], float)
-        self.norm = np.asarray([row.is_norm for row in self.rows], bool)
-        self.start_predicted = model(np.asarray([_start(p) for p in fit.parameters], float))
-        self.predicted = model(fit.values)
-        self.standard_errors = propagated_standard_errors(model, fit)
+    model: Model
+    rows: list[Observed]
+    measured: NDArray[np.float64]
+    start_predicted: NDArray[np.float64]
+    predicted: NDArray[np.float64]
+    standard_errors: NDArray[np.float64]
+    error_pct: NDArray[np.float64]
+
+    @classmethod
+    def of(cls, model: Model, fit: Calibration) -> Applied:
+        """The model's predictions at ``fit``'s start and fitted constants."""
+        start = np.asarray([_start(p) for p in fit.parameters], float)
+        rows = model.observe(start)
+        # a run's rows are its prediction; a grid model's rows are its first grid value's
+        start_predicted = predicted_values(rows) if isinstance(model, SetModel) else model(start)
+        norm = np.asarray([row.is_norm for row in rows], bool)
+        measured = np.asarray([0.0 if row.is_norm else row.measured for row in rows], float)
+        predicted = model(fit.values)
         with np.errstate(divide="ignore", invalid="ignore"):
-            relative = 100.0 * (self.predicted - self.measured) / np.abs(self.measured)
-        self.error_pct = np.where(self.norm, self.predicted, relative)
+            relative = 100.0 * (predicted - measured) / np.abs(measured)
+        return cls(
+            model,
+            rows,
+            measured,
+            start_predicted,
+            predicted,
+            propagated_standard_errors(model, fit),
+            np.where(norm, predicted, relative),
+        )
 
     def arrays(self) -> dict[str, NDArray[np.float64]]:
+        """The datasets of the calibration file (:mod:`rodimpact.storage.calibrations`)."""
         return {
             "applied_measured": self.measured,
             "applied_start_predicted": self.start_predicted,
@@ -210,6 +234,7 @@ class Applied:
 
     @staticmethod
     def empty() -> dict[str, NDArray[np.float64]]:
+        """:meth:`arrays` of a calibration that applies its constants to no case."""
         names = ("measured", "start_predicted", "predicted", "standard_errors", "error_pct")
         return {f"applied_{name}": np.zeros(0) for name in names}
 
@@ -283,7 +308,7 @@ def run_calibration(
     log.info("calibration of %s: %s (%s); values %s", set_name, fit.status, fit.message, fit.values)
     loo = leave_one_out(model, observations, parameters, fit, cache=cache)
     others = applied_cases(cases, block)
-    applied = Applied(_model(others, block, numerics)[0], fit) if others else None
+    applied = Applied.of(_model(others, block, numerics)[0], fit) if others else None
     config = {
         "calibrate": dict(block),
         "cases": [dict(c) for c in calibration_cases(cases, block)],
