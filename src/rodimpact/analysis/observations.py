@@ -250,12 +250,12 @@ def observed(
         spec = measured["strain_history"]
         result = signal_comparison("strain_history", spec, series, summary, records["strain_history"])
         x = float(spec["station_m"])
-        rows += _pulse_rows("strain", result, x / bar_speed(config), x, 1e6, "microstrain")
+        rows += _pulse_rows("strain", result, x / bar_speed(config), x)
     velocity = measured.get("velocity_history")
     if "velocity_history" in records and velocity["of"] == "far_end":
         result = signal_comparison("velocity_history", velocity, series, summary, records["velocity_history"])
         length = float(config["rod"]["length_m"])
-        rows += _pulse_rows("far_end", result, length / bar_speed(config), length, 1.0, "m/s")
+        rows += _pulse_rows("far_end", result, length / bar_speed(config), length)
     elif "velocity_history" in records:
         result = signal_comparison("velocity_history", velocity, series, summary, records["velocity_history"])
         rows.append(_norm("impactor_velocity_l2_pct", "impactor's velocity, L2 error", result.l2_error))
@@ -263,65 +263,57 @@ def observed(
     return rows
 
 
-def _pulse_rows(
-    prefix: str, result: SignalComparison, transit_s: float, x_m: float, scale: float, unit: str
-) -> list[Observed]:
-    """The first pulse's rows and the norms of a wave signal (strain at a gauge, far end's velocity)."""
+@dataclass(frozen=True)
+class _Pulse:
+    """What the rows of one kind of wave signal are called, and their units and scales (from SI)."""
+
+    where: str
+    peak: tuple[str, str, str, float]  # quantity, words, unit, scale
+    integral: tuple[str, str, str, float]
+    norms: tuple[str, str]  # the norms' quantity prefix and words
+
+
+_PULSES = {
+    "strain": _Pulse(
+        "the gauge",
+        ("strain_peak_microstrain", "peak strain of the first pulse", "microstrain", 1e6),
+        ("strain_integral_microstrain_us", "time integral of the first pulse's strain", "µstrain·µs", 1e12),
+        ("strain", "strain at the gauge"),
+    ),
+    "far_end": _Pulse(
+        "the far end",
+        ("far_end_peak_velocity_m_s", "peak velocity of the far end's first pulse", "m/s", 1.0),
+        ("far_end_displacement_um", "the far end's displacement over the first pulse", "µm", 1e6),
+        ("far_end_velocity", "far end's velocity"),
+    ),
+}
+
+
+def _pulse_rows(prefix: str, result: SignalComparison, transit_s: float, x_m: float) -> list[Observed]:
+    """The first pulse's rows and the norms of a wave signal (``prefix`` ``strain``: the strain at a
+    gauge; ``far_end``: the far end's velocity)."""
     measured, model = result.measured_pulse, result.model_pulse
     if measured is None or model is None:
         raise ValueError("a wave signal is compared with its first pulses")
-    at = "at half its crest"
-    where = "the gauge" if prefix == "strain" else "the far end"
-    rows = [
+    kind = _PULSES[prefix]
+    norm, norm_words = kind.norms
+
+    def scaled(row: tuple[str, str, str, float], got: float, computed: float, sd: float) -> Observed:
+        quantity, words, unit, scale = row
+        return _value(quantity, words, unit, scale * got, scale * computed, scale * sd)
+
+    return [
         _value(
             f"{prefix}_arrival_us",
-            f"arrival of the first wave at {where}, {at} (x/c = {1e6 * transit_s:.4g} µs at x = {x_m:g} m)",
+            f"arrival of the first wave at {kind.where}, at half its crest (x/c = {1e6 * transit_s:.4g} µs at "
+            f"x = {x_m:g} m)",
             "µs",
             1e6 * measured.arrival_s,
             1e6 * model.arrival_s,
             1e6 * measured.arrival_sd_s,
-        )
+        ),
+        scaled(kind.peak, measured.peak, model.peak, measured.peak_sd),
+        scaled(kind.integral, measured.integral, model.integral, measured.integral_sd),
+        _norm(f"{norm}_l2_pct", f"{norm_words}, L2 error after alignment", result.l2_error),
+        _norm(f"{norm}_max_pct", f"{norm_words}, max-norm error after alignment", result.max_error),
     ]
-    if prefix == "strain":
-        rows += [
-            _value(
-                "strain_peak_microstrain",
-                "peak strain of the first pulse",
-                unit,
-                scale * measured.peak,
-                scale * model.peak,
-                scale * measured.peak_sd,
-            ),
-            _value(
-                "strain_integral_microstrain_us",
-                "time integral of the first pulse's strain",
-                "µstrain·µs",
-                1e12 * measured.integral,
-                1e12 * model.integral,
-                1e12 * measured.integral_sd,
-            ),
-            _norm("strain_l2_pct", "strain at the gauge, L2 error after alignment", result.l2_error),
-            _norm("strain_max_pct", "strain at the gauge, max-norm error after alignment", result.max_error),
-        ]
-    else:
-        rows += [
-            _value(
-                "far_end_peak_velocity_m_s",
-                "peak velocity of the far end's first pulse",
-                unit,
-                measured.peak,
-                model.peak,
-                measured.peak_sd,
-            ),
-            _value(
-                "far_end_displacement_um",
-                "the far end's displacement over the first pulse",
-                "µm",
-                1e6 * measured.integral,
-                1e6 * model.integral,
-                1e6 * measured.integral_sd,
-            ),
-            _norm("far_end_velocity_l2_pct", "far end's velocity, L2 error after alignment", result.l2_error),
-            _norm("far_end_velocity_max_pct", "far end's velocity, max-norm error after alignment", result.max_error),
-        ]
-    return rows
