@@ -11,7 +11,6 @@ when the job is over works. No SLURM here: the stand-in proves what a real submi
 
 from __future__ import annotations
 
-import dataclasses
 import json
 import re
 import sys
@@ -20,7 +19,7 @@ from pathlib import Path
 import pytest
 import yte
 
-from rodimpact.jobs.resources import PRESENTATION, estimate_sequence
+from rodimpact.jobs.resources import estimate_sequence
 
 from helpers.copies import copy_project, project_cases
 from helpers.snakemake_cli import snakemake
@@ -61,20 +60,19 @@ def test_every_job_is_submitted_with_its_estimated_resources(tmp_path: Path) -> 
     for path in (*runs, TABLE):
         assert (project / path).exists(), f"{path} was not built\n{run.describe()}"
     entries = [json.loads(line) for line in record.read_text(encoding="utf-8").splitlines()]
-    # every rule of a cluster run is in a group (workflow/rules/common.smk): with no
-    # group-components (the stand-in has none), each job is a group of its own, sized as the job
+    # every solver rule is in the group `solvers` (workflow/rules/common.smk): with no
+    # group-components (the stand-in has none), each job is a group of its own, sized as the job;
+    # the table, and the force export its job reads, are local rules: written here, never submitted
     expected_of = {run: estimate_sequence([(model, Path(run).name, 1)]) for run in runs}
-    # the table's job (paper_model) also draws the force's closed form, so its group holds the
-    # force export it reads: two presentation jobs one after another, their run times summed
-    expected_of[TABLE] = dataclasses.replace(PRESENTATION, runtime_min=2 * PRESENTATION.runtime_min)
-    group_of = {**{run: "solvers" for run in runs}, TABLE: "tables"}
     submitted = sorted(next(o for o in entry["output"] if o in expected_of) for entry in entries)
     assert submitted == sorted(expected_of), entries
+    local = [o for entry in entries for o in entry["output"] if o == TABLE or o.startswith("results/forces/")]
+    assert not local, entries
     for entry in entries:
         assert entry["returncode"] == 0, entry
         target = next(o for o in entry["output"] if o in expected_of)
         expected = expected_of[target]
-        assert (entry["type"], entry["groupid"]) == ("group", group_of[target]), entry
+        assert (entry["type"], entry["groupid"]) == ("group", "solvers"), entry
         options = dict(arg.lstrip("-").split("=", 1) for arg in entry["argv"])
         assert options == {
             "mem": str(expected.mem_mb),
@@ -87,30 +85,41 @@ def test_every_job_is_submitted_with_its_estimated_resources(tmp_path: Path) -> 
         assert entry["resources"]["runtime"] == expected.runtime_min, entry
         assert entry["threads"] == expected.threads, entry
     # the estimate follows the case: the continuum model asks for more than the SEM
-    by_method = {Path(e["output"][0]).stem: e["resources"] for e in entries if e["groupid"] == "solvers"}
+    by_method = {Path(e["output"][0]).stem: e["resources"] for e in entries}
     assert by_method["fem_axi"]["mem_mb"] > by_method["sem"]["mem_mb"]
 
 
-def test_every_submitted_rule_is_in_a_group_the_slurm_profile_sizes() -> None:
-    """Every rule a cluster runs declares its group (the case files are local rules, the
-    benchmarks want a node of their own), and the profile sizes exactly the declared groups."""
+def test_every_rule_is_local_or_in_a_group_the_slurm_profile_sizes() -> None:
+    """Every rule a cluster runs is either a local rule (the case files, the tables, the figures
+    and the force export: written where snakemake runs) or in a declared group (the solvers); only
+    the benchmarks are neither (each wants a node of its own). The profile sizes exactly the
+    declared groups."""
     rules_dir = Path(__file__).resolve().parents[1] / "workflow" / "rules"
     common = (rules_dir / "common.smk").read_text(encoding="utf-8")
     groups = dict(re.findall(r'^(GROUP_\w+) = "(\w+)"$', common, re.M))
-    ungrouped = {"case_file", "bench_sem", "bench_fem", "bench_sem_scaling"}
-    missing, unknown = [], []
+    alone = {"bench_sem", "bench_fem", "bench_sem_scaling"}
+    local, grouped, neither, both, unknown = set(), set(), [], [], []
     for path in sorted(rules_dir.glob("*.smk")):
         blocks = re.split(r"^\s*rule(?= |:)", path.read_text(encoding="utf-8"), flags=re.M)[1:]
         for block in blocks:
             name = re.match(r"\s*(\w*):", block).group(1) or re.search(r'name:\s*\n\s*f"(\w+?)_?\{', block).group(1)
-            if "script:" not in block or name in ungrouped:
+            if "script:" not in block or name in alone:
                 continue
+            is_local = re.search(r"^\s+localrule:\s+True\s*$", block, re.M) is not None
             declared = re.search(r"^\s+group:\s+(\w+)\s*$", block, re.M)  # its value on the line or the next
-            if declared is None:
-                missing.append(f"{path.name}: {name}")
+            if is_local and declared:
+                both.append(f"{path.name}: {name}")
+            elif is_local:
+                local.add(name)
+            elif declared is None:
+                neither.append(f"{path.name}: {name}")
             elif declared.group(1) not in groups:
                 unknown.append(f"{path.name}: {name}: {declared.group(1)}")
-    assert not missing and not unknown, (missing, unknown)
+            else:
+                grouped.add(name)
+    assert not neither and not both and not unknown, (neither, both, unknown)
+    assert {"case_file", "paper_model", "compare", "forces"} <= local, local
+    assert {"solve", "solve_levels", "indentation", "calibrate"} <= grouped, grouped
     with open(rules_dir.parents[1] / "profiles" / "slurm" / "config.yaml", encoding="utf-8") as handle:
         profile = yte.process_yaml(handle, require_use_yte=True)
     assert set(profile["group-components"]) == set(groups.values())

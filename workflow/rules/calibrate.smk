@@ -68,8 +68,7 @@ rule calibration_artifacts:
         "logs/tables/calibration_{set}.log",
     wildcard_constraints:
         set=one_of(CALIBRATED_SETS),
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1

@@ -7,10 +7,6 @@
 # second: on a cluster it is written on the head node, not submitted.
 
 
-localrules:
-    case_file,
-
-
 rule case_file:
     """The resolved cases of one group (or one sweep case), their derived scales and each method's
     step and estimated cost."""
@@ -18,6 +14,7 @@ rule case_file:
         yaml="results/cases/{name}.yaml",
     log:
         "logs/cases/{name}.log",
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1

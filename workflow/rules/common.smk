@@ -74,10 +74,11 @@ SCHEMA_DIR = os.path.join(workflow.basedir, "workflow", "schemas")
 # Job groups, for a cluster: the jobs of a group that a run needs go to the scheduler as one
 # submission (profiles/slurm sets how many independent pieces one takes: group-components) and
 # run one after another on its node, each still its own rule, outputs and log. A local run
-# ignores groups. Every solver rule is in GROUP_SOLVERS, every table and figure in GROUP_TABLES;
-# the case files are local rules, the benchmarks are alone on their node.
+# ignores groups. Every solver rule is in GROUP_SOLVERS. The case files, the tables, the figures
+# and the force export are local rules (`localrule: True`): seconds of work each, less than a
+# cluster job costs to start, so a cluster run writes them where snakemake runs. The benchmarks
+# are alone on their node.
 GROUP_SOLVERS = "solvers"
-GROUP_TABLES = "tables"
 
 
 def checked_project():

@@ -45,8 +45,7 @@ rule compare:
         "logs/tables/compare_{set}.log",
     wildcard_constraints:
         set=one_of(COMPARE_SETS),
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1
@@ -92,8 +91,7 @@ rule compare_signal:
     wildcard_constraints:
         set=one_of({s for sets in SIGNAL_SETS.values() for s in sets}),
         ending=one_of(SIGNAL_RECORDS),
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1

@@ -65,8 +65,7 @@ rule paper_model:
         force_fit_provenance="results/figures/force_fit_model.provenance.json",
     log:
         "logs/figures/paper_model.log",
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1
@@ -136,8 +135,7 @@ rule fig_readings:
         "logs/figures/{set}_contact_time.log",
     wildcard_constraints:
         set=one_of(READING_SETS),
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1
@@ -181,8 +179,7 @@ rule fig_film_force:
         provenance="results/figures/film_force.provenance.json",
     log:
         "logs/figures/film_force.log",
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1

@@ -19,8 +19,7 @@ rule forces:
         "logs/forces/{set}.log",
     wildcard_constraints:
         set=one_of(config["targets"]["sets"]),
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1

@@ -54,8 +54,7 @@ rule sensor_band_table:
         provenance="results/tables/sensor_band.provenance.json",
     log:
         "logs/tables/sensor_band.log",
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1
@@ -83,8 +82,7 @@ rule sensor_band_axes_table:
         provenance="results/tables/sensor_band_axes.provenance.json",
     log:
         "logs/tables/sensor_band_axes.log",
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1

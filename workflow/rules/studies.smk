@@ -27,8 +27,7 @@ rule work_precision_table:
         provenance="results/tables/work_precision.provenance.json",
     log:
         "logs/tables/work_precision.log",
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1
@@ -99,8 +98,7 @@ rule work_precision_figure:
         provenance="results/figures/work_precision_{case}.provenance.json",
     log:
         "logs/figures/work_precision_{case}.log",
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1
@@ -134,8 +132,7 @@ rule stability_table:
         provenance="results/tables/stability.provenance.json",
     log:
         "logs/tables/stability.log",
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1
@@ -179,8 +176,7 @@ rule stability_map:
         provenance="results/tables/stability_map.provenance.json",
     log:
         "logs/figures/stability_map.log",
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1

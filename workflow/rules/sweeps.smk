@@ -49,8 +49,7 @@ rule sweep_table:
         provenance="results/tables/sweep_{set}.provenance.json",
     log:
         "logs/tables/sweep_{set}.log",
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1

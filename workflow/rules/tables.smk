@@ -22,8 +22,7 @@ rule readings_table:
         "logs/tables/{set}_{variant}.log",
     wildcard_constraints:
         set=one_of(READING_SETS),
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1
@@ -59,8 +58,7 @@ rule readings_summary:
         "logs/tables/{set}_variants.log",
     wildcard_constraints:
         set=one_of(READING_SETS),
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1
@@ -99,8 +97,7 @@ rule film_table:
         "logs/tables/{set}_film.log",
     wildcard_constraints:
         set=one_of(FILM_TABLE_SETS),
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1
@@ -133,8 +130,7 @@ rule film_band_table:
         provenance="results/tables/film_band.provenance.json",
     log:
         "logs/tables/film_band.log",
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1
@@ -164,8 +160,7 @@ rule film_indentation_table:
         provenance="results/tables/film_indentation.provenance.json",
     log:
         "logs/tables/film_indentation.log",
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1

@@ -30,8 +30,7 @@ rule wave_map:
         "logs/figures/wave_map_{case}.log",
     wildcard_constraints:
         case=one_of(WAVE_CASES),
-    group:
-        GROUP_TABLES
+    localrule: True
     conda:
         "../envs/rodimpact.yaml"
     threads: 1
