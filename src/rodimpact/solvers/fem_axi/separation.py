@@ -47,7 +47,7 @@ import numpy as np
 import scipy.sparse as sp
 from numpy.typing import NDArray
 
-from rodimpact.solvers.fem_axi.axibody import AxiBody, spd_solver
+from rodimpact.solvers.fem_axi.axibody import AxiBody, spd_inverse_rows
 from rodimpact.solvers.fem_axi.contact import ContactOperator
 
 __all__ = ["COMPLIANCE_MARGIN", "ENERGY_MARGIN", "BodyBound", "Flight", "SeparationBound"]
@@ -94,7 +94,9 @@ class BodyBound:
     @classmethod
     def of(cls, body: AxiBody, rows: sp.spmatrix, GT: NDArray[np.float64]) -> BodyBound:
         """The constants of ``body`` (factorised for its step) for the gap rows ``rows``
-        (shape (c, n)) and G^T = (K_eff^-1 rows^T)^T (shape (c, n)): one factorisation of K."""
+        (shape (c, n)) and G^T = (K_eff^-1 rows^T)^T (shape (c, n)): one factorisation of K, whose
+        elimination-tree block under the rows gives the static compliances
+        (:func:`~.axibody.spd_inverse_rows`)."""
         ones = body.uniform_axial(1.0)
         momentum = body.M @ ones
         mass = float(ones @ momentum)
@@ -104,16 +106,19 @@ class BodyBound:
         one_step = np.einsum("ij,ij->i", dense, GT)
         free = bool(np.linalg.norm(K @ ones) <= RIGID_MODE_TOL * abs(K).max() * np.linalg.norm(ones))
         if free:
-            # K d = f_i with f_i = b_i - s_i M 1 / m_tot (orthogonal to 1) has the solutions
-            # d_p + t 1; the one with d_ground = 0 comes from K without that row and column
-            loads = dense - np.outer(sign / mass, momentum)
-            keep = np.setdiff1d(np.arange(body.n), [int(np.argmax(np.abs(ones)))])
-            solved = spd_solver(K[keep][:, keep])(loads[:, keep].T)
-            static = np.einsum("ij,ji->i", loads[:, keep], solved)
-            one_step = one_step - sign**2 / (mass * 4.0 / body.h**2)
+            # K d = f_i with f_i = b_i - s_i w, w = M 1 / m_tot (orthogonal to 1), has the
+            # solutions d_p + t 1; the one with d_ground = 0 comes from K without that row and
+            # column. With u = K^-1 w there: f_i.K^-1 f_i = b_i.K^-1 b_i - 2 s_i b_i.u + s_i^2 w.u,
+            # one solve and the sparse rows' own block of the factor instead of c solves
             weights = momentum / mass
+            keep = np.setdiff1d(np.arange(body.n), [int(np.argmax(np.abs(ones)))])
+            rows_kept = sp.csr_matrix(rows)[:, keep]
+            inverse_rows, solve = spd_inverse_rows(K[keep][:, keep], rows_kept)
+            u = solve(weights[keep])
+            static = np.diag(inverse_rows) - 2.0 * sign * (rows_kept @ u) + sign**2 * float(weights[keep] @ u)
+            one_step = one_step - sign**2 / (mass * 4.0 / body.h**2)
         else:
-            static = np.einsum("ij,ji->i", dense, spd_solver(K)(dense.T))
+            static = np.diag(spd_inverse_rows(K, rows)[0]).copy()
             weights, mass = np.zeros(body.n), 0.0
         margin = COMPLIANCE_MARGIN * np.abs(static)
         return cls(
