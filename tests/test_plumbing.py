@@ -225,3 +225,50 @@ def test_a_target_of_a_set_not_built_names_the_set_and_where_to_add_it():
     assert "case set 'lab'" in untargeted_set_message("results/forces/lab/b1/sem.csv", untargeted, "c.yaml")
     assert untargeted_set_message("results/tables/compare_table2.csv", untargeted, "c.yaml") is None
     assert untargeted_set_message("results/tables/compare_mylabel.csv", {"mylab": "x.yaml"}, "c.yaml") is None
+
+
+#: Runs snakemake's command line in this process, then prints how many threading.Timer threads
+#: are still alive once it has returned (before the interpreter joins them at its exit).
+_TIMERS_AFTER_RUN = """
+import runpy, sys, threading
+sys.argv = ["snakemake", *sys.argv[1:]]
+try:
+    runpy.run_module("snakemake", run_name="__main__")
+except SystemExit as stop:
+    print("EXIT", stop.code)
+print("TIMERS", sum(isinstance(t, threading.Timer) for t in threading.enumerate()))
+"""
+
+
+def test_no_timer_outlives_a_local_run(tmp_path: Path) -> None:
+    """A local run drops snakemake's job rate limiter when its jobs start (workflow/rules/
+    common.smk, "RATE"): no timer of it is left to hold the process after the run ends (each would
+    for up to the limit's timespan, 1 s by default)."""
+    project = tmp_path / "project"  # .test beside a copy of config/ (its materials are ../config's)
+    shutil.copytree(REPO / ".test" / "config", project / "config")
+    shutil.copytree(REPO / "config", tmp_path / "config")
+    env = {key: value for key, value in os.environ.items() if not key.startswith("SNAKEMAKE") and key != "PYTHONPATH"}
+    run = subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            _TIMERS_AFTER_RUN,
+            "--nocolor",
+            "-j1",
+            "--max-jobs-per-timespan",
+            "100/1s",
+            "--snakefile",
+            str(REPO / "Snakefile"),
+            "--directory",
+            str(project),
+            "results/cases/model.yaml",
+        ],
+        cwd=tmp_path,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=DRY_RUN_TIMEOUT_S,
+        check=False,
+    )
+    assert "EXIT 0" in run.stdout and (project / "results" / "cases" / "model.yaml").exists(), run.stdout + run.stderr
+    assert "TIMERS 0" in run.stdout, run.stdout

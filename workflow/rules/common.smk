@@ -28,6 +28,18 @@
 #   If snakemake changes (skips atexit handlers, e.g. leaves by os._exit): the cache is not
 #   written, planning is only slower, never different; tests/test_plumbing.py::
 #   test_a_dry_run_leaves_the_plan_cache fails.
+#
+# RATE: snakemake's job rate limiter, dropped in a local run.
+#   What snakemake does: its CLI's default --max-jobs-per-timespan, 100/1s,
+#   re-arms a threading.Timer of the timespan after every scheduling round
+#   (JobScheduler._schedule_reevalutation). The timers are not daemon threads: the last one keeps
+#   the process alive for up to the timespan after the run ends, 10 s for every local run. The
+#   API's default, no limiter (max_jobs_per_timespan None), arms none.
+#   Why not enough: a local run starts 2 jobs at a time and never reaches the limit, so its
+#   scheduler drops the limiter when the jobs start (onstart). A run that submits to a cluster
+#   keeps it. A cluster job's snakemake (--mode remote, no hooks) keeps its default, 1 s.
+#   If snakemake changes (renames the scheduler's attribute): local runs end late again, never
+#   differently; tests/test_plumbing.py::test_no_timer_outlives_a_local_run fails.
 
 # Validation of the configuration (before any job), and the helpers the rules share.
 # (SRC_DIR is on the path: preflight.smk, included before the config file is read.)
@@ -66,6 +78,8 @@ if not workflow.remote_exec:
 onstart:
     if not workflow.remote_exec:
         PLAN.save()
+    if workflow.local_exec:  # RATE above
+        workflow.scheduler.job_rate_limiter = None
     register_run(WORKDIR)  # a live run here: no other snakemake releases its lock
 
 
