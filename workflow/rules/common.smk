@@ -29,15 +29,17 @@
 #   written, planning is only slower, never different; tests/test_plumbing.py::
 #   test_a_dry_run_leaves_the_plan_cache fails.
 #
-# RATE: snakemake's job rate limiter, dropped in a local run.
-#   What snakemake does: its CLI's default --max-jobs-per-timespan, 100/1s,
-#   re-arms a threading.Timer of the timespan after every scheduling round
-#   (JobScheduler._schedule_reevalutation). The timers are not daemon threads: the last one keeps
-#   the process alive for up to the timespan after the run ends, 10 s for every local run. The
-#   API's default, no limiter (max_jobs_per_timespan None), arms none.
-#   Why not enough: a local run starts 2 jobs at a time and never reaches the limit, so its
-#   scheduler drops the limiter when the jobs start (onstart). A run that submits to a cluster
-#   keeps it. A cluster job's snakemake (--mode remote, no hooks) keeps its default, 1 s.
+# RATE: snakemake's job rate limiter, dropped when a local run's jobs start.
+#   What snakemake does: its CLI's default --max-jobs-per-timespan, 100/1s, re-arms a
+#   threading.Timer of the timespan after every scheduling round
+#   (JobScheduler._schedule_reevalutation). Every timer starts a round of its own when it fires
+#   and arms the next, so the rounds multiply with the jobs that finish and take a core's time
+#   from the jobs; and the timers are not daemon threads: the last one keeps the process alive
+#   for up to the timespan after the run ends. The API's default, no limiter, arms none.
+#   Why not enough: a local run starts 2 jobs at a time and never reaches the limit, so it drops
+#   the limiter when its jobs start (onstart). A run that submits to a cluster keeps it (dropping
+#   it there did not shorten make test-cluster's build: 105 s either way), and a cluster job's
+#   snakemake (--mode remote, no hooks) keeps its default: up to 1 s at its end.
 #   If snakemake changes (renames the scheduler's attribute): local runs end late again, never
 #   differently; tests/test_plumbing.py::test_no_timer_outlives_a_local_run fails.
 
