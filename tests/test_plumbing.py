@@ -179,26 +179,16 @@ def test_a_run_registered_by_another_host_keeps_its_lock(tmp_path: Path) -> None
 
 
 @pytest.mark.workflow
-def test_a_dry_run_leaves_the_plan_cache(tmp_path: Path) -> None:
-    """A dry run runs no ``onstart`` hook: the cache is written by the atexit handler alone."""
-    project = tmp_path / "project"  # .test beside a copy of config/ (its materials are ../config's)
+def _snakemake_on_dottest(tmp_path: Path, program: list[str], *args: str) -> tuple[Path, subprocess.CompletedProcess]:
+    """``program`` (snakemake's command line, or a script that runs it) with ``args`` on a copy of
+    ``.test/config`` (beside a copy of config/: its materials are ../config's), the checkout's
+    Snakefile, in an environment without snakemake's variables and PYTHONPATH."""
+    project = tmp_path / "project"
     shutil.copytree(REPO / ".test" / "config", project / "config")
     shutil.copytree(REPO / "config", tmp_path / "config")
     env = {key: value for key, value in os.environ.items() if not key.startswith("SNAKEMAKE") and key != "PYTHONPATH"}
     run = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "snakemake",
-            "--nocolor",
-            "-n",
-            "--quiet",
-            "rules",
-            "--snakefile",
-            str(REPO / "Snakefile"),
-            "--directory",
-            str(project),
-        ],
+        [*program, "--nocolor", *args, "--snakefile", str(REPO / "Snakefile"), "--directory", str(project)],
         cwd=tmp_path,
         env=env,
         capture_output=True,
@@ -206,6 +196,12 @@ def test_a_dry_run_leaves_the_plan_cache(tmp_path: Path) -> None:
         timeout=DRY_RUN_TIMEOUT_S,
         check=False,
     )
+    return project, run
+
+
+def test_a_dry_run_leaves_the_plan_cache(tmp_path: Path) -> None:
+    """A dry run runs no ``onstart`` hook: the cache is written by the atexit handler alone."""
+    project, run = _snakemake_on_dottest(tmp_path, [sys.executable, "-m", "snakemake"], "-n", "--quiet", "rules")
     assert run.returncode == 0, run.stdout + run.stderr
     with open(project / CACHE_FILE, "rb") as handle:
         stored = pickle.load(handle)
@@ -244,31 +240,13 @@ def test_no_timer_outlives_a_local_run(tmp_path: Path) -> None:
     """A local run drops snakemake's job rate limiter when its jobs start (workflow/rules/
     common.smk, "RATE"): no timer of it is left to hold the process after the run ends (each would
     for up to the limit's timespan, 1 s by default)."""
-    project = tmp_path / "project"  # .test beside a copy of config/ (its materials are ../config's)
-    shutil.copytree(REPO / ".test" / "config", project / "config")
-    shutil.copytree(REPO / "config", tmp_path / "config")
-    env = {key: value for key, value in os.environ.items() if not key.startswith("SNAKEMAKE") and key != "PYTHONPATH"}
-    run = subprocess.run(
-        [
-            sys.executable,
-            "-c",
-            _TIMERS_AFTER_RUN,
-            "--nocolor",
-            "-j1",
-            "--max-jobs-per-timespan",
-            "100/1s",
-            "--snakefile",
-            str(REPO / "Snakefile"),
-            "--directory",
-            str(project),
-            "results/cases/model.yaml",
-        ],
-        cwd=tmp_path,
-        env=env,
-        capture_output=True,
-        text=True,
-        timeout=DRY_RUN_TIMEOUT_S,
-        check=False,
+    project, run = _snakemake_on_dottest(
+        tmp_path,
+        [sys.executable, "-c", _TIMERS_AFTER_RUN],
+        "-j1",
+        "--max-jobs-per-timespan",
+        "100/1s",
+        "results/cases/model.yaml",
     )
     assert "EXIT 0" in run.stdout and (project / "results" / "cases" / "model.yaml").exists(), run.stdout + run.stderr
     assert "TIMERS 0" in run.stdout, run.stdout
