@@ -101,9 +101,9 @@ class BodyBound:
         momentum = body.M @ ones
         mass = float(ones @ momentum)
         K = sp.csr_matrix(body.K)
-        dense = sp.csr_matrix(rows).toarray()
-        sign = dense @ ones
-        one_step = np.einsum("ij,ij->i", dense, GT)
+        rows = sp.csr_matrix(rows)
+        sign = rows @ ones
+        one_step = np.asarray(rows.multiply(GT).sum(axis=1)).ravel()  # the diagonal of B G, row by row
         free = bool(np.linalg.norm(K @ ones) <= RIGID_MODE_TOL * abs(K).max() * np.linalg.norm(ones))
         if free:
             # K d = f_i with f_i = b_i - s_i w, w = M 1 / m_tot (orthogonal to 1), has the
@@ -112,7 +112,7 @@ class BodyBound:
             # one solve and the sparse rows' own block of the factor instead of c solves
             weights = momentum / mass
             keep = np.setdiff1d(np.arange(body.n), [int(np.argmax(np.abs(ones)))])
-            rows_kept = sp.csr_matrix(rows)[:, keep]
+            rows_kept = rows[:, keep]
             inverse_rows, solve = spd_inverse_rows(K[keep][:, keep], rows_kept)
             u = solve(weights[keep])
             static = np.diag(inverse_rows) - 2.0 * sign * (rows_kept @ u) + sign**2 * float(weights[keep] @ u)
