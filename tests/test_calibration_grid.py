@@ -78,3 +78,31 @@ def test_a_linear_models_propagated_standard_errors_are_exact() -> None:
         fit = SimpleNamespace(values=np.array(values), parameters=parameters, covariance=covariance)
         expected = np.sqrt(np.diag(a @ covariance @ a.T))
         np.testing.assert_allclose(propagated_standard_errors(lambda theta: a @ theta, fit), expected, rtol=1e-10)
+
+
+def test_a_case_at_its_own_constants_reads_its_rules_curve(shipped_project, tmp_path, monkeypatch) -> None:
+    """A case whose law the continuum's indentation calibrates: at its own constants the model
+    reads the curve the rule computed for its runs (the same numbers as computing it again), and
+    at any other value of a constant it computes the curve anew."""
+    import rodimpact.jobs.indentation as indentation
+
+    case = shipped_project.cases["ball_3.16mm-r10_l30_sensor_cal"]
+    numerics = shipped_project.config["numerics"]
+    (curve,) = indentation.indentations_into([case], tmp_path / "curves", numerics["fem_axi"])
+    path = "contact.stack.layers[3].thickness_m"
+    block = {
+        "method": "sem",
+        "parameters": [{"path": path, "bounds": [3e-6, 8e-5], "source": "a test"}],
+        "quantities": ["contact_time_us"],
+    }
+    computed = SetModel([case], block, numerics, {})
+    reading = SetModel([case], block, numerics, {}, curves={case["id"]: str(curve)})
+    own = np.array([case["contact"]["stack"]["layers"][3]["thickness_m"]])
+    expected = computed(own)
+    built = []
+    original = indentation.indentation_curve
+    monkeypatch.setattr(indentation, "indentation_curve", lambda *a: built.append(a) or original(*a))
+    assert reading(own).tolist() == expected.tolist() and not built
+    other = own * 1.5
+    assert reading(other).tolist() == computed(other).tolist() and len(built) == 2
+    assert reading(other)[0] > expected[0]  # a thicker bond line lengthens the contact

@@ -5,4 +5,4 @@ from rodimpact.jobs.logs import script_logging
 
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # `snakemake`: injected by snakemake
     params = snakemake.params
-    run_calibration(params.set_name, params.cases, params.block, params.numerics, snakemake.output.h5)
+    run_calibration(params.set_name, params.cases, params.block, params.numerics, snakemake.output.h5, params.curves)

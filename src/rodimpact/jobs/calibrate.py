@@ -31,6 +31,7 @@ from rodimpact.config.calibration import applied_cases, calibration_cases
 from rodimpact.jobs.calibration_model import GridModel, SetModel, predicted_values
 from rodimpact.present.artifact_common import case_in_words
 from rodimpact.storage.calibrations import StoredCalibration, write_calibration
+from rodimpact.storage.provenance import file_sha256
 
 __all__ = [
     "Applied",
@@ -256,10 +257,14 @@ def propagated_standard_errors(model: Model, fit: Calibration) -> NDArray[np.flo
 
 
 def _model(
-    cases: Sequence[Mapping[str, Any]], block: Mapping[str, Any], numerics: Mapping[str, Any]
+    cases: Sequence[Mapping[str, Any]],
+    block: Mapping[str, Any],
+    numerics: Mapping[str, Any],
+    curves: Mapping[str, str] | None = None,
 ) -> tuple[Model, dict[str, list[float]]]:
     """The model of ``cases``: a :class:`GridModel` on the constant that declares a grid, else a
-    :class:`SetModel`; and the grid by the constant's path."""
+    :class:`SetModel` (``curves``: as :class:`SetModel` takes them); and the grid by the
+    constant's path."""
     records = {
         case["id"]: {
             key: read_history(case["measured"][key]["path"], case["measured"][key], key)
@@ -268,7 +273,7 @@ def _model(
         }
         for case in cases
     }
-    model = SetModel(cases, block, numerics, records)
+    model = SetModel(cases, block, numerics, records, curves)
     grids = {str(p["path"]): [float(v) for v in p["grid"]] for p in block["parameters"] if p.get("grid")}
     if grids:
         (grid,) = grids.values()
@@ -282,9 +287,13 @@ def run_calibration(
     block: Mapping[str, Any],
     numerics: Mapping[str, Any],
     out: str | Path,
+    curves: Mapping[str, str] | None = None,
 ) -> Calibration:
     """Fit the set's constants, hold out each case in turn, predict the cases of ``apply_to`` at
-    the fitted constants, and write the file ``out``.
+    the fitted constants, and write the file ``out``. ``curves``: case id -> the file of the
+    curve its law's rule computed at its own constants, read where the model runs the case at
+    them (:class:`~rodimpact.jobs.calibration_model.SetModel`); each is named with its hash in
+    the file's configuration.
 
     A fit that does not converge, or that the data cannot identify, is still written: its
     status, message and warnings are the result (failure is data); the table and the report
@@ -295,7 +304,7 @@ def run_calibration(
     ModelFailure
         The model failed at the start (or at a grid value), where nothing can be fitted.
     """
-    model, grids = _model(calibration_cases(cases, block), block, numerics)
+    model, grids = _model(calibration_cases(cases, block), block, numerics, curves)
     parameters = calibration_parameters(block)
     start = np.asarray([_start(p) for p in parameters], float)
     words = model.observe(start)
@@ -308,11 +317,15 @@ def run_calibration(
     log.info("calibration of %s: %s (%s); values %s", set_name, fit.status, fit.message, fit.values)
     loo = leave_one_out(model, observations, parameters, fit, cache=cache)
     others = applied_cases(cases, block)
-    applied = Applied.of(_model(others, block, numerics)[0], fit) if others else None
+    applied = Applied.of(_model(others, block, numerics, curves)[0], fit) if others else None
     config = {
         "calibrate": dict(block),
         "cases": [dict(c) for c in calibration_cases(cases, block)],
         "applied": [dict(c) for c in others],
     }
+    if curves:
+        config["curves"] = {
+            cid: {"path": str(path), "sha256": file_sha256(path)} for cid, path in sorted(curves.items())
+        }
     write_calibration(out, _stored(set_name, model, words, fit, loo, warnings, applied, grids), config=config)
     return fit

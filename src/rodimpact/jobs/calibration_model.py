@@ -6,7 +6,9 @@ case's quantities from the run as the comparison tables read them
 (:func:`rodimpact.analysis.observations.observed`): one place says what "the computed arrival at
 the gauge" is, for a table and for a fit alike. A case whose contact law a rule's curve
 calibrates (``tabulated`` from the continuum's indentation) gets that curve computed again at
-every vector, since a constant may change it (a layer's thickness, the rod's modulus).
+every vector, since a constant may change it (a layer's thickness, the rod's modulus); at the
+case's own constants it reads the curve its rule computed for the case's runs instead, where it
+is given (``curves``): the same curve, computed once.
 
 :class:`GridModel` is the same model read between runs made once on a parameter's ``grid``: each
 quantity is a monotone cubic (PCHIP, :class:`scipy.interpolate.PchipInterpolator`) through its
@@ -29,7 +31,7 @@ from rodimpact.analysis.measured import MeasuredHistory
 from rodimpact.analysis.observations import Observed, gives, observed
 from rodimpact.config.calibration import with_method
 from rodimpact.config.measured import record_outputs
-from rodimpact.config.paths import with_setting
+from rodimpact.config.paths import setting_at, with_setting
 from rodimpact.contact.laws import law_of
 from rodimpact.contact.tabulated import CURVE_NUMERICS
 from rodimpact.jobs.batch import CURVE_BUILDERS
@@ -56,6 +58,9 @@ class SetModel:
         The global numerics per method (a calibrated law's curve is computed with its rule's).
     records : mapping
         Case id -> its records, read, by their key in the ``measured`` block.
+    curves : mapping, optional
+        Case id -> the file of the curve its law's rule computed at the case's own constants
+        (with ``numerics``, as here): read instead of computed when a vector is those constants.
     """
 
     def __init__(
@@ -64,8 +69,10 @@ class SetModel:
         block: Mapping[str, Any],
         numerics: Mapping[str, Any],
         records: Mapping[str, Mapping[str, MeasuredHistory]],
+        curves: Mapping[str, str] | None = None,
     ) -> None:
         self.block, self.records, self.numerics = block, records, numerics
+        self.curves = dict(curves or {})
         self.method = str(block["method"])
         self.paths = [str(p["path"]) for p in block["parameters"]]
         self.cases = [self._as_run(case, numerics) for case in cases]
@@ -77,10 +84,13 @@ class SetModel:
         run["outputs"] = list(dict.fromkeys(["contact_force", *record_outputs(case)]))
         return run
 
-    def _solve(self, case: Mapping[str, Any]):
-        """The method's run of ``case``, with its law's curve computed first where the law needs one."""
+    def _solve(self, case: Mapping[str, Any], own: bool = False):
+        """The method's run of ``case``, with its law's curve computed first where the law needs one
+        (read from :attr:`curves` when ``own``: the case is at its own constants)."""
         rule = law_of(case.get("contact")).needs.curve_rule
-        if rule is not None:
+        if rule is not None and own and case["id"] in self.curves:
+            case = with_curve(case, self.curves[case["id"]])
+        elif rule is not None:
             module, function = CURVE_BUILDERS[rule]
             build = getattr(importlib.import_module(module), function)
             case = with_curve(case, build(case, self.numerics[CURVE_NUMERICS[rule]]))
@@ -96,11 +106,12 @@ class SetModel:
         """
         found: list[Observed] = []
         for case in self.cases:
-            changed = case
+            changed, own = case, True
             for path, value in zip(self.paths, np.asarray(theta, float), strict=True):
+                own = own and setting_at(case, path) == float(value)
                 changed = with_setting(changed, path, float(value))
             try:
-                result = self._solve(changed)
+                result = self._solve(changed, own)
                 series = {name: array for name, (array, _, _) in result.series(changed["outputs"]).items()}
                 rows = observed(changed, series, result.summary(), self.records.get(case["id"]))
             except (SolverFailed, KeyError, ValueError, ArithmeticError) as problem:
