@@ -16,6 +16,9 @@
 #   make sensor-axes   each constant of the sensor stack along its range by the continuum (not in
 #                make paper: the check that the band's corners bound the time) ->
 #                results/tables/sensor_band_axes.{csv,md,html}
+#   make film-axes     each constant of the sensor film along its range by the thin-layer law (not
+#                in make paper: the check that the film band's corners bound the time) ->
+#                results/tables/film_band_axes.{csv,md,html}
 #   make report        make paper, then the self-contained HTML report -> results/report.html
 #                      (every table and figure with its caption; the benchmarks too if they exist)
 #   make test-tools    install what some tests use beyond Python, when missing (as root):
@@ -35,7 +38,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-from-lock
 CORES  ?= 2
 
-.PHONY: paper test test-cluster test-tools browser latex bench convergence convergence-separate stability sensor-axes report report-check readme-images provenance env clean distclean
+.PHONY: paper test test-cluster test-tools browser latex bench convergence convergence-separate stability sensor-axes film-axes report report-check readme-images provenance env clean distclean
 
 $(STAMP): environment.lock pyproject.toml
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info[:2] == (3, 11) else "rodimpact needs Python 3.11 (environment.lock is for 3.11), found " + sys.version.split()[0])'
@@ -79,6 +82,9 @@ stability: $(STAMP)
 
 sensor-axes: $(STAMP)
 	$(BIN)/snakemake -j$(CORES) results/tables/sensor_band_axes.csv results/tables/sensor_band_axes.md
+
+film-axes: $(STAMP)
+	$(BIN)/snakemake -j$(CORES) results/tables/film_band_axes.csv results/tables/film_band_axes.md
 
 # After the build (a no-op when it is up to date), so the report never shows stale results;
 # the benchmarks are not rebuilt (make bench), only reported when they exist.

@@ -421,7 +421,7 @@ def test_the_bands_corners_by_the_analytic_law_are_the_continuums(shipped_projec
     monotone along every range, the two give the same end for every constant, so the same corners
     and the same band to the bit; the band file keeps the axes only when computed, and the axes'
     table says the same."""
-    from rodimpact.present.sensor_tables import sensor_axes_frame
+    from rodimpact.present.sensor_tables import band_axes_frame
     from rodimpact.storage.bands import read_band, write_band
 
     case = shipped_project.cases["ball_12.73mm-r10_l30_sensor_cal"]
@@ -437,5 +437,5 @@ def test_the_bands_corners_by_the_analytic_law_are_the_continuums(shipped_projec
         (read,) = read_band(tmp_path / "band.h5")[1]
         assert read.monotone == band.monotone and read.law_longer_high == band.law_longer_high
         (tmp_path / "band.h5").unlink()
-    frame = sensor_axes_frame([("v", with_axes), ("v", by_law)], {})
+    frame = band_axes_frame([("v", with_axes), ("v", by_law)], {})
     assert len(frame) == len(with_axes.parameters) and frame["monotone"].all() and frame["agree"].all()

@@ -32,13 +32,17 @@ rule indentation:
 
 rule film_band:
     """The film's prediction band for one reading with a film (of a set with variants): the SEM's contact time
-    at the corners of the film constants' ranges, and along each range (monotonicity)."""
+    at the corners of the film constants' ranges (study film_band_axes, make film-axes: also along each
+    range, the evidence that the corners bound it)."""
     input:
         cases=lambda w: sorted({case_file_of(c["id"]) for c in reading_cases(w.variant)}),
     output:
-        h5="results/studies/film_band_{variant}.h5",
+        h5="results/studies/{study}_{variant}.h5",
     log:
-        "logs/studies/film_band_{variant}.log",
+        "logs/studies/{study}_{variant}.log",
+    wildcard_constraints:
+        study="film_band|film_band_axes",
+        variant=one_of(FILM_VARIANTS),
     group:
         GROUP_SOLVERS
     conda:
@@ -50,5 +54,6 @@ rule film_band:
         code=SRC_BAND,
         cases=lambda w: reading_cases(w.variant),
         variant="{variant}",
+        axes=lambda w: w.study == "film_band_axes",
     script:
         "../scripts/film_band.py"

@@ -139,6 +139,34 @@ rule film_band_table:
     params:
         code=SRC_PRESENT,
         variants=FILM_VARIANTS,
+        study="film_band",
+    script:
+        "../scripts/film_band_table.py"
+
+
+rule film_band_axes_table:
+    """Each constant of the film along its range, per case of every reading with the film, and
+    whether the time is monotone along it (make film-axes)."""
+    input:
+        bands=expand("results/studies/film_band_axes_{variant}.h5", variant=FILM_VARIANTS),
+        cases=sorted({case_file_of(c["id"]) for v in FILM_VARIANTS for c in reading_cases(v)}),
+    output:
+        csv="results/tables/film_band_axes.csv",
+        md="results/tables/film_band_axes.md",
+        html="results/tables/film_band_axes.html",
+        provenance="results/tables/film_band_axes.provenance.json",
+    log:
+        "logs/tables/film_band_axes.log",
+    localrule: True
+    conda:
+        "../envs/rodimpact.yaml"
+    threads: 1
+    resources:
+        **PRESENTATION_RESOURCES,
+    params:
+        code=SRC_PRESENT,
+        variants=FILM_VARIANTS,
+        study="film_band_axes",
     script:
         "../scripts/film_band_table.py"
 

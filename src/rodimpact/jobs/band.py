@@ -3,10 +3,11 @@
 The film's Young's modulus, Poisson's ratio and thickness are each known only to a range
 (their sources': ``config/materials.yaml`` ``ranges``, the film's ``thickness_range_m``).
 For each case of one Table 2 reading with a film, the SEM computes the contact time at the
-nominal constants, at the 8 corners of the box of the three ranges, and at
-:data:`AXIS_POINTS` points along each range with the others nominal. Where the contact time
-is monotone along every axis (recorded per case), its extremes over the box lie at corners,
-and the corners' min and max are the band.
+nominal constants and at the 8 corners of the box of the three ranges; the corners' min and max
+are the band. Where the contact time is monotone along every axis, its extremes over the box lie
+at corners. With ``axes`` (the named target ``make film-axes``, not the default build) it also
+computes :data:`AXIS_POINTS` points along each range with the others nominal, the evidence of
+that monotonicity (recorded per case).
 """
 
 from __future__ import annotations
@@ -52,8 +53,8 @@ def _contact_time_us(case: Mapping[str, Any], point: Mapping[str, float], method
     )
 
 
-def case_band(case: Mapping[str, Any], method: str = "sem") -> CaseBand:
-    """The band of one case (see the module docstring)."""
+def case_band(case: Mapping[str, Any], method: str = "sem", axes: bool = False) -> CaseBand:
+    """The band of one case (see the module docstring); ``axes``: also each constant's range."""
     ranges = film_ranges(case)
     film = case["contact"]["film"]
     nominal = {
@@ -64,7 +65,7 @@ def case_band(case: Mapping[str, Any], method: str = "sem") -> CaseBand:
     corners = np.array(list(itertools.product(*(ranges[n] for n in BAND_PARAMETERS))), float)
     corner_us = np.array([_contact_time_us(case, dict(zip(BAND_PARAMETERS, c)), method) for c in corners])
     axis_values, axis_us = {}, {}
-    for name in BAND_PARAMETERS:
+    for name in BAND_PARAMETERS if axes else ():
         low, high = ranges[name]
         values = np.linspace(low, high, AXIS_POINTS) if high > low else np.array([low])
         axis_values[name] = values
@@ -85,9 +86,9 @@ def case_band(case: Mapping[str, Any], method: str = "sem") -> CaseBand:
         band.nominal_us,
         band.band_min_us,
         band.band_max_us,
-        band.monotone,
+        "not computed" if band.monotone is None else band.monotone,
     )
-    if not band.monotone:
+    if band.monotone is False:
         log.warning(
             "case %s: the contact time is not monotone along some constant's range; the corners may not bound it",
             band.case_id,
@@ -95,11 +96,14 @@ def case_band(case: Mapping[str, Any], method: str = "sem") -> CaseBand:
     return band
 
 
-def band_to_file(cases: Sequence[Mapping[str, Any]], variant: str, path: str, method: str = "sem") -> None:
-    """The bands of ``cases`` (one reading), written atomically to ``path``."""
+def band_to_file(
+    cases: Sequence[Mapping[str, Any]], variant: str, path: str, method: str = "sem", axes: bool = False
+) -> None:
+    """The bands of ``cases`` (one reading), written atomically to ``path``; ``axes``: with each
+    constant's range (:func:`case_band`)."""
     write_band(
         path,
-        [case_band(case, method) for case in cases],
+        [case_band(case, method, axes) for case in cases],
         variant=variant,
         method=method,
         config=[dict(case) for case in cases],

@@ -27,6 +27,7 @@ from rodimpact.present.study_artifacts import (
 )
 from rodimpact.present.table_artifacts import (
     make_comparison,
+    make_film_axes_table,
     make_film_band_table,
     make_film_indentation_table,
     make_film_table,
@@ -41,6 +42,7 @@ __all__ = [
     "make_fig4",
     "make_fig_film_force",
     "make_fig_readings",
+    "make_film_axes_table",
     "make_film_band_table",
     "make_film_indentation_table",
     "make_stability",

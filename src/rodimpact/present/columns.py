@@ -197,6 +197,7 @@ COLUMNS: dict[str, Column] = {
     "low_us": Column("At the low end", "µs"),
     "high_us": Column("At the high end", "µs"),
     "continuum_lengthens_at": Column("Continuum lengthens at", fmt=_TEXT),
+    "lengthens_at": Column("Lengthens at", fmt=_TEXT),
     "law_lengthens_at": Column("Analytic law lengthens at", fmt=_TEXT),
     "agree": Column("Same end", fmt=_TEXT),
     "role": Column("Role", fmt=_TEXT),

@@ -264,8 +264,8 @@ def film_band_frame(bands: Mapping[str, Sequence[CaseBand]], cases: Mapping[str,
     -------
     DataFrame
         ``variant, row, case_id, mass_g, measured_us, nominal_us, band_min_us, band_max_us,
-        measured_in_band`` (False when nothing was measured), ``monotone``; by variant (in the
-        order given), then mass.
+        measured_in_band`` (False when nothing was measured), and ``monotone`` where some band
+        has its axes; by variant (in the order given), then mass.
     """
     rows = []
     for order, (variant, case_bands) in enumerate(bands.items()):
@@ -286,7 +286,7 @@ def film_band_frame(bands: Mapping[str, Sequence[CaseBand]], cases: Mapping[str,
                     "measured_in_band": bool(
                         math.isfinite(measured) and band.band_min_us <= measured <= band.band_max_us
                     ),
-                    "monotone": bool(band.monotone),
+                    "monotone": band.monotone,
                     "_order": order,
                 }
             )
@@ -302,6 +302,8 @@ def film_band_frame(bands: Mapping[str, Sequence[CaseBand]], cases: Mapping[str,
         "measured_in_band",
         "monotone",
     ]
+    if all(band.monotone is None for group in bands.values() for band in group):
+        columns.remove("monotone")
     frame = pd.DataFrame(rows, columns=[*columns, "_order"])
     frame = frame.sort_values(["_order", "mass_g"], kind="stable").reset_index(drop=True)
     return frame[columns]

@@ -8,7 +8,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from rodimpact.present.film_tables import write_provenance_with_files
-from rodimpact.present.sensor_tables import sensor_axes_frame, sensor_band_frame
+from rodimpact.present.sensor_tables import band_axes_frame, sensor_band_frame
 from rodimpact.present.table_formats import panels
 from rodimpact.present.tables import write_table
 from rodimpact.storage.bands import read_band
@@ -86,7 +86,7 @@ def make_sensor_axes_table(
     provenance: str | Path,
     html: str | Path | None = None,
 ) -> None:
-    """Every constant's range by the continuum, per case (:func:`sensor_axes_frame`), from bands
+    """Every constant's range by the continuum, per case (:func:`band_axes_frame`), from bands
     computed with their axes; rows and masses from the case files.
 
     Raises
@@ -96,7 +96,7 @@ def make_sensor_axes_table(
     """
     cases = {record["case_id"]: record["case"] for path in case_files for record in read_case_file(path)["cases"]}
     read = [read_band(p) for p in bands]
-    frame = sensor_axes_frame([(variant, band) for variant, group in read for band in group], cases)
+    frame = band_axes_frame([(variant, band) for variant, group in read for band in group], cases)
     if frame.empty:
         raise ValueError(f"bands: none of the {len(bands)} band files has its axes")
     views = panels(

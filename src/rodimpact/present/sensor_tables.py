@@ -2,8 +2,9 @@
 
 :func:`sensor_band_frame`: each row's contact time by the SEM with the law the continuum
 calibrates on the stack, at the sourced nominal constants and over their ranges (the band), and
-whether the measurement lies inside. :func:`sensor_axes_frame`: each constant's range by the
-continuum, the others nominal, for bands computed with their axes (``make sensor-axes``).
+whether the measurement lies inside. :func:`band_axes_frame`: each constant's range, the others
+nominal, for any bands computed with their axes (the sensor's, ``make sensor-axes``; the film's,
+``make film-axes``).
 """
 
 from __future__ import annotations
@@ -17,7 +18,7 @@ import pandas as pd
 
 from rodimpact.storage.bands import CaseBand
 
-__all__ = ["CALIBRATED_METHOD", "sensor_axes_frame", "sensor_band_frame"]
+__all__ = ["CALIBRATED_METHOD", "band_axes_frame", "sensor_band_frame"]
 
 #: How the band's times are computed, in words.
 CALIBRATED_METHOD = "SEM with the law of the continuum's indentation"
@@ -86,14 +87,14 @@ def _end(high: bool) -> str:
     return "high" if high else "low"
 
 
-def sensor_axes_frame(bands: Sequence[tuple[str, CaseBand]], cases: Mapping[str, Mapping[str, Any]]) -> pd.DataFrame:
+def band_axes_frame(bands: Sequence[tuple[str, CaseBand]], cases: Mapping[str, Mapping[str, Any]]) -> pd.DataFrame:
     """One row per case and constant of the bands that have their axes: ``variant, row, case_id,
     mass_g, constant, low, high`` (the constant's range, SI), ``low_us, nominal_us, high_us``
     (the time with the constant at its low end, every constant nominal, the constant at its high
-    end), ``monotone`` (along this
-    range), ``continuum_lengthens_at`` and ``law_lengthens_at`` (the end, ``high`` or ``low``,
-    that lengthens the contact by the continuum and by the bodies' analytic law) and ``agree``.
-    Bands without axes give no row."""
+    end), ``monotone`` (along this range), ``continuum_lengthens_at`` (the end, ``high`` or
+    ``low``, that lengthens the contact by the band's own model: the sensor's continuum, the
+    film's thin-layer law), and, where some band records the direction of the bodies' analytic
+    law (the sensor's), ``law_lengthens_at`` and ``agree``. Bands without axes give no row."""
     rows = []
     for variant, band in bands:
         row, mass = _row(cases.get(band.case_id) or {}, band.case_id)
@@ -123,4 +124,6 @@ def sensor_axes_frame(bands: Sequence[tuple[str, CaseBand]], cases: Mapping[str,
                 }
             )
     frame = pd.DataFrame(rows)
+    if not any(band.law_longer_high for _, band in bands):
+        frame = frame.drop(columns=["law_lengthens_at", "agree"], errors="ignore")
     return frame.sort_values(["variant", "mass_g"], kind="stable").reset_index(drop=True) if rows else frame
