@@ -3,6 +3,7 @@ with the project's own writers (rodimpact.storage): the numbers of each frame, a
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from pathlib import Path
 
@@ -10,7 +11,12 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from rodimpact.present.artifacts import make_fig_film_force, make_film_indentation_table, make_film_table
+from rodimpact.present.artifacts import (
+    make_axes_table,
+    make_fig_film_force,
+    make_film_indentation_table,
+    make_film_table,
+)
 from rodimpact.present.columns import headers_with_units
 from rodimpact.present.film_figures import plot_film_force
 from rodimpact.present.film_tables import (
@@ -366,3 +372,20 @@ def test_table2_figure_draws_the_film_on_its_rod(store: dict) -> None:
     assert path.vertices[:, 1].min() == pytest.approx(34.0) and path.vertices[:, 1].max() == pytest.approx(120.0)
     low, high = visible[0].get_ylim()
     assert 0 < low <= 30.0 and high >= 120.0  # the band of the lightest ball and the sweep are inside
+
+
+def test_the_film_axes_table_and_the_band_table_without_axes(store: dict, tmp_path: Path) -> None:
+    """make film-axes' table: a row per case and constant, monotone where the band's axis is; the
+    default build's band (no axes) has no Monotone column, and no axes table can be made of it."""
+    out = {k: tmp_path / f"axes.{k}" for k in ("csv", "md", "html")}
+    make_axes_table([store["band"]], [], kind="film", provenance=tmp_path / "axes.provenance.json", **out)
+    frame = pd.read_csv(out["csv"])
+    assert len(frame) == 2 * len(BAND_PARAMETERS) and set(frame["constant"]) == set(BAND_PARAMETERS)
+    assert frame.groupby("case_id")["monotone"].all().to_dict() == {"ball_a-rod_film": True, "ball_b-rod_film": False}
+    assert "Lengthens at" in out["md"].read_text() and "Continuum" not in out["md"].read_text()
+    variant, bands = read_band(store["band"])
+    bare = [dataclasses.replace(b, axis_values={}, axis_us={}) for b in bands]
+    path = write_band(tmp_path / "film_band_bare.h5", bare, variant=variant, method="sem", config=[])
+    assert "monotone" not in film_band_frame({variant: read_band(path)[1]}, {}).columns
+    with pytest.raises(ValueError, match="has its axes"):
+        make_axes_table([path], [], kind="film", provenance=tmp_path / "bare.provenance.json", **out)

@@ -2,8 +2,8 @@
 figure shows, the files an artifact wrote (for its provenance), a figure saved with its sidecar,
 and a case in words for a title.
 
-The writers are in :mod:`.table_artifacts`, :mod:`.figure_artifacts` and
-:mod:`.study_artifacts`; the names with a leading underscore are theirs alone.
+The writers are in :mod:`.table_artifacts`, :mod:`.figure_artifacts`, :mod:`.study_artifacts`
+and :mod:`.sensor_artifacts`; the names with a leading underscore are theirs alone.
 """
 
 from __future__ import annotations

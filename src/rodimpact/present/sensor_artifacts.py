@@ -1,12 +1,15 @@
-"""The sensor's artifacts: the table of its bands and the table of their axes, from band files and
-case files only."""
+"""The bands' artifacts: the table of the sensor's bands, and the tables of the axes of the
+sensor's and of the film's bands (each constant along its range, ``make sensor-axes`` and ``make
+film-axes``), from band files and case files only."""
 
 from __future__ import annotations
 
 import logging
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
+from rodimpact.present.artifact_common import _outputs
 from rodimpact.present.film_tables import write_provenance_with_files
 from rodimpact.present.sensor_tables import band_axes_frame, sensor_band_frame
 from rodimpact.present.table_formats import panels
@@ -14,13 +17,15 @@ from rodimpact.present.tables import write_table
 from rodimpact.storage.bands import read_band
 from rodimpact.storage.casefile import read_case_file
 
-__all__ = ["make_sensor_axes_table", "make_sensor_band_table"]
+__all__ = ["AXES_TABLES", "make_axes_table", "make_sensor_band_table"]
 
 log = logging.getLogger(__name__)
 
 
-def _outputs(*paths: str | Path | None) -> list[str | Path]:
-    return [p for p in paths if p is not None]
+def _read(bands: Sequence[str | Path], case_files: Sequence[str | Path]) -> tuple[list, dict]:
+    """(variant, CaseBand) of every case of the band files, and case id -> resolved case."""
+    cases = {record["case_id"]: record["case"] for path in case_files for record in read_case_file(path)["cases"]}
+    return [(variant, band) for variant, group in map(read_band, bands) for band in group], cases
 
 
 def make_sensor_band_table(
@@ -33,9 +38,7 @@ def make_sensor_band_table(
     html: str | Path | None = None,
 ) -> None:
     """Every case's band (:func:`sensor_band_frame`); rows and masses from the case files."""
-    cases = {record["case_id"]: record["case"] for path in case_files for record in read_case_file(path)["cases"]}
-    read = [read_band(p) for p in bands]
-    frame = sensor_band_frame([(variant, band) for variant, group in read for band in group], cases)
+    frame = sensor_band_frame(*_read(bands, case_files))
     views = panels(
         frame,
         "The sensor as built: the continuum's prediction and its band",
@@ -77,33 +80,22 @@ def make_sensor_band_table(
     log.info("sensor bands: %d cases, %d measurements inside", len(frame), int(frame["measured_in_band"].sum()))
 
 
-def make_sensor_axes_table(
-    bands: Sequence[str | Path],
-    case_files: Sequence[str | Path],
-    *,
-    csv: str | Path,
-    md: str | Path,
-    provenance: str | Path,
-    html: str | Path | None = None,
-) -> None:
-    """Every constant's range by the continuum, per case (:func:`band_axes_frame`), from bands
-    computed with their axes; rows and masses from the case files.
+@dataclass(frozen=True)
+class _AxesTable:
+    """What one kind of band's axes table shows: its title, value columns and caption, and the
+    frame's columns it renames."""
 
-    Raises
-    ------
-    ValueError
-        No band has its axes (the band files are the default build's, not ``make sensor-axes``').
-    """
-    cases = {record["case_id"]: record["case"] for path in case_files for record in read_case_file(path)["cases"]}
-    read = [read_band(p) for p in bands]
-    frame = band_axes_frame([(variant, band) for variant, group in read for band in group], cases)
-    if frame.empty:
-        raise ValueError(f"bands: none of the {len(bands)} band files has its axes")
-    views = panels(
-        frame,
+    title: str
+    values: tuple[str, ...]
+    caption: str
+    rename: tuple[tuple[str, str], ...] = ()
+
+
+#: The bands whose axes have a table: the sensor's (make sensor-axes) and the film's (make film-axes).
+AXES_TABLES = {
+    "sensor": _AxesTable(
         "The sensor as built: each constant's range by the continuum",
-        ["row", "constant"],
-        [
+        (
             "low",
             "high",
             "low_us",
@@ -113,27 +105,58 @@ def make_sensor_axes_table(
             "continuum_lengthens_at",
             "law_lengthens_at",
             "agree",
-        ],
-        by="variant",
-    )
+        ),
+        "The sensor as built, each constant of the stack along its sourced range with the others nominal: "
+        "the contact time by the SEM with the law of the continuum's static indentation at the range's low end, "
+        "at the nominal and at its high end (µs); whether it is monotone along the range; and which end "
+        "lengthens the contact by the continuum and by the stack's analytic (thin-layer) law, which the "
+        "default build's band takes for its corners.",
+    ),
+    "film": _AxesTable(
+        "The sensor film: each constant's range by the thin-layer law",
+        ("low", "high", "low_us", "nominal_us", "high_us", "monotone", "lengthens_at"),
+        "The sensor film, each constant (Young's modulus, Poisson's ratio, thickness) along its range with the "
+        "others nominal: the SEM's contact time with the thin-layer law at the range's low end, at the nominal "
+        "and at its high end (µs), whether it is monotone along the range (then the corners of the box, the "
+        "band of film_band, bound it) and which end lengthens the contact.",
+        # the film's band is the thin-layer law's, not the continuum's
+        (("continuum_lengthens_at", "lengthens_at"),),
+    ),
+}
+
+
+def make_axes_table(
+    bands: Sequence[str | Path],
+    case_files: Sequence[str | Path],
+    *,
+    kind: str,
+    csv: str | Path,
+    md: str | Path,
+    provenance: str | Path,
+    html: str | Path | None = None,
+) -> None:
+    """Every constant's range per case (:func:`band_axes_frame`) of the bands of ``kind`` (a key
+    of :data:`AXES_TABLES`), computed with their axes; rows and masses from the case files.
+
+    Raises
+    ------
+    ValueError
+        No band has its axes (the band files are the default build's, not ``make sensor-axes``'
+        or ``make film-axes``').
+    """
+    spec = AXES_TABLES[kind]
+    frame = band_axes_frame(*_read(bands, case_files))
+    if frame.empty:
+        raise ValueError(f"bands: none of the {len(bands)} band files has its axes")
+    frame = frame.rename(columns=dict(spec.rename))
     write_table(
         frame,
         csv=csv,
         md=md,
         html=html,
-        views=views,
-        caption=(
-            "The sensor as built, each constant of the stack along its sourced range with the others nominal: "
-            "the contact time by the SEM with the law of the continuum's static indentation at the range's low end, "
-            "at the nominal and at its high end (µs); whether it is monotone along the range; and which end "
-            "lengthens the contact by the continuum and by the stack's analytic (thin-layer) law, which the "
-            "default build's band takes for its corners."
-        ),
+        views=panels(frame, spec.title, ["row", "constant"], list(spec.values), by="variant"),
+        caption=spec.caption,
     )
     write_provenance_with_files(provenance, [], _outputs(csv, md, html), {"band": bands, "case file": case_files})
-    log.info(
-        "sensor axes: %d ranges, %d monotone, %d with the analytic law's direction",
-        len(frame),
-        int(frame["monotone"].sum()),
-        int(frame["agree"].fillna(False).sum()),
-    )
+    agree = f", {int(frame['agree'].fillna(False).sum())} with the analytic law's direction" if "agree" in frame else ""
+    log.info("%s axes: %d ranges, %d monotone%s", kind, len(frame), int(frame["monotone"].sum()), agree)

@@ -17,8 +17,6 @@ from rodimpact.present.film_tables import (
     readings_frame,
     write_provenance_with_files,
 )
-from rodimpact.present.sensor_tables import band_axes_frame
-from rodimpact.present.table_formats import panels
 from rodimpact.present.table_views import (
     comparison_views,
     film_band_views,
@@ -216,51 +214,6 @@ def make_film_band_table(
         len(bands),
         int(frame["measured_in_band"].sum()),
     )
-
-
-def make_film_axes_table(
-    bands: Sequence[str | Path],
-    case_files: Sequence[str | Path],
-    *,
-    csv: str | Path,
-    md: str | Path,
-    provenance: str | Path,
-    html: str | Path | None = None,
-) -> None:
-    """Each film constant along its range, per case (:func:`~.sensor_tables.band_axes_frame`), from
-    bands computed with their axes; rows and masses from the case files.
-
-    Raises
-    ------
-    ValueError
-        No band has its axes (the band files are the default build's, not ``make film-axes``').
-    """
-    cases = {record["case_id"]: record["case"] for path in case_files for record in read_case_file(path)["cases"]}
-    frame = band_axes_frame([(variant, band) for variant, group in map(read_band, bands) for band in group], cases)
-    if frame.empty:
-        raise ValueError(f"bands: none of the {len(bands)} band files has its axes")
-    frame = frame.rename(columns={"continuum_lengthens_at": "lengthens_at"})  # by the thin-layer law
-    write_table(
-        frame,
-        csv=csv,
-        md=md,
-        html=html,
-        views=panels(
-            frame,
-            "The sensor film: each constant's range by the thin-layer law",
-            ["row", "constant"],
-            ["low", "high", "low_us", "nominal_us", "high_us", "monotone", "lengthens_at"],
-            by="variant",
-        ),
-        caption=(
-            "The sensor film, each constant (Young's modulus, Poisson's ratio, thickness) along its range with the "
-            "others nominal: the SEM's contact time with the thin-layer law at the range's low end, at the nominal "
-            "and at its high end (µs), whether it is monotone along the range (then the corners of the box, the "
-            "band of film_band, bound it) and which end lengthens the contact."
-        ),
-    )
-    write_provenance_with_files(provenance, [], _outputs(csv, md, html), {"band": bands, "case file": case_files})
-    log.info("film axes: %d ranges, %d monotone", len(frame), int(frame["monotone"].sum()))
 
 
 def make_film_indentation_table(
