@@ -10,6 +10,7 @@ import h5py
 import numpy as np
 import pytest
 
+from rodimpact.storage.bands import CaseBand, write_band
 from rodimpact.storage.faults import REBUILD_HINT
 from rodimpact.storage.provenance import library_versions
 from rodimpact.storage.runs import read_summary, write_run
@@ -199,3 +200,27 @@ def test_a_benchmark_table_resolves_without_input_runs(tmp_path: Path, monkeypat
     )
     found = _by_path(audit_sidecar("results/benchmarks/b.provenance.json", {}, ROOT))
     assert found["results/benchmarks/b.csv"].ok and found["results/benchmarks/b.provenance.json"].ok
+
+
+@pytest.mark.parametrize(
+    "where",
+    [
+        "studies/film_band_rod_film.h5",
+        "studies/film_band_axes_rod_film.h5",
+        "studies/sensor_band/rod_sensor/c1.h5",
+        "studies/sensor_band_axes/rod_sensor/c1.h5",
+    ],
+)
+def test_every_band_file_is_audited_as_a_band(tmp_path: Path, monkeypatch, where: str) -> None:
+    """The default build's bands and the named targets' bands with their axes (make film-axes,
+    make sensor-axes) are band files, their data checked against their hash, not runs."""
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr("rodimpact.storage.provenance.code_version", lambda: VERSION)
+    monkeypatch.setattr(audit_module, "find_repo_root", lambda start=None: ROOT)
+    band = CaseBand("c1", 36.0, 33.0, np.ones((2, 1)), np.array([30.0, 38.0]), {}, {}, ("film_thickness_m",))
+    path = write_band(tmp_path / "results" / where, [band], variant="rod_film", method="sem", config=[])
+    found = _by_path(audit(tmp_path, workflow=False).findings)
+    assert found[f"results/{where}"].kind == "band" and found[f"results/{where}"].ok
+    with h5py.File(path, "r+") as h5:  # a hand-edited band no longer matches its hash
+        h5["c1/corner_us"][0] = 31.0
+    assert not _by_path(audit(tmp_path, workflow=False).findings)[f"results/{where}"].ok

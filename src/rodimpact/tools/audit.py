@@ -6,8 +6,9 @@
   over config, series and summary) matches its content, it was made by the libraries
   installed now, and the case file it records still holds its case;
 * a case file (``results/cases/*.yaml``): its case has the hash it was written with;
-* a contact-law curve (``results/indentation/*.h5``), a band
-  (``results/studies/film_band_*.h5``, ``results/studies/sensor_band/*.h5``) or a calibration
+* a contact-law curve (``results/indentation/*.h5``), a band (``results/studies/film_band_*.h5``,
+  ``results/studies/sensor_band/*/*.h5``; with their axes, ``make film-axes``' and ``make
+  sensor-axes``', ``film_band_axes_*.h5`` and ``sensor_band_axes/*/*.h5``) or a calibration
   (``results/calibration/*.h5``): its data match their hash;
 * a table or figure: a provenance sidecar (``*.provenance.json``) lists it with the SHA-256
   of its bytes as written, and every input run the sidecar names still has the config and
@@ -65,6 +66,9 @@ EXEMPT: dict[str, str] = {
     "benchmarks/build.csv": "the last build's own timing, from snakemake's job records (`make bench`)",
 }
 _SIDECAR = ".provenance.json"
+#: Where under ``results/studies/`` the band files are: the film's (``film_band_{variant}.h5``, and
+#: ``film_band_axes_{variant}.h5``) and the sensor's (``sensor_band/`` and ``sensor_band_axes/``).
+BAND_PREFIXES = ("film_band_", "sensor_band/", "sensor_band_axes/")
 _BENCHMARKS = ("results/benchmarks/sem.csv", "results/benchmarks/fem.csv")
 
 
@@ -272,9 +276,7 @@ def audit(root: str | Path = ".", *, results: str = "results", workflow: bool = 
         for path in files:
             if path.startswith(f"{results}/indentation/") and path.endswith(".h5"):
                 found[path] = audit_derived(path, "curve", repo_root)
-            elif path.startswith(
-                (f"{results}/studies/film_band_", f"{results}/studies/sensor_band/")
-            ) and path.endswith(".h5"):
+            elif path.startswith(tuple(f"{results}/studies/{band}" for band in BAND_PREFIXES)) and path.endswith(".h5"):
                 found[path] = audit_derived(path, "band", repo_root)
             elif path.startswith(f"{results}/calibration/") and path.endswith(".h5"):
                 found[path] = audit_derived(path, "calibration", repo_root)
