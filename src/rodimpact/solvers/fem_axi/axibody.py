@@ -38,6 +38,18 @@ from rodimpact.solvers.fem_axi.farbar import FarBar
 __all__ = ["AxiBody", "spd_inverse_rows", "spd_solver"]
 
 
+def _solver_of(factor: qdldl.Solver) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
+    """b (shape (n,) or (n, k)) -> the solution of the same shape, by ``factor``'s back-substitutions."""
+
+    def solve(b: NDArray[np.float64]) -> NDArray[np.float64]:
+        b = np.asarray(b, dtype=float)
+        if b.ndim == 1:
+            return factor.solve(b)
+        return np.column_stack([factor.solve(np.ascontiguousarray(column)) for column in b.T])
+
+    return solve
+
+
 def spd_solver(matrix: sp.spmatrix) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
     """Solver of a sparse symmetric positive definite system, factorised once (LDL^T).
 
@@ -56,15 +68,7 @@ def spd_solver(matrix: sp.spmatrix) -> Callable[[NDArray[np.float64]], NDArray[n
     callable
         b (shape (n,) or (n, k)) -> the solution of the same shape.
     """
-    factor = qdldl.Solver(sp.triu(matrix, format="csc"))
-
-    def solve(b: NDArray[np.float64]) -> NDArray[np.float64]:
-        b = np.asarray(b, dtype=float)
-        if b.ndim == 1:
-            return factor.solve(b)
-        return np.column_stack([factor.solve(np.ascontiguousarray(column)) for column in b.T])
-
-    return solve
+    return _solver_of(qdldl.Solver(sp.triu(matrix, format="csc")))
 
 
 def spd_inverse_rows(
@@ -114,13 +118,7 @@ def spd_inverse_rows(
     Y = np.asarray(Y).reshape(len(reach), -1)
     inverse_rows = (Y / diagonal[reach][:, None]).T @ Y
 
-    def solve(b: NDArray[np.float64]) -> NDArray[np.float64]:
-        b = np.asarray(b, dtype=float)
-        if b.ndim == 1:
-            return factor.solve(b)
-        return np.column_stack([factor.solve(np.ascontiguousarray(column)) for column in b.T])
-
-    return 0.5 * (inverse_rows + inverse_rows.T), solve
+    return 0.5 * (inverse_rows + inverse_rows.T), _solver_of(factor)
 
 
 @dataclass
