@@ -11,9 +11,7 @@ rule calibrate:
         case=lambda w: sorted({case_file_of(c["id"]) for c in calibration_cases_of(w.set)}),
         records=lambda w: compare_histories(w.set),
         # the curves the cases' own runs take: read at the cases' own constants, not recomputed
-        curves=lambda w: sorted(
-            {os.path.dirname(curve_file_of(c)) for c in calibration_cases_of(w.set) if curve_rule_of(c)}
-        ),
+        curves=lambda w: sorted({os.path.dirname(f) for f in calibration_curves(w.set).values()}),
     output:
         h5="results/calibration/{set}.h5",
     log:
@@ -33,7 +31,7 @@ rule calibrate:
         cases=lambda w: calibration_cases_of(w.set),
         block=lambda w: PROJECT.calibrate[w.set],
         numerics=config["numerics"],
-        curves=lambda w: {c["id"]: curve_file_of(c) for c in calibration_cases_of(w.set) if curve_rule_of(c)},
+        curves=lambda w: calibration_curves(w.set),
     script:
         "../scripts/calibrate.py"
 

@@ -81,6 +81,12 @@ def calibration_cases_of(set_name):
     return [*calibration_cases(cases, block), *applied_cases(cases, block)]
 
 
+def calibration_curves(set_name):
+    """Case id -> the curve file its runs take, for the cases of a set's calibration whose law a
+    rule's curve calibrates (read by the calibration at the cases' own constants)."""
+    return {c["id"]: curve_file_of(c) for c in calibration_cases_of(set_name) if curve_rule_of(c)}
+
+
 def calibration_resources():
     """A calibration job's resources: its method's runs of every case, each repeated once per
     value of a grid, or as often as a fit and its leave-one-out are expected to evaluate it
