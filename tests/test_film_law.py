@@ -16,8 +16,10 @@ import math
 import numpy as np
 import pytest
 
+from rodimpact.contact import film_impact
 from rodimpact.contact.film import HertzFilmLaw, constrained_modulus, film_constant
 from rodimpact.contact.hertz import HertzLaw, hertz_constant
+from rodimpact.contact.law import ContactLaw
 from rodimpact.contact.tabulated import TabulatedLaw, pchip_slopes
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.model.responses import Rod
@@ -118,6 +120,37 @@ def test_vanishing_film_is_hertz():
     thicknesses = np.geomspace(1e-12, 1e-6, 5)
     shares = [float(film_law(h).approach(5.0) - hertz.approach(5.0)) for h in thicknesses]
     assert np.polyfit(np.log(thicknesses), np.log(shares), 1)[0] == pytest.approx(0.5, abs=1e-9)
+
+
+@pytest.mark.parametrize("thickness", [1e-30, 1e-9, THICKNESS, 1e-3])
+@pytest.mark.parametrize(("mass", "velocity"), [(1e-6, 50.0), (MASS, VELOCITY), (10.0, 0.01)])
+def test_rigid_impact_in_s_against_adaptive_quadrature(thickness, mass, velocity):
+    """The film law's rigid impact (Gauss-Legendre in s, rodimpact.contact.film_impact) against
+    the generic adaptive quadrature of the energy integral in alpha (epsrel 1e-12), from a film of
+    1e-30 m (Hertz) to 1 mm, and against Gauss-Legendre on 4 times the nodes (converged)."""
+    law = film_law(thickness)
+    fast, generic = law.rigid_impact(mass, velocity), ContactLaw._rigid_impact(law, mass, velocity)
+    assert fast.contact_time_s == pytest.approx(generic.contact_time_s, rel=1e-11)
+    assert fast.max_approach_m == pytest.approx(generic.max_approach_m, rel=1e-14)
+    assert fast.peak_force_N == pytest.approx(generic.peak_force_N, rel=1e-14)
+    nodes, weights = np.polynomial.legendre.leggauss(4 * film_impact.NODES)
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(film_impact, "_NODES", nodes)
+        patch.setattr(film_impact, "_WEIGHTS", weights)
+        finer = film_impact.thin_layer_rigid_impact(law._a, law._b, mass, velocity)
+    assert fast.contact_time_s == pytest.approx(finer.contact_time_s, rel=1e-14)
+
+
+def test_rigid_impact_in_s_is_hertz_without_a_film():
+    """B = 0 is Hertz's law: t_c, alpha_max and P_max of the closed form to 1e-14."""
+    k = hertz_constant(RADIUS, STEEL, ALUMINIUM)
+    exact = HertzLaw(k, RADIUS).rigid_impact(MASS, VELOCITY)
+    thin = film_impact.thin_layer_rigid_impact(k ** (-2.0 / 3.0), 0.0, MASS, VELOCITY)
+    assert thin.contact_time_s == pytest.approx(exact.contact_time_s, rel=1e-14)
+    assert thin.max_approach_m == pytest.approx(exact.max_approach_m, rel=1e-14)
+    assert thin.peak_force_N == pytest.approx(exact.peak_force_N, rel=1e-14)
+    with pytest.raises(ValueError, match="mass_kg"):
+        film_impact.thin_layer_rigid_impact(1.0, 0.0, 0.0, VELOCITY)
 
 
 def test_rigid_rod_closed_form_against_sem():

@@ -39,8 +39,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from rodimpact.contact.film_impact import thin_layer_rigid_impact
 from rodimpact.contact.hertz import ElasticMaterial, hertz_constant
-from rodimpact.contact.law import MAX_STEP_ITERATIONS, ContactLaw, LawSettings, Needs, StepNotConverged
+from rodimpact.contact.law import MAX_STEP_ITERATIONS, ContactLaw, LawSettings, Needs, RigidImpact, StepNotConverged
 from rodimpact.settings.declare import REQUIRED, Material, OptionError, Settings, setting
 
 __all__ = [
@@ -343,6 +344,11 @@ class HertzFilmLaw(ContactLaw):
             s_sum[n] = math.fsum(power1[k] * power0[n - 1 - k] for k in range(n))
         ds = (upper - lower) / (a * s_sum[4] + b * s_sum[3])
         return ds * (0.4 * a * s_sum[10] + b * s_sum[9] / 3.0)
+
+    def _rigid_impact(self, mass_kg: float, velocity_m_s: float) -> RigidImpact:
+        """:meth:`rigid_impact` in s, by Gauss-Legendre quadrature of an analytic integrand
+        (:func:`~rodimpact.contact.film_impact.thin_layer_rigid_impact`)."""
+        return thin_layer_rigid_impact(self._a, self._b, mass_kg, velocity_m_s)
 
     def approach(self, force_N: float) -> float:
         force = max(force_N, 0.0)
