@@ -17,6 +17,7 @@ report: "workflow/report/workflow.rst"
 
 
 include: "workflow/rules/common.smk"
+include: "workflow/rules/common_readings.smk"
 include: "workflow/rules/common_studies.smk"
 include: "workflow/rules/common_sensor.smk"
 include: "workflow/rules/common_compare.smk"
