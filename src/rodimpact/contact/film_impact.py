@@ -32,7 +32,7 @@ import math
 
 import numpy as np
 
-from rodimpact.contact.law import MAX_STEP_ITERATIONS, RigidImpact, StepNotConverged
+from rodimpact.contact.law import MAX_STEP_ITERATIONS, RigidImpact, StepNotConverged, _check_positive
 
 __all__ = ["NODES", "thin_layer_rigid_impact"]
 
@@ -72,19 +72,15 @@ def thin_layer_rigid_impact(a: float, b: float, mass_kg: float, velocity_m_s: fl
         A = k^(-2/3), m / N^(2/3) (> 0, or 0 with ``b`` > 0).
     b : float
         B = c^(-1/2), m / N^(1/2) (>= 0; 0 is Hertz's law).
-    mass_kg : float
-        Impactor mass m, kg (> 0).
-    velocity_m_s : float
-        Impact velocity v0, m/s (> 0).
+    mass_kg, velocity_m_s : float
+        The impactor's mass, kg, and velocity, m/s, as for :meth:`.ContactLaw.rigid_impact`.
 
     Returns
     -------
     RigidImpact
         alpha_max = A s_max^4 + B s_max^3, the contact time, and the peak force s_max^6.
     """
-    for name, value in (("mass_kg", mass_kg), ("velocity_m_s", velocity_m_s)):
-        if not (math.isfinite(value) and value > 0):
-            raise ValueError(f"{name} must be > 0, got {value!r}")
+    _check_positive(mass_kg=mass_kg, velocity_m_s=velocity_m_s)
     s_max = _stop_root(a, b, 0.5 * mass_kg * velocity_m_s**2)
     root = math.sqrt(s_max)
     u = 0.5 * root * (_NODES + 1.0)  # the nodes on [0, sqrt(s_max)]
