@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from rodimpact.jobs.runner import run_case
-from rodimpact.solvers.fem1d.bar import bar_model
+from rodimpact.solvers.fem1d.bar import bar_model, row_blocks
 from rodimpact.solvers.fem1d.options import FEM1DOptions
 from rodimpact.solvers.fem1d.solver import solve_fem1d
 from rodimpact.solvers.sem.history import ForceHistory
@@ -140,3 +140,28 @@ def test_banded_solver_is_the_sparse_solve(element, far_end):
     matrix = (bar.stiffness + 1e12 * bar.mass).tocsc()
     rhs = np.random.default_rng(0).normal(size=matrix.shape[0])
     np.testing.assert_allclose(banded_solver(matrix)(rhs), spsolve(matrix, rhs), rtol=1e-10, atol=0)
+
+
+@pytest.mark.parametrize("element", ["P1", "P2"])
+def test_row_blocks_give_each_product_to_the_last_bit(element):
+    """A step's products taken as one stacked product (row_blocks) are each block's own product,
+    bit for bit (the same sum in the same order per row), on vectors of very different scales;
+    an absent block has no rows."""
+    rod = model_problem().rod
+    length = rod.length_m
+    bar = bar_model(
+        rod, element, 60, stations_m=(0.0, 0.3 * length, length), gauges_m=((0.5 * length, 0.01),), far_end=True
+    )
+    rng = np.random.default_rng(7)
+    blocks = (bar.station_probes, bar.strain_probes, bar.gauge_probes, None, bar.stiffness)
+    stacked, rows = row_blocks(*blocks)
+    assert rows[3] is None and stacked.shape[0] == sum(b.shape[0] for b in blocks if b is not None)
+    of_v, (at_m, at_far) = row_blocks(bar.mass, bar.far_probe)
+    for scale in (1e-15, 1e-6, 1.0, 1e6):
+        u = scale * rng.standard_normal(bar.stiffness.shape[0])
+        together = stacked @ u
+        for block, at in zip(blocks, rows):
+            if block is not None:
+                assert np.array_equal(together[at], block @ u)
+        assert np.array_equal((of_v @ u)[at_m], bar.mass @ u)
+        assert np.array_equal((of_v @ u)[at_far], bar.far_probe @ u)

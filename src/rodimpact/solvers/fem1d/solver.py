@@ -28,7 +28,7 @@ from scipy.optimize import brentq
 from rodimpact.model.gauges import Gauge
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.model.responses import Rod
-from rodimpact.solvers.fem1d.bar import BarModel, banded_solver, bar_model, end_vector
+from rodimpact.solvers.fem1d.bar import BarModel, banded_solver, bar_model, end_vector, row_blocks
 from rodimpact.solvers.fem1d.options import FEM1DOptions
 from rodimpact.solvers.field import FieldGrid, field_datasets
 from rodimpact.solvers.gauge_series import (
@@ -193,6 +193,11 @@ def solve_fem1d(
     rod, m, law = problem.rod, problem.mass_kg, problem.contact
     M, K = bar.mass, bar.stiffness
     b_rod = g[bar.end]
+    # what a step records of u (the probes, K u) and of v (M v, the far end), one product each
+    of_u, (at_station, at_strain, at_gauge, at_k) = row_blocks(
+        bar.station_probes, bar.strain_probes, bar.gauge_probes, K
+    )
+    of_v, (at_m, at_far) = row_blocks(M, bar.far_probe)
 
     d = M.shape[0]
     u, v, a = np.zeros(d), np.zeros(d), np.zeros(d)
@@ -247,14 +252,15 @@ def solve_fem1d(
         hist.w.append(w)
         hist.u_end.append(u[bar.end])
         AL.append(alpha)
-        hist.station_u.append(bar.station_probes @ u)
-        hist.station_e.append(bar.strain_probes @ u)
-        if bar.gauge_probes is not None:
-            hist.gauge_e.append(bar.gauge_probes @ u)
-        if bar.far_probe is not None:
-            hist.far_v.append(float((bar.far_probe @ v)[0]))
-        hist.rod_kinetic.append(0.5 * v @ (M @ v))
-        hist.rod_strain.append(0.5 * u @ (K @ u))
+        of_u_u, of_v_v = of_u @ u, of_v @ v
+        hist.station_u.append(of_u_u[at_station].copy())
+        hist.station_e.append(of_u_u[at_strain].copy())
+        if at_gauge is not None:
+            hist.gauge_e.append(of_u_u[at_gauge].copy())
+        if at_far is not None:
+            hist.far_v.append(float(of_v_v[at_far][0]))
+        hist.rod_kinetic.append(0.5 * v @ of_v_v[at_m])
+        hist.rod_strain.append(0.5 * u @ of_u_u[at_k])
         if recorder is not None:
             recorder.record(t, u)
         if in_contact:
