@@ -13,9 +13,15 @@ from pathlib import Path
 from typing import Any
 
 from rodimpact.present.tables import load_records, table2_frame
+from rodimpact.storage.casefile import read_case_file
 from rodimpact.storage.sidecar import provenance_record, write_provenance
 
 __all__ = ["case_in_words"]
+
+
+def _cases_in(case_files: Sequence[str | Path]) -> dict[str, Any]:
+    """Case id -> resolved case, of every case of the case files."""
+    return {record["case_id"]: record["case"] for path in case_files for record in read_case_file(path)["cases"]}
 
 
 def _by_variant(runs: Sequence[str | Path], variants: Sequence[str]):

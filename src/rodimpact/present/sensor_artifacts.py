@@ -9,13 +9,12 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from rodimpact.present.artifact_common import _outputs
+from rodimpact.present.artifact_common import _cases_in, _outputs
 from rodimpact.present.film_tables import write_provenance_with_files
 from rodimpact.present.sensor_tables import band_axes_frame, sensor_band_frame
 from rodimpact.present.table_formats import panels
 from rodimpact.present.tables import write_table
 from rodimpact.storage.bands import read_band
-from rodimpact.storage.casefile import read_case_file
 
 __all__ = ["AXES_TABLES", "make_axes_table", "make_sensor_band_table"]
 
@@ -24,8 +23,7 @@ log = logging.getLogger(__name__)
 
 def _read(bands: Sequence[str | Path], case_files: Sequence[str | Path]) -> tuple[list, dict]:
     """(variant, CaseBand) of every case of the band files, and case id -> resolved case."""
-    cases = {record["case_id"]: record["case"] for path in case_files for record in read_case_file(path)["cases"]}
-    return [(variant, band) for variant, group in map(read_band, bands) for band in group], cases
+    return [(variant, band) for variant, group in map(read_band, bands) for band in group], _cases_in(case_files)
 
 
 def make_sensor_band_table(

@@ -9,7 +9,7 @@ import logging
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
-from rodimpact.present.artifact_common import _by_variant, _outputs
+from rodimpact.present.artifact_common import _by_variant, _cases_in, _outputs
 from rodimpact.present.film_tables import (
     film_band_frame,
     film_indentation_frame,
@@ -36,7 +36,6 @@ from rodimpact.present.tables import (
     write_table,
 )
 from rodimpact.storage.bands import read_band
-from rodimpact.storage.casefile import read_case_file
 from rodimpact.storage.curves import read_contact_curve
 from rodimpact.storage.sidecar import write_provenance
 
@@ -187,8 +186,7 @@ def make_film_band_table(
     html: str | Path | None = None,
 ) -> None:
     """Every case of every band file (:func:`film_band_frame`); rows and masses from the case files."""
-    cases = {record["case_id"]: record["case"] for path in case_files for record in read_case_file(path)["cases"]}
-    frame = film_band_frame(dict(read_band(p) for p in bands), cases)
+    frame = film_band_frame(dict(read_band(p) for p in bands), _cases_in(case_files))
     write_table(
         frame,
         csv=csv,

@@ -252,15 +252,15 @@ def solve_fem1d(
         hist.w.append(w)
         hist.u_end.append(u[bar.end])
         AL.append(alpha)
-        of_u_u, of_v_v = of_u @ u, of_v @ v
-        hist.station_u.append(of_u_u[at_station].copy())
-        hist.station_e.append(of_u_u[at_strain].copy())
+        u_products, v_products = of_u @ u, of_v @ v
+        hist.station_u.append(u_products[at_station].copy())
+        hist.station_e.append(u_products[at_strain].copy())
         if at_gauge is not None:
-            hist.gauge_e.append(of_u_u[at_gauge].copy())
+            hist.gauge_e.append(u_products[at_gauge].copy())
         if at_far is not None:
-            hist.far_v.append(float(of_v_v[at_far][0]))
-        hist.rod_kinetic.append(0.5 * v @ of_v_v[at_m])
-        hist.rod_strain.append(0.5 * u @ of_u_u[at_k])
+            hist.far_v.append(float(v_products[at_far][0]))
+        hist.rod_kinetic.append(0.5 * v @ v_products[at_m])
+        hist.rod_strain.append(0.5 * u @ u_products[at_k])
         if recorder is not None:
             recorder.record(t, u)
         if in_contact:
