@@ -196,6 +196,22 @@ def test_the_configuration_check_loads_no_solver_no_mesh_and_no_plotting():
     assert "rodimpact.solvers.registry" in loaded
 
 
+def test_planning_with_the_plan_cache_loads_no_schema_library_and_no_tables():
+    """What every snakemake start imports when the plan cache holds the checked configuration (the
+    package modules ``common.smk`` imports as it is parsed; the checker's own imports wait until it
+    runs): no jsonschema, no pandas, no scipy, no h5py. Every dry run, and every job a cluster
+    starts, pays for these imports."""
+    text = (SRC.parent / "workflow" / "rules" / "common.smk").read_text(encoding="utf-8")
+    modules = sorted(set(re.findall(r"^from (rodimpact[\w.]*) import", text, re.M)))
+    assert "rodimpact.config.calibration" in modules
+    code = f"import sys; [__import__(m) for m in {modules!r}]; print('\\n'.join(sorted(sys.modules)))"
+    loaded = set(
+        subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True).stdout.split()
+    )
+    heavy = {"jsonschema", "referencing", "pandas", "scipy", "h5py", "skfem", "matplotlib"}
+    assert {m.split(".")[0] for m in loaded} & heavy == set()
+
+
 def _literal_strings(node: ast.AST) -> set[str]:
     items = node.keys if isinstance(node, ast.Dict) else getattr(node, "elts", [])
     return {item.value for item in items if isinstance(item, ast.Constant) and isinstance(item.value, str)}

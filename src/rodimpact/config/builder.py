@@ -26,9 +26,10 @@ from rodimpact.config.checks import (
     check_work_precision,
 )
 from rodimpact.config.measured import check_measured_physics, record_outputs, resolve_gauges, resolve_measured
+from rodimpact.config.paths import format_path
 from rodimpact.config.plausible import Budget, check_plausible
 from rodimpact.config.project import ConfigError, Project, _File
-from rodimpact.config.schema import Schemas, deep_merge, format_path, with_floats
+from rodimpact.config.schema import Schemas, deep_merge, with_floats
 from rodimpact.solvers.field import FIELD_OUTPUT, FieldGrid
 from rodimpact.solvers.options import OptionError
 from rodimpact.solvers.registry import METHODS as METHOD_REGISTRY

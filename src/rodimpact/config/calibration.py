@@ -24,18 +24,20 @@ fitted ones are.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from rodimpact.analysis.measured import measured_cases
 from rodimpact.analysis.observations import QUANTITY_ORDER, gives
 from rodimpact.config.bodies import check_law
 from rodimpact.config.checks import check_run
-from rodimpact.config.paths import PathError, with_setting
+from rodimpact.config.paths import PathError, format_path, with_setting
 from rodimpact.config.project import ConfigError
-from rodimpact.config.schema import Schemas, format_path
 from rodimpact.contact.laws import bodies_contact, law_of
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.options import OptionError
+
+if TYPE_CHECKING:  # the schemas are handed in: importing them (jsonschema) is the checker's cost
+    from rodimpact.config.schema import Schemas
 
 __all__ = [
     "applied_cases",

@@ -13,10 +13,10 @@ from __future__ import annotations
 import copy
 import math
 import re
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import Any
 
-__all__ = ["PathError", "parse_path", "setting_at", "with_setting"]
+__all__ = ["PathError", "format_path", "parse_path", "setting_at", "with_setting"]
 
 _PART = re.compile(r"([A-Za-z_][A-Za-z0-9_]*)((?:\[\d+\])*)")
 
@@ -39,6 +39,15 @@ def parse_path(path: str) -> list[str | int]:
         steps.append(match.group(1))
         steps += [int(index) for index in re.findall(r"\[(\d+)\]", match.group(2))]
     return steps
+
+
+def format_path(path: Sequence[str | int]) -> str:
+    """The path of keys and list indices ``path`` written as a dotted path, the inverse of
+    :func:`parse_path`: ``("methods", 1)`` -> ``"methods[1]"``, ``("a", "b", 0, "c")`` -> ``"a.b[0].c"``."""
+    text = ""
+    for part in path:
+        text += f"[{part}]" if isinstance(part, int) else (f".{part}" if text else str(part))
+    return text
 
 
 def _walk(case: Any, path: str) -> tuple[Any, str | int]:

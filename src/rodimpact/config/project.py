@@ -12,6 +12,8 @@ from dataclasses import field as dataclass_field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from rodimpact.config.paths import format_path
+
 if TYPE_CHECKING:
     from rodimpact.config.schema import Problem, Schemas
 
@@ -83,8 +85,6 @@ class _File:
 
     def _located(self, problem: Problem, document: Any) -> ConfigError:
         """The error, naming the case when the problem lies in ``cases[i]`` of a case file."""
-        from rodimpact.config.schema import format_path
-
         path = problem.path
         if len(path) >= 2 and path[0] == "cases" and isinstance(path[1], int):
             entry = document["cases"][path[1]]

@@ -30,7 +30,6 @@ __all__ = [
     "YamlError",
     "deep_merge",
     "first_non_finite",
-    "format_path",
     "read_yaml",
     "with_floats",
 ]
@@ -227,14 +226,6 @@ def first_non_finite(document: Any, path: PathParts = ()) -> Problem | None:
         if problem:
             return problem
     return None
-
-
-def format_path(path: PathParts) -> str:
-    """Dotted field path with list indices: ``("methods", 1)`` -> ``"methods[1]"``."""
-    text = ""
-    for part in path:
-        text += f"[{part}]" if isinstance(part, int) else (f".{part}" if text else str(part))
-    return text
 
 
 # --------------------------------------------------------------------------- merging
