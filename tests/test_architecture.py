@@ -198,13 +198,15 @@ def test_the_configuration_check_loads_no_solver_no_mesh_and_no_plotting():
 
 def test_planning_with_the_plan_cache_loads_no_schema_library_and_no_tables():
     """What every snakemake start imports when the plan cache holds the checked configuration (the
-    package modules ``common.smk`` imports as it is parsed; the checker's own imports wait until it
-    runs): no jsonschema, no pandas, no scipy, no h5py. Every dry run, and every job a cluster
-    starts, pays for what they import (snakemake loads jsonschema on its own; the workflow adds
-    none of these)."""
-    text = (SRC.parent / "workflow" / "rules" / "common.smk").read_text(encoding="utf-8")
-    modules = sorted(set(re.findall(r"^from (rodimpact[\w.]*) import", text, re.M)))
-    assert "rodimpact.config.calibration" in modules
+    package modules the Snakefile and the rule files import as they are parsed; the checker's own
+    imports wait until it runs): no jsonschema, no pandas, no scipy, no h5py. Every dry run, and
+    every job a cluster starts, pays for what they import (snakemake loads jsonschema on its own;
+    the workflow adds none of these)."""
+    workflow = SRC.parent / "workflow"
+    files = [SRC.parent / "Snakefile", *sorted((workflow / "rules").glob("*.smk"))]
+    found = (re.findall(r"^(?:from|import) (rodimpact[\w.]*)", f.read_text(encoding="utf-8"), re.M) for f in files)
+    modules = sorted({m for names in found for m in names})
+    assert {"rodimpact.config.calibration", "rodimpact.jobs.resources", "rodimpact.plumbing.targets"} <= set(modules)
     code = f"import sys; [__import__(m) for m in {modules!r}]; print('\\n'.join(sorted(sys.modules)))"
     loaded = set(
         subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True).stdout.split()
