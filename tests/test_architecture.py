@@ -200,8 +200,9 @@ def test_planning_with_the_plan_cache_loads_no_schema_library_and_no_tables():
     """What every snakemake start imports when the plan cache holds the checked configuration (the
     package modules the Snakefile and the rule files import as they are parsed; the checker's own
     imports wait until it runs): no jsonschema, no pandas, no scipy, no h5py. Every dry run, and
-    every job a cluster starts, pays for what they import (snakemake loads jsonschema on its own;
-    the workflow adds none of these)."""
+    every job a cluster starts, pays for what they import. (Running the rule files does load
+    pandas: each sweep's ``Paramspace``, snakemake's, wraps a DataFrame; snakemake loads
+    jsonschema on its own, and its SLURM plugin pandas, before the Snakefile is read.)"""
     workflow = SRC.parent / "workflow"
     files = [SRC.parent / "Snakefile", *sorted((workflow / "rules").glob("*.smk"))]
     found = (re.findall(r"^(?:from|import) (rodimpact[\w.]*)", f.read_text(encoding="utf-8"), re.M) for f in files)

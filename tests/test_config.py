@@ -389,6 +389,71 @@ def test_schemas_are_valid_documented_and_closed(name: str) -> None:
             assert closed, f"{name}: {node} is open"
 
 
+def _broken_cases() -> list[tuple[str, dict]]:
+    """Each shipped case file's cases (its defaults merged under each), as written and broken."""
+    from rodimpact.config.schema import deep_merge
+
+    cases = []
+    for path in sorted((ROOT / "config" / "cases").glob("*.yaml")):
+        document = yaml.safe_load(path.read_text())
+        for entry in document["cases"]:
+            case = deep_merge(document.get("defaults", {}), entry)
+            cases.append((f"{path.name}:{case['id']}", case))
+    breaks = {
+        "mass": lambda c: c.setdefault("impactor", {}).update(mass_kg=-1),
+        "unknown": lambda c: c.update(colour="red"),
+        "method": lambda c: c.update(methods=["sem", "nope"]),
+        "stations": lambda c: c.update(stations=[0.5, 2]),
+        "outputs": lambda c: c.update(outputs=["contact_force", "contact_force"]),
+        "variant_outputs": lambda c: c.update(variant_outputs={"Bad Name": ["contact_force"]}),
+        "no_id": lambda c: c.pop("id"),
+        "rod": lambda c: c.update(rod="steel"),
+        "numerics": lambda c: c.update(numerics={"sem": {"steps_per_contact": "many"}}),
+    }
+    broken = []
+    for name, case in cases[::3]:
+        for what, change in breaks.items():
+            changed = json.loads(json.dumps(case))
+            change(changed)
+            broken.append((f"{name}:{what}", changed))
+    return cases + broken
+
+
+def test_the_inlined_schema_finds_what_its_references_find() -> None:
+    """A check inlines each ``$ref`` of its schema (``Schemas._inline``): on every shipped case
+    (defaults merged) and on each broken in several ways, it reports the same first problem and
+    fills in the same defaults as the schema checked through its references."""
+    from rodimpact.config import schema as checker
+    from rodimpact.config.load import _load_schemas
+
+    schemas = _load_schemas(SCHEMAS, ROOT)
+    referencing = checker._FillingValidator(
+        {"$ref": f"{schemas._uris['cases.schema.yaml']}#/$defs/resolved_case"}, registry=schemas._registry
+    )
+    problems = 0
+    for name, case in _broken_cases():
+        mine, theirs = json.loads(json.dumps(case)), json.loads(json.dumps(case))
+        found = schemas.first_problem(mine, "cases.schema.yaml", "/$defs/resolved_case", fill_defaults=True)
+        expected = [checker._to_problem(error) for error in referencing.iter_errors(theirs)]
+        expected = min(expected, key=lambda p: checker._position(theirs, p.path)) if expected else None
+        assert found == expected, name
+        assert mine == theirs, name  # the same defaults filled in
+        problems += found is not None
+    assert problems >= 9 * 5  # the broken cases do break
+
+
+def test_a_recursive_schema_reference_is_refused(tmp_path: Path) -> None:
+    from rodimpact.config.schema import Schemas
+
+    shutil.copytree(SCHEMAS, tmp_path / "schemas")
+    path = tmp_path / "schemas" / "materials.schema.yaml"
+    schema = yaml.safe_load(path.read_text())
+    schema["$defs"]["node"] = {"type": "object", "properties": {"next": {"$ref": "#/$defs/node"}}}
+    path.write_text(yaml.safe_dump(schema))
+    with pytest.raises(ValueError, match="recursive"):
+        Schemas(tmp_path / "schemas").first_problem({}, "materials.schema.yaml", "/$defs/node")
+
+
 # --------------------------------------------------------------------------- malformed input
 
 MODEL = "config/cases/model.yaml"

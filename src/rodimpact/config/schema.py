@@ -96,6 +96,7 @@ class Schemas:
             self._uris[name] = uri
             resources.append((uri, DRAFT202012.create_resource(document)))
         self._registry = Registry().with_resources(resources)
+        self._inlined: dict[tuple[str, str], dict] = {}
 
     def first_problem(
         self, instance: Any, schema: str, pointer: str = "", *, fill_defaults: bool = False
@@ -106,11 +107,65 @@ class Schemas:
         `instance` (in place) while it is checked.
         """
         cls = _FillingValidator if fill_defaults else Draft202012Validator
-        validator = cls({"$ref": f"{self._uris[schema]}#{pointer}"}, registry=self._registry)
+        validator = cls(self._inline(schema, pointer))
         problems = [_to_problem(error) for error in validator.iter_errors(instance)]
         if not problems:
             return None
         return min(problems, key=lambda p: _position(instance, p.path))
+
+    def _inline(self, schema: str, pointer: str) -> dict:
+        """``schema#pointer`` with each ``$ref`` replaced, in its place, by ``allOf`` of the schema it
+        names (cached per schema and pointer).
+
+        A check then looks no reference up: the look-ups took a third of the time of checking a
+        resolved case. ``allOf`` of one schema gives the errors ``$ref`` gives, in the same order,
+        and, like ``$ref``, hides that schema's ``default`` from the property it stands for.
+        """
+        key = (schema, pointer)
+        if key not in self._inlined:
+            root = self._registry.resolver().lookup(f"{self._uris[schema]}#{pointer}")
+            self._inlined[key] = _inline_refs(root.contents, root.resolver, ())
+        return self._inlined[key]
+
+
+#: Keywords whose value is a schema, a list of schemas, or a mapping of names to schemas: where
+#: :func:`_inline_refs` looks for ``$ref`` (every other keyword's value is data: enum, default...).
+_SUBSCHEMA = frozenset(
+    ("items", "additionalProperties", "propertyNames", "contains", "not", "if", "then", "else")
+    + ("unevaluatedItems", "unevaluatedProperties", "additionalItems")
+)
+_SUBSCHEMA_LISTS = frozenset(("prefixItems", "allOf", "anyOf", "oneOf"))
+_SUBSCHEMA_MAPS = frozenset(("properties", "patternProperties", "dependentSchemas"))
+
+
+def _inline_refs(node: Any, resolver: Any, chain: tuple[int, ...]) -> Any:
+    """A copy of the schema ``node`` without ``$ref`` (see :meth:`Schemas._inline`); ``$defs``
+    are dropped (only references use them). ``chain``: the schemas being inlined around this one.
+
+    Raises
+    ------
+    ValueError
+        A reference leads back to a schema it is inside of (recursive schemas cannot be inlined).
+    """
+    if not isinstance(node, dict):
+        return node
+    inlined: dict[str, Any] = {}
+    for keyword, value in node.items():
+        if keyword == "$ref":
+            target = resolver.lookup(value)
+            if id(target.contents) in chain:
+                raise ValueError(f"schema reference {value!r} is recursive; the checker inlines references")
+            referred = _inline_refs(target.contents, target.resolver, (*chain, id(target.contents)))
+            inlined.setdefault("allOf", []).append(referred)
+        elif keyword in _SUBSCHEMA:
+            inlined[keyword] = _inline_refs(value, resolver, chain)
+        elif keyword in _SUBSCHEMA_LISTS:
+            inlined.setdefault(keyword, []).extend(_inline_refs(item, resolver, chain) for item in value)
+        elif keyword in _SUBSCHEMA_MAPS:
+            inlined[keyword] = {name: _inline_refs(item, resolver, chain) for name, item in value.items()}
+        elif keyword not in ("$defs", "$id"):
+            inlined[keyword] = value
+    return inlined
 
 
 # --------------------------------------------------------------------------- messages

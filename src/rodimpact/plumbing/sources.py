@@ -23,6 +23,7 @@ If snakemake's internals change
 from __future__ import annotations
 
 import hashlib
+import os
 import re
 from collections.abc import Iterable
 from pathlib import Path
@@ -36,10 +37,12 @@ PACKAGE = "rodimpact"
 _PARSED: dict[tuple[str, int, int], frozenset[str]] = {}
 
 
-def _module_file(src: Path, module: str) -> Path | None:
-    base = src.joinpath(*module.split("."))
-    for candidate in (base.with_suffix(".py"), base / "__init__.py"):
-        if candidate.is_file():
+def _module_file(src: str, module: str) -> str | None:
+    """The file of ``module`` under the directory ``src`` (paths as strings: a cold dry run looks
+    up some two thousand modules, and a :class:`~pathlib.Path` costs more than the look-up)."""
+    base = os.path.join(src, *module.split("."))
+    for candidate in (base + ".py", os.path.join(base, "__init__.py")):
+        if os.path.isfile(candidate):
             return candidate
     return None
 
@@ -89,13 +92,14 @@ def imported_modules(module: str, text: str, is_package: bool = False) -> set[st
     return found
 
 
-def _imports(src: Path, module: str, path: Path) -> frozenset[str]:
+def _imports(src: str, module: str, path: str) -> frozenset[str]:
     """Package modules imported by ``module`` (file ``path``)."""
-    stat = path.stat()
-    key = (str(path.resolve()), stat.st_mtime_ns, stat.st_size)
+    stat = os.stat(path)
+    key = (os.path.abspath(path), stat.st_mtime_ns, stat.st_size)
     if key in _PARSED:
         return _PARSED[key]
-    found = imported_modules(module, path.read_text(encoding="utf-8"), path.name == "__init__.py")
+    with open(path, encoding="utf-8") as stream:
+        found = imported_modules(module, stream.read(), os.path.basename(path) == "__init__.py")
     result = frozenset(m for m in found if (m == PACKAGE or m.startswith(PACKAGE + ".")) and _module_file(src, m))
     _PARSED[key] = result
     return result
@@ -121,10 +125,10 @@ def module_sources(src: str | Path, entry_modules: Iterable[str]) -> list[str]:
     ModuleNotFoundError
         An entry module is not a file under ``src``.
     """
-    src = Path(src)
+    src = str(Path(src))  # normalised once, as a Path would give each file
     todo = list(entry_modules)
     seen: set[str] = set()
-    files: set[Path] = set()
+    files: set[str] = set()
     while todo:
         module = todo.pop()
         if module in seen:
@@ -136,18 +140,19 @@ def module_sources(src: str | Path, entry_modules: Iterable[str]) -> list[str]:
         files.add(path)
         todo.extend(_parents(module))
         todo.extend(_imports(src, module, path) - seen)
-    return sorted(str(p) for p in files)
+    return sorted(files)
 
 
 def source_digest(src: str | Path, entry_modules: Iterable[str]) -> str:
     """SHA-256 (hex) of the sources :func:`module_sources` finds: each file's path below ``src``
     and its bytes. Another checkout of the same code has the same digest; a change to any of
     those files, or a module added to or dropped from the closure, changes it."""
-    src = Path(src)
+    src = str(Path(src))
     sha = hashlib.sha256()
     for name in module_sources(src, entry_modules):
-        path = Path(name)
-        for part in (path.relative_to(src).as_posix().encode(), path.read_bytes()):
+        with open(name, "rb") as stream:
+            data = stream.read()
+        for part in (Path(os.path.relpath(name, src)).as_posix().encode(), data):
             sha.update(len(part).to_bytes(8, "little"))
             sha.update(part)
     return sha.hexdigest()
