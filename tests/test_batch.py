@@ -50,6 +50,25 @@ def test_each_run_is_its_own_file_as_a_single_run_writes_it(sweep: dict, tmp_pat
     assert {read_run(p).case_id for p in paths.values()} == {run["case"]["id"] for run in runs.values()}
 
 
+def test_a_batch_reads_its_case_file_once(sweep: dict, tmp_path: Path, monkeypatch) -> None:
+    """Every run of a sweep has its own case id in the same case file: the file is read once for
+    the batch, and each run still records its case's hash in it."""
+    import rodimpact.jobs.batch as batch_module
+    import rodimpact.storage.casefile as casefile_module
+
+    case_file = write_case_file(sweep["id"], [sweep], tmp_path / "case.yaml")
+    reads = []
+    read = casefile_module.read_case_file
+    for module in (batch_module, casefile_module):
+        monkeypatch.setattr(module, "read_case_file", lambda path: reads.append(path) or read(path), raising=False)
+    runs = _runs(sweep, 3)
+    paths = {name: tmp_path / f"{name}.h5" for name in runs}
+    run_batch(runs, paths, case_file=case_file)
+    assert reads == [case_file]
+    recorded = {read_run(path).config["run"]["case_file"]["config_sha256"] for path in paths.values()}
+    assert recorded == {read(case_file)["cases"][0]["config_sha256"]}
+
+
 def test_outputs_and_runs_must_match(sweep: dict, tmp_path: Path) -> None:
     runs = _runs(sweep, 1)
     with pytest.raises(ValueError, match="runs and paths differ"):

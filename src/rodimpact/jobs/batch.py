@@ -22,7 +22,7 @@ from typing import Any
 from rodimpact.jobs.runner import run_to_file
 from rodimpact.jobs.timing import Timing
 from rodimpact.storage.atomic import atomic_directory
-from rodimpact.storage.casefile import case_file_reference
+from rodimpact.storage.casefile import case_file_reference, read_case_file
 from rodimpact.storage.provenance import code_version
 
 __all__ = ["CURVE_BUILDERS", "run_batch", "run_batch_into"]
@@ -77,6 +77,7 @@ def run_batch(
     if set(runs) != set(paths):
         raise ValueError(f"runs and paths differ: runs {sorted(runs)}, paths {sorted(paths)}")
     references: dict[tuple[str, str], dict[str, str]] = {}
+    documents: dict[str, dict[str, Any]] = {}  # each case file read once (a sweep's runs share one)
     version = code_version()
     timed = Timing(**timing) if timing is not None else None
     written = []
@@ -91,7 +92,9 @@ def run_batch(
         source = run.get("case_file", case_file)
         key = (str(source), str(run["case"]["id"]))
         if source is not None and key not in references:
-            references[key] = case_file_reference(source, run["case"]["id"])
+            if key[0] not in documents:
+                documents[key[0]] = read_case_file(source)
+            references[key] = case_file_reference(source, run["case"]["id"], documents[key[0]])
         written.append(
             run_to_file(
                 run["case"],

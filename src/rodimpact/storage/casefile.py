@@ -93,8 +93,11 @@ def case_record(document: Mapping[str, Any], case_id: str) -> dict[str, Any]:
     return records[max(bases, key=len)]
 
 
-def case_file_reference(path: str | Path, case_id: str) -> dict[str, str]:
+def case_file_reference(path: str | Path, case_id: str, document: Mapping[str, Any] | None = None) -> dict[str, str]:
     """What a run of ``case_id`` records of the case file it was made from: its path, its SHA-256
-    and the hash of its case in it (``config_sha256``, which only a change of that case changes)."""
-    record = case_record(read_case_file(path), case_id)
+    and the hash of its case in it (``config_sha256``, which only a change of that case changes).
+
+    ``document`` is the file as :func:`read_case_file` read it, when the caller has it (a batch
+    reads its case file once for all its runs); otherwise the file is read here."""
+    record = case_record(read_case_file(path) if document is None else document, case_id)
     return {"path": str(path), "sha256": file_sha256(path), "config_sha256": record["config_sha256"]}
