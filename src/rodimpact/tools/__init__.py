@@ -5,8 +5,9 @@ every artifact resolves to the config and code that made it), :mod:`.report_chec
 report-check``: the HTML report's first screen in headless Chromium), :mod:`.bench`,
 :mod:`.bench_plan` and :mod:`.bench_scaling` (``make bench``: the benchmarks and what they run)
 :mod:`.build_stats` (``make bench``: the build's own timing), :mod:`.compare_tables` (are two
-builds' tables the same?) and :mod:`.synthetic_history` (a synthetic force history, labelled as
-one, for the worked example of a comparison).
+builds' tables the same?), :mod:`.accuracy_cost` (what an accuracy costs each method) and
+:mod:`.synthetic_history` (a synthetic force history, labelled as one, for the worked example
+of a comparison).
 
 What it may import: everything below it (:mod:`rodimpact.plumbing`, :mod:`rodimpact.jobs` and
 the layers under them). Nothing imports it but the workflow's scripts and .smk files, and the tests.
