@@ -6,9 +6,10 @@
 #   make test-cluster  .test/ built through profiles/slurm on a one-node SLURM scheduler of this
 #                machine and checked against the local build (as root: installs Debian's
 #                slurm-wlm and munge when missing); after make test, its .test/ is reused
-#   make bench   benchmarks -> results/benchmarks/*.csv (one job at a time, for clean timings), and
+#   make bench   benchmarks -> results/benchmarks/*.csv (one job at a time, for clean timings),
 #                results/benchmarks/build.csv: the last build's time per rule (jobs, solvers, overhead)
-#                from snakemake's job records; run make paper first
+#                from snakemake's job records, and results/benchmarks/planning.csv: the dry run's
+#                time with and without the plan cache, and a one-rule workflow's; run make paper first
 #   make convergence   only the error-against-run-time study -> results/tables/work_precision.csv
 #   make convergence-separate   the study's separate cases (levels over a minute each, not in
 #                make paper) -> results/tables/work_precision_separate*.{csv,md,html}
@@ -70,6 +71,7 @@ bench: $(STAMP)
 		results/benchmarks/sem_scaling.csv results/benchmarks/fem.csv
 	$(BIN)/python -m rodimpact.tools.bench results/benchmarks/fem.csv
 	$(BIN)/python -m rodimpact.tools.build_stats --csv results/benchmarks/build.csv
+	$(BIN)/python -m rodimpact.tools.bench_planning --csv results/benchmarks/planning.csv
 
 convergence: $(STAMP)
 	$(BIN)/snakemake -j$(CORES) results/tables/work_precision.csv results/tables/work_precision_orders.md

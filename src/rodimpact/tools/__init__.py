@@ -3,7 +3,8 @@
 What lives here: :mod:`.cli` (the ``rodimpact`` command), :mod:`.audit` (``make provenance``:
 every artifact resolves to the config and code that made it), :mod:`.report_check` (``make
 report-check``: the HTML report's first screen in headless Chromium), :mod:`.bench`,
-:mod:`.bench_plan` and :mod:`.bench_scaling` (``make bench``: the benchmarks and what they run)
+:mod:`.bench_plan`, :mod:`.bench_scaling` and :mod:`.bench_planning` (``make bench``: the benchmarks
+and what they run; the last, how long snakemake takes to plan the workflow),
 :mod:`.build_stats` (``make bench``: the build's own timing), :mod:`.compare_tables` (are two
 builds' tables the same?), :mod:`.accuracy_cost` (what an accuracy costs each method) and
 :mod:`.synthetic_history` (a synthetic force history, labelled as one, for the worked example
