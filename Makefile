@@ -9,7 +9,7 @@
 #   make bench   benchmarks -> results/benchmarks/*.csv (one job at a time, for clean timings),
 #                results/benchmarks/build.csv: the last build's time per rule (jobs, solvers, overhead)
 #                from snakemake's job records, and results/benchmarks/planning.csv: the dry run's
-#                time with and without the plan cache, and a one-rule workflow's; run make paper first
+#                time and a one-rule workflow's; run make paper first
 #   make convergence   only the error-against-run-time study -> results/tables/work_precision.csv
 #   make convergence-separate   the study's separate cases (levels over a minute each, not in
 #                make paper) -> results/tables/work_precision_separate*.{csv,md,html}

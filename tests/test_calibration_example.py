@@ -49,6 +49,19 @@ def test_the_shipped_example_recovers_its_true_constants(shipped_project: Projec
     assert np.all(stored.arrays["held_out_predicted"] != stored.arrays["predicted"])
 
 
+def test_a_constant_the_first_pulse_does_not_see_is_not_identifiable(shipped_project: Project, tmp_path: Path):
+    """The rod's length fitted to the first pulse at the gauge, which ends before any reflection
+    returns: the data do not see it, and the fit says so by its documented status (not ``failed``,
+    whatever the optimiser did along a direction the data do not determine)."""
+    block = copy.deepcopy(shipped_project.calibrate[SET])
+    block["parameters"][1] = {"path": "rod.length_m", "bounds": [0.45, 0.55], "unit": "m", "source": "a test"}
+    cases = shipped_project.cases_in(SET)[:2]
+    fit = run_calibration(SET, cases, block, shipped_project.config["numerics"], tmp_path / "calibration.h5")
+    assert fit.status == "not_identifiable" and not fit.identifiable and not fit.success, (fit.status, fit.message)
+    assert any("the data do not see rod.length_m" in w for w in fit.warnings), fit.warnings
+    assert read_calibration(tmp_path / "calibration.h5").scalars["status"] == "not_identifiable"
+
+
 def _synthetic_cases(project: Project, seed: int, directory: Path) -> list[dict]:
     """The example's cases with records made by the SEM itself (no model error) at the true
     constants, plus 1 % noise drawn from ``seed``."""

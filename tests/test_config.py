@@ -1061,8 +1061,8 @@ def test_alias_bomb_is_refused_before_it_is_built(project_dir: Path) -> None:
                 )
                 + "\n"
             ),
-            "file",
-            "the force is mostly negative",
+            "sign",
+            "the first pulse of the force has the wrong sign",
         ),
         (lambda h, f: h.update(time_unit="s") or f.write_text("time_min,force_N\n" + "0,1\n" * 9), "file", "column 1"),
     ],

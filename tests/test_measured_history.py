@@ -65,12 +65,21 @@ def test_units_from_the_header_or_declared_and_the_offset(tmp_path: Path) -> Non
         ("text.csv", "time_s,force_N\n0,abc\n", {}, "file", "line 2: not a number"),
         ("short.csv", "time_s,force_N\n0,1\n1,2\n", {}, "file", "fewer than 8"),
         ("zero.csv", "time_s,force_N\n" + "".join(f"{t},0\n" for t in range(9)), {}, "file", "zero throughout"),
+        # a thinning that leaves too few rows is the thinning's fault, not the file's
         (
-            "negated.csv",
-            "time_s,force_N\n" + "".join(f"{t},{-f}\n" for t, f in enumerate([0, 1, 5, 9, 5, 1, 0, 0.2, 0])),
-            {},
-            "file",
-            "declare sign: -1",
+            "thin.csv",
+            "time_s,force_N\n" + "".join(f"{t},1\n" for t in range(20)),
+            {"every": 5},
+            "every",
+            "keeps 4 of the 20 rows",
+        ),
+        # an offset that swamps the steps of the times is the offset's fault
+        (
+            "offset.csv",
+            "time_us,force_N\n" + "".join(f"{t},1\n" for t in range(20)),
+            {"time_offset_s": 1e300},
+            "time_offset_s",
+            "swamps the times",
         ),
     ],
 )

@@ -9,7 +9,6 @@ snakemake that changes any of them fails here, by name, instead of quietly disab
 from __future__ import annotations
 
 import os
-import pickle
 import shutil
 import subprocess
 import sys
@@ -18,7 +17,6 @@ from pathlib import Path
 import pytest
 
 from rodimpact.plumbing.locks import LOCK_DIR, RUNS_DIR, OrphanedJobs, live_job_pids, release_stale_lock, runs_snakemake
-from rodimpact.plumbing.plan_cache import CACHE_FILE, code_fingerprint
 from rodimpact.plumbing.targets import command_line_targets, untargeted_set_message
 
 REPO = Path(__file__).resolve().parents[1]
@@ -197,16 +195,6 @@ def _snakemake_on_dottest(tmp_path: Path, program: list[str], *args: str) -> tup
         check=False,
     )
     return project, run
-
-
-def test_a_dry_run_leaves_the_plan_cache(tmp_path: Path) -> None:
-    """A dry run runs no ``onstart`` hook: the cache is written by the atexit handler alone."""
-    project, run = _snakemake_on_dottest(tmp_path, [sys.executable, "-m", "snakemake"], "-n", "--quiet", "rules")
-    assert run.returncode == 0, run.stdout + run.stderr
-    with open(project / CACHE_FILE, "rb") as handle:
-        stored = pickle.load(handle)
-    assert stored["fingerprint"] == code_fingerprint(REPO / "src")
-    assert len(stored["projects"]) == 1 and stored["estimates"]
 
 
 def test_a_target_of_a_set_not_built_names_the_set_and_where_to_add_it():

@@ -243,6 +243,67 @@ def test_a_bad_record_or_calibration_is_one_line_before_any_job(project_dir: Pat
     assert where in message and words in message, message
 
 
+def _rows(text: str) -> list[tuple[str, float]]:
+    return [(t, float(v)) for t, v in (line.split(",") for line in text.strip().splitlines()[1:])]
+
+
+def _noise_only(text: str) -> str:
+    rng = np.random.default_rng(0)
+    return "time_us,strain_microstrain\n" + "".join(f"{t},{rng.normal(0.0, 0.17)!r}\n" for t, _ in _rows(text))
+
+
+def _negated(text: str) -> str:
+    return "time_us,strain_microstrain\n" + "".join(f"{t},{-v!r}\n" for t, v in _rows(text))
+
+
+def _after(start_us: float) -> Callable[[str], str]:
+    return lambda text: (
+        "time_us,strain_microstrain\n" + "".join(f"{t},{v!r}\n" for t, v in _rows(text) if float(t) >= start_us)
+    )
+
+
+@pytest.mark.parametrize(
+    "rewrite, change, field, words",
+    [
+        # a record of noise alone, no pulse
+        (_noise_only, None, "file", "no pulse above the record's noise"),
+        # every strain negated, tension positive, and no sign: declared
+        (_negated, None, "sign", "declare sign: -1"),
+        # a header in strain over microstrain numbers: a peak of 1.7e7 microstrain
+        (lambda t: t.replace("strain_microstrain", "strain_strain", 1), None, "file", "header's unit 'strain_strain'"),
+        # a header in ms over microsecond numbers: the wave would reach the gauge after 55 ms
+        (lambda t: t.replace("time_us", "time_ms", 1), None, "file", "header's unit 'time_ms'"),
+        # the first sample inside the pulse: no pre-trigger
+        (_after(56.5), None, "file", "pre-trigger"),
+        # a thinning that keeps one row; an offset that swamps the times
+        (None, lambda r: r.update(every=1000000), "every", "keeps 1 of the 215 rows"),
+        (None, lambda r: r.update(time_offset_s=1.0e300), "time_offset_s", "swamps the times"),
+        # a clock not started at the impact
+        (None, lambda r: r.update(time_offset_s=1.0), "time_offset_s", "time zero must be the impact"),
+    ],
+)
+def test_a_record_its_impact_cannot_give_is_one_line_naming_its_key(project_dir: Path, rewrite, change, field, words):
+    """The faults a lab makes in a strain record by mistake, each refused before any job in one line
+    naming the file, the case and the key at fault (rodimpact.analysis.record_checks)."""
+    record = project_dir / "config" / "cases" / "example" / "gauge_8mm.synthetic.csv"
+    if rewrite is not None:
+        record.write_text(rewrite(record.read_text()))
+    message = _refused(project_dir, lambda document: change(_record(document)) if change else None)
+    assert f"case 'gauge_8mm': field 'measured.strain_history.{field}'" in message and words in message, message
+
+
+def test_a_calibration_of_an_integer_setting_is_refused_naming_its_path(project_dir: Path) -> None:
+    """``numerics.sem.max_contacts`` is legal at the bounds 30 and 80, not between them, where a
+    fit's trials fall: refused before any job, not at every trial of the fit."""
+
+    def change(document: dict) -> None:
+        _parameter(document, 1).update(path="numerics.sem.max_contacts", bounds=[30, 80], unit="1")
+
+    message = _refused(project_dir, change)
+    assert "field 'calibrate.parameters[1].path'" in message and "not a real-valued constant" in message, message
+    assert "max_contacts must be an integer" in message, message
+
+
 def test_a_far_end_velocity_needs_a_free_far_end(project_dir: Path) -> None:
     """A velocity record of the far end of a rod whose far end is fixed: refused by name."""
     record = project_dir / "config" / "cases" / "example" / "far.csv"

@@ -18,7 +18,7 @@ one above (``tests/test_architecture.py`` checks every import, and that this lis
    the configuration read and checked; results written and read (HDF5, provenance, atomically);
 7. :mod:`rodimpact.present`: tables and figures, from stored results only;
 8. :mod:`rodimpact.jobs`: what one workflow job does (a batch of runs, a band, a case file);
-9. :mod:`rodimpact.plumbing`: what the Snakefile needs (source digests, the plan cache);
+9. :mod:`rodimpact.plumbing`: what the Snakefile needs (source digests, a killed run's lock, targets);
 10. :mod:`rodimpact.tools`: commands run by hand or by make (audit, benchmarks, checks).
 
 ``rodimpact.__version__`` is read from the git tags (:mod:`rodimpact._version`) when first

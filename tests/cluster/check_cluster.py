@@ -91,8 +91,6 @@ from rodimpact.jobs.logs import script_logging
 with script_logging(snakemake.log[0], outputs=snakemake.output):  # noqa: F821 (injected by snakemake)
     raise RuntimeError("{FAILURE_MESSAGE}")
 '''
-#: The plan cache a cluster job's snakemake may rewrite (rodimpact.plumbing.plan_cache).
-PLAN_CACHE = Path(DOTTEST) / ".snakemake" / "rodimpact" / "plan.pickle"
 #: How long a snakemake that was sent SIGINT may take to cancel its jobs and leave (s).
 STOP_GRACE_S = 60
 
@@ -148,30 +146,6 @@ def user_environment(cluster: LocalSlurm) -> dict[str, str]:
 # --------------------------------------------------------------------------------------------
 # snakemake through the cluster
 # --------------------------------------------------------------------------------------------
-
-
-class PlanCacheWatch:
-    """Counts the writes of the plan cache file (a new inode, time or size), polled: two writes
-    closer than the polling interval count once, so the count is a lower bound."""
-
-    def __init__(self, path: Path) -> None:
-        self.path, self.writes = path, 0
-        self._last = self._state()
-
-    def _state(self) -> tuple[int, int, int] | None:
-        """The file's inode, modification time and size (None while it does not exist)."""
-        try:
-            stat = self.path.stat()
-        except FileNotFoundError:
-            return None
-        return stat.st_ino, stat.st_mtime_ns, stat.st_size
-
-    def poll(self) -> None:
-        """Look at the file once."""
-        now = self._state()
-        if now is not None and now != self._last:
-            self.writes += 1
-        self._last = now
 
 
 @dataclass
@@ -251,21 +225,17 @@ def stop(processes: list[SnakemakeProcess]) -> None:
         process.finish(deadline)
 
 
-def wait_until_done(processes: dict[str, SnakemakeProcess], watch: PlanCacheWatch | None = None) -> None:
+def wait_until_done(processes: dict[str, SnakemakeProcess]) -> None:
     """Wait until every process has ended, saying when each does; stop those left on any
     exception (an interrupt included)."""
     try:
         left = dict(processes)
         while left:
-            if watch is not None:
-                watch.poll()
             for name, process in list(left.items()):
                 if process.done():
                     say(f"     {name} ended: exit {process.proc.returncode} after {process.seconds:.0f} s")
                     del left[name]
             time.sleep(0.1)
-        if watch is not None:
-            watch.poll()
     finally:
         stop(list(processes.values()))
 
@@ -442,16 +412,14 @@ def check_cluster_runs(
     env = user_environment(cluster)
     built, failing = clone_built(pristine, scratch / "slurm"), clone_built(pristine, scratch / "failing")
     (failing / "workflow" / "scripts" / "solve_batch.py").write_text(FAILING_SCRIPT, encoding="utf-8")
-    watch = PlanCacheWatch(built / PLAN_CACHE)
     say(f"through SLURM, with SBATCH_PARTITION={PARTITION} (each in a fresh copy of the project):")
     say(f"     the build: snakemake {' '.join(USER_COMMAND)}  ({built})")
     build_process = SnakemakeProcess(built, USER_COMMAND, env, BUILD_TIMEOUT_S, scratch / "build.log")
-    wait_until_done({"the build": build_process}, watch)
+    wait_until_done({"the build": build_process})
     build = build_process.result()
     report.timings["build through SLURM"] = build.seconds
     jobs = jobs_of(build, scheduler_jobs(cluster))
     check_build(build, jobs, built, reference, report)
-    say(f"     {PLAN_CACHE} written {watch.writes} times during the build (at least)")
     if build.returncode == 0:
         slurm = BuildTiming(
             build="slurm",

@@ -16,19 +16,6 @@
 #   test_a_target_the_configuration_does_not_define_is_one_line and tests/test_workflow_errors.py::
 #   test_bad_input_stops_before_any_job fail.
 #
-# PLAN: the pickled plan cache (rodimpact.plumbing.plan_cache), saved at exit.
-#   What snakemake does: every run (dry run, --summary, --lint, report, build, and a cluster
-#   job's own snakemake) parses this file anew and keeps nothing of it; its onstart hook runs
-#   only when jobs are scheduled (not for a dry run, "nothing to be done" or --no-hooks:
-#   snakemake.workflow.Workflow.execute).
-#   Why not enough: checking the whole configuration and estimating every job's resources are
-#   slow and their results depend only on files the cache digests. They are saved by onstart
-#   (before any job: a cluster job's snakemake finds them) and by atexit (after any run that
-#   plans, dry runs included).
-#   If snakemake changes (skips atexit handlers, e.g. leaves by os._exit): the cache is not
-#   written, planning is only slower, never different; tests/test_plumbing.py::
-#   test_a_dry_run_leaves_the_plan_cache fails.
-#
 # RATE: snakemake's job rate limiter, dropped when a local run's jobs start.
 #   What snakemake does: its CLI's default --max-jobs-per-timespan, 100/1s, re-arms a
 #   threading.Timer of the timespan after every scheduling round
@@ -45,7 +32,6 @@
 
 # Validation of the configuration (before any job), and the helpers the rules share.
 # (SRC_DIR is on the path: preflight.smk, included before the config file is read.)
-import atexit
 import functools
 import os
 import re
@@ -64,22 +50,10 @@ from rodimpact.contact.tabulated import CURVE_NUMERICS
 from rodimpact.solvers.field import FIELD_OUTPUT
 from rodimpact.solvers.registry import METHODS as METHOD_REGISTRY
 from rodimpact.plumbing.locks import register_run
-from rodimpact.plumbing.plan_cache import CACHE_FILE, PlanCache, code_fingerprint
 from rodimpact.plumbing.sources import source_digest
-
-# What planning computes (the checked project, each job's estimate) is kept in
-# .snakemake/rodimpact/, keyed on the digests of all it reads (rodimpact.plumbing.plan_cache).
-# Written when the jobs start (a cluster job parses this file again and finds it) and at exit.
-# A cluster job's snakemake (--mode remote) only reads it: its one job's estimate is cheap, and
-# every job of a build rewriting the file would only contend for it.
-PLAN = PlanCache(CACHE_FILE, code_fingerprint(SRC_DIR))
-if not workflow.remote_exec:
-    atexit.register(PLAN.save)
 
 
 onstart:
-    if not workflow.remote_exec:
-        PLAN.save()
     if workflow.local_exec:  # RATE above
         workflow.scheduler.job_rate_limiter = None
     register_run(WORKDIR)  # a live run here: no other snakemake releases its lock
@@ -108,9 +82,10 @@ def checked_project():
         sys.exit(f"rodimpact: invalid configuration: {error}")
 
 
-# The configuration is checked here, before any job (or its check of the same files and code
-# is reused); the checked config (every default filled in) replaces snakemake's.
-PROJECT = PLAN.project(config, WORKDIR, checked_project, schema_dir=SCHEMA_DIR)
+# The configuration is checked here, before any job, from the files as they are now (every
+# record a case names read whole); the checked config (every default filled in) replaces
+# snakemake's.
+PROJECT = checked_project()
 config.update(PROJECT.config)
 
 
@@ -123,7 +98,13 @@ def sources(*entry_modules):
     """The digest of the package files a script's imports reach (rodimpact.plumbing.sources): a
     rule's ``params: code=``, so that a change to that code reruns the rule (snakemake's params
     trigger) and a change to other code does not."""
-    return PLAN.remember((SRC_DIR, tuple(sorted(set(entry_modules)))), source_digest)
+    return _digest(tuple(sorted(set(entry_modules))))
+
+
+@functools.cache
+def _digest(entry_modules):
+    """source_digest of the checkout's src/ for ``entry_modules``, once per set of modules a run asks for."""
+    return source_digest(SRC_DIR, entry_modules)
 
 
 def per_job(function):

@@ -110,13 +110,10 @@ def batch_resources(runs, timing=None):
     """Resources of a batch rule: ``runs(wildcards)`` maps its outputs to their runs (``case``,
     ``method``), solved one after another; ``timing`` when each is timed."""
     return _resources(
-        lambda w: PLAN.remember(
-            (
-                [(r["case"], r["method"], 1) for r in runs(w).values()],
-                timing,
-                [(r["case"], r["curve"]) for r in runs(w).values() if "curve" in r],
-            ),
-            _estimate_batch,
+        lambda w: _estimate_batch(
+            [(r["case"], r["method"], 1) for r in runs(w).values()],
+            timing,
+            [(r["case"], r["curve"]) for r in runs(w).values() if "curve" in r],
         )
     )
 

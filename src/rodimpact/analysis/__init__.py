@@ -8,7 +8,8 @@ convergence index), :mod:`.stability_study` (the stress runs' verdicts and the s
 map), :mod:`.sweeps` (parameter sweeps of a case), :mod:`.waves` (the paths of the wave fronts in the
 rod, for its strain map), :mod:`.force_fit` (a closed form of a computed contact force),
 :mod:`.measured` (a measured record's file, force, strain at a gauge or velocity, read and
-checked), :mod:`.history_compare` (a computed force
+checked), :mod:`.record_checks` (what a record can show of its case's impact: a pulse above its
+noise, its sign, a pre-trigger, its size and timing), :mod:`.history_compare` (a computed force
 against a measured one: alignment, error norms, contact times read at a threshold),
 :mod:`.wave_compare` (a computed wave signal, a gauge's strain or a velocity, against a measured
 one: its first pulse's arrival, peak and integral, error norms), :mod:`.observations` (every

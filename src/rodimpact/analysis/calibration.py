@@ -411,14 +411,16 @@ def calibrate(
                 found.append(f"the fit lies at a bound of {names[j]} ({value}): the data pull it beyond")
             free = ~at_bound  # S falls by |P r|^2 to its linearised minimum, P the projection on J's free columns
             short = np.sum((jr[:, free] @ np.linalg.lstsq(jr[:, free], r, rcond=None)[0]) ** 2) if free.any() else 0
+            # a parameter the data do not determine has no minimum to stop short of, and no bound
+            # that holds it for a reason: not_identifiable goes before both
             if result.status == 0:
                 message = f"the optimiser ran out of trials ({max_trials}) before converging"
+            elif not identifiable:
+                status, message = "not_identifiable", "the data do not determine every parameter"
             elif short > SHORT_OF_MINIMUM**2 * np.sum(r**2) / max(n_used - p, 1):
                 message = "the fit stopped short of the minimum" + ", where the model fails" * bool(problem.unusable)
             elif at_bound.any():
                 status, message = "at_bound", "the fit lies at a bound: its standard errors assume an inner minimum"
-            elif not identifiable:
-                status, message = "not_identifiable", "the data do not determine every parameter"
             else:
                 status, message = "converged", f"converged: {result.message}"
     f = problem.predict(u)

@@ -9,10 +9,13 @@ or ``force_kN``; ``strain_strain`` or ``strain_microstrain``; ``velocity_m_s`` o
 block's ``time_unit`` and ``force_unit`` (``strain_unit``, ``velocity_unit``). The block may shift the time
 (``time_offset_s``, added after the unit's scale) and thin a long record (``every``: keep
 every k-th row) and multiply the value by its ``sign``. The file is refused, with one line
-naming what is wrong, when it is missing, has no header or an unknown unit, a unit that
-contradicts the block's, a time that does not increase, a value that is not a finite number,
-fewer than :data:`MIN_ROWS` rows, more than :data:`MAX_ROWS` rows kept, or a value that is
-zero throughout (a force also when it is mostly negative: a contact force pushes).
+naming what is wrong and the block's key at fault, when it is missing, has no header or an
+unknown unit, a unit that contradicts the block's, a time that does not increase (or an offset
+that swamps its steps: ``time_offset_s``), a value that is not a finite number, fewer than
+:data:`MIN_ROWS` rows (or a thinning that leaves fewer: ``every``), more than :data:`MAX_ROWS`
+rows kept, or a value that is zero throughout. What a record can show of the impact it measures
+(its pulse, sign, pre-trigger, timing and size) is checked against the case by
+:mod:`.record_checks`.
 
 Nothing here knows the workflow: :mod:`rodimpact.config.load` checks each history before any
 job, and the comparison (:mod:`.history_compare`) reads it again in its job.
@@ -141,6 +144,11 @@ class MeasuredHistory:
         How it was measured (the block's ``note``).
     kind : str
         The record's key in the ``measured`` block (:data:`RECORDS`).
+    header : tuple of str
+        The file's header, its two cells as written (``("time_us", "strain_microstrain")``).
+    time_unit, value_unit : str
+        The units the times and the values were read in (keys of :data:`TIME_UNITS` and of the
+        kind's units), from the header or from the block.
     """
 
     time_s: NDArray[np.float64]
@@ -148,6 +156,14 @@ class MeasuredHistory:
     path: Path
     note: str = ""
     kind: str = "force_history"
+    header: tuple[str, str] = ("time_s", "force_N")
+    time_unit: str = "s"
+    value_unit: str = "N"
+
+    def unit_from_header(self, column: int) -> bool:
+        """Whether the header itself names the unit of ``column`` (0: the time, 1: the value),
+        rather than the block's ``time_unit`` (or the value's unit key)."""
+        return bool(self.header[column].strip().partition("_")[2])
 
     @property
     def force_N(self) -> NDArray[np.float64]:
@@ -155,8 +171,8 @@ class MeasuredHistory:
         return self.values
 
 
-def _unit(name: str, quantity: str, declared: str | None, units: Mapping[str, float], where: str) -> float:
-    """The scale of a column from its header name (``time_ms``) or the declared unit; ``where``
+def _unit(name: str, quantity: str, declared: str | None, units: Mapping[str, float], where: str) -> str:
+    """The unit of a column from its header name (``time_ms``) or the declared unit; ``where``
     names the header's cell (``x.csv line 1, column 2``): a unit the header gives is the
     header's fault, one the block declares the block's."""
     base, _, suffix = name.strip().partition("_")
@@ -182,7 +198,7 @@ def _unit(name: str, quantity: str, declared: str | None, units: Mapping[str, fl
         )
     if unit not in units:
         raise HistoryError(f"{quantity}_unit", f"unknown unit {quoted(unit)}; known: {', '.join(units)}")
-    return units[unit]
+    return unit
 
 
 def read_force_history(path: str | Path, spec: Mapping[str, Any]) -> MeasuredHistory:
@@ -255,8 +271,8 @@ def read_history(path: str | Path, spec: Mapping[str, Any], key: str) -> Measure
                 f"{path.name} must start with a header of two columns, time and {kind.quantity} "
                 f"(e.g. 'time_s,{kind.quantity}_{next(iter(kind.units))}'), got {quoted(header)}",
             )
-        time_scale = _unit(header[0], "time", spec.get("time_unit"), TIME_UNITS, f"{path.name} line 1, column 1")
-        value_scale = _unit(
+        time_unit = _unit(header[0], "time", spec.get("time_unit"), TIME_UNITS, f"{path.name} line 1, column 1")
+        value_unit = _unit(
             header[1], kind.quantity, spec.get(f"{kind.quantity}_unit"), kind.units, f"{path.name} line 1, column 2"
         )
         values = []
@@ -275,31 +291,49 @@ def read_history(path: str | Path, spec: Mapping[str, Any], key: str) -> Measure
             values.append(pair)
     except csv.Error as error:
         raise HistoryError("file", f"{path.name} line {reader.line_num}: not CSV: {error}") from None
-    data = np.asarray(values, dtype=float).reshape(-1, 2)[::every]
+    read = np.asarray(values, dtype=float).reshape(-1, 2)
+    data = read[::every]
     if len(data) < MIN_ROWS:
+        if len(read) >= MIN_ROWS:  # the file has the rows; the thinning leaves too few
+            raise HistoryError(
+                "every",
+                f"every: {every} keeps {len(data)} of the {len(read)} rows of {path.name}, fewer than "
+                f"{MIN_ROWS}; keep every {max(len(read) // MIN_ROWS, 1)}-th row at most",
+            )
         raise HistoryError("file", f"{path.name} keeps {len(data)} rows, fewer than {MIN_ROWS}")
-    time = data[:, 0] * time_scale + float(spec.get("time_offset_s") or 0.0)
-    steps = np.diff(time)
+    scaled = data[:, 0] * TIME_UNITS[time_unit]
+    offset = float(spec.get("time_offset_s") or 0.0)
+    steps = np.diff(scaled)
     if np.any(steps <= 0):
         bad = int(np.argmax(steps <= 0))
         raise HistoryError(
             "file",
             f"{path.name} line {2 + (bad + 1) * every}: the time must increase, "
-            f"{time[bad + 1]:.6g} s follows {time[bad]:.6g} s",
+            f"{scaled[bad + 1]:.6g} s follows {scaled[bad]:.6g} s",
         )
-    value = data[:, 1] * value_scale * float(spec.get("sign") or 1)
+    time = scaled + offset
+    if not np.all(np.isfinite(time)) or np.any(np.diff(time) <= 0):
+        raise HistoryError(
+            "time_offset_s",
+            f"an offset of {offset:.6g} s swamps the times of {path.name}: their steps of {float(np.min(steps)):.3g} s "
+            "vanish in double precision once it is added; the offset moves the impact to time zero, a shift of the "
+            "order of the record's own span",
+        )
+    value = data[:, 1] * kind.units[value_unit] * float(spec.get("sign") or 1)
     high, low = float(value.max()), float(value.min())
     if high <= 0.0 and low >= 0.0:
         what = "no contact" if key == "force_history" else "nothing"
         raise HistoryError("file", f"{path.name}: the {kind.quantity} is zero throughout: {what} was recorded")
-    if key == "force_history" and (high <= 0.0 or -low > high):
-        flip = "declare sign: 1 (or remove sign: -1)" if spec.get("sign") == -1 else "declare sign: -1"
-        raise HistoryError(
-            "file",
-            f"{path.name}: the force is mostly negative (from {low:.6g} N to {high:.6g} N): a contact force "
-            f"pushes; if the sensor reads compression as negative, {flip} in the force_history block",
-        )
-    return MeasuredHistory(time_s=time, values=value, path=path, note=str(spec.get("note", "")), kind=key)
+    return MeasuredHistory(
+        time_s=time,
+        values=value,
+        path=path,
+        note=str(spec.get("note", "")),
+        kind=key,
+        header=(header[0], header[1]),
+        time_unit=time_unit,
+        value_unit=value_unit,
+    )
 
 
 def _short_cells(row: list[str], line: int, path: Path) -> None:

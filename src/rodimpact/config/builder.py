@@ -25,7 +25,13 @@ from rodimpact.config.checks import (
     check_stability,
     check_work_precision,
 )
-from rodimpact.config.measured import check_measured_physics, record_outputs, resolve_gauges, resolve_measured
+from rodimpact.config.measured import (
+    check_measured_physics,
+    check_records,
+    record_outputs,
+    resolve_gauges,
+    resolve_measured,
+)
 from rodimpact.config.paths import format_path
 from rodimpact.config.plausible import Budget, check_plausible
 from rodimpact.config.project import ConfigError, Project, _File
@@ -74,7 +80,7 @@ class ProjectBuilder:
         self.calibrate: dict[str, tuple[dict, _File]] = {}  # set -> its calibrate block and the file declaring it
         self.schemas: Schemas | None = None
         self.sweeps: dict[str, dict] = {}
-        self.histories: dict[tuple, str] = {}  # measured force histories checked (config.measured)
+        self.histories: dict[tuple, tuple] = {}  # measured records read (config.measured)
 
     def add_file(self, source: _File, schemas: Schemas) -> None:
         document = source.read()
@@ -150,6 +156,9 @@ class ProjectBuilder:
         if sweep is not None:
             case["methods"] = sweep.setdefault("methods", case["methods"])
         case["outputs"] = check_outputs(case, variant, error)
+        measured, records = resolve_measured(
+            with_floats(case["measured"]), source.path, source.label, error, self.histories
+        )
         resolved = {
             "id": case_id,
             "row": row,
@@ -169,9 +178,7 @@ class ProjectBuilder:
                 else {}
             ),
             "numerics": self._numerics(case, case_id, source),
-            "measured": resolve_measured(
-                with_floats(case["measured"]), source.path, source.label, error, self.histories
-            ),
+            "measured": measured,
             "published": with_floats(case["published"]),
         }
         check_measured_physics(resolved, error)
@@ -188,9 +195,11 @@ class ProjectBuilder:
         check_law(resolved if sweep is None else {**resolved, "sweep": sweep}, error)
         if sweep is not None:
             self.sweeps[case_id] = self._sweep(resolved, sweep, source)
+            check_records(resolved, records, error)  # once the case's runs are known to be sound
             return
-        self.cases[case_id] = resolved
         self._check_runs(resolved, source)
+        check_records(resolved, records, error)
+        self.cases[case_id] = resolved
         self.sets[set_name].append(case_id)
 
     def _sweep(self, case: dict, sweep: dict, source: _File) -> dict:

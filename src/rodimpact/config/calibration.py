@@ -9,6 +9,9 @@ the file, the case where one is at fault, and the field, when:
 * a quantity is not one the comparison knows, or no measured case of the set gives it;
 * a path names no number in some measured case of the set;
 * the bounds are not ordered, or the start lies outside them;
+* the path names a setting that takes only whole numbers or a few values (an integer or
+  enumerated setting, such as ``numerics.sem.max_contacts``): legal at the bounds, not between
+  them, where the fit's trials fall;
 * a case is not legal at a bound (its material outside the materials' schema, its contact law
   refusing the value, or the method unable to run it): the bounds leave the setting's declared
   range;
@@ -143,6 +146,7 @@ def check_calibration(
         if start is not None and not low <= float(start) <= high:
             raise error(f"{float(start):g} lies outside the bounds [{low:g}, {high:g}]", field=f"{where}.start")
         _check_grid(parameter, low, high, len(block["parameters"]), where, error)
+        inside = _fractional_inside(low, high)
         for case in [*fitted, *applied_cases(cases, block)]:
             for bound in (low, high):
                 try:
@@ -157,6 +161,21 @@ def check_calibration(
                         case=case["id"],
                         field=f"{where}.bounds",
                     )
+            # legal at both bounds: a setting that takes only whole numbers (or a few values) is
+            # refused between them, where the fit's trials fall
+            reason = (
+                None
+                if inside is None
+                else _illegal(with_setting(case, parameter["path"], inside), method, schemas, numerics)
+            )
+            if reason:
+                raise error(
+                    f"{parameter['path']} is not a real-valued constant: the case is legal at its bounds but not at "
+                    f"{inside:.6g} between them ({reason}); a calibration varies a constant continuously, so it fits "
+                    "no integer or enumerated setting",
+                    case=case["id"],
+                    field=f"{where}.path",
+                )
     names = [p["path"] for p in block["parameters"]]
     if len(set(names)) != len(names):
         raise error("a constant is named twice", field="calibrate.parameters")
@@ -167,6 +186,16 @@ def check_calibration(
             "a fit needs at least as many measurements as constants",
             field="calibrate.parameters",
         )
+
+
+def _fractional_inside(low: float, high: float) -> float | None:
+    """A number strictly between ``low`` and ``high`` that is not a whole number (a fit's trial
+    of a real constant); None where every double between them is whole (bounds beyond 2^52)."""
+    for share in (0.5, 0.381966, 0.618034, 0.1, 0.9):
+        value = low + share * (high - low)
+        if low < value < high and not value.is_integer():
+            return value
+    return None
 
 
 def _check_grid(

@@ -1,11 +1,12 @@
 """A case's measured block: its records' files found, read and checked before any job.
 
 Each record (a force, a strain at a gauge, a velocity: :data:`~rodimpact.analysis.measured.RECORDS`)
-is named relative to the case file and must lie in that file's directory or below it:
-the plan's cache (:mod:`rodimpact.plumbing.plan_cache`) reads the cases directory's whole tree,
-so a history there that changes reaches the plan, and the comparison's rule lists it as an
-input. The resolved block keeps the file as written and adds ``path``, the file relative to
-the project root, which the jobs read.
+is named relative to the case file and must lie in that file's directory or below it, beside
+the configuration it belongs to; every plan reads it whole (:func:`resolve_measured`), and the
+comparison's rule lists it as an input, so a change to it reaches the plan and reruns what reads
+it. The resolved block keeps the file as written and adds ``path``, the file relative to the
+project root, which the jobs read. What a record shows is then checked against its case's impact
+(:func:`check_records`, :mod:`rodimpact.analysis.record_checks`).
 """
 
 from __future__ import annotations
@@ -14,11 +15,13 @@ from collections.abc import Callable, Mapping
 from pathlib import Path, PurePosixPath
 from typing import Any
 
-from rodimpact.analysis.measured import MEASURED_KEYS, RECORDS, HistoryError, read_history
+from rodimpact.analysis.measured import MEASURED_KEYS, RECORDS, HistoryError, MeasuredHistory, read_history
+from rodimpact.analysis.record_checks import check_record, impact_bounds
 from rodimpact.config.project import ConfigError
 from rodimpact.model.gauges import Gauge, GaugeError
+from rodimpact.model.problem import ImpactProblem
 
-__all__ = ["check_measured_physics", "record_outputs", "resolve_gauges", "resolve_measured"]
+__all__ = ["check_measured_physics", "check_records", "record_outputs", "resolve_gauges", "resolve_measured"]
 
 
 def resolve_measured(
@@ -26,9 +29,10 @@ def resolve_measured(
     case_file: Path,
     case_label: str,
     error: Callable[..., ConfigError],
-    checked: dict[tuple, str] | None = None,
-) -> dict | None:
-    """The case's ``measured`` block with its records (if any) checked and located.
+    checked: dict[tuple, tuple[str, MeasuredHistory]] | None = None,
+) -> tuple[dict | None, dict[str, MeasuredHistory]]:
+    """The case's ``measured`` block with its records (if any) checked as files and located,
+    and the records read.
 
     Parameters
     ----------
@@ -41,8 +45,15 @@ def resolve_measured(
     error : callable
         ``error(message, field=...)`` -> :class:`ConfigError` naming the file and the case.
     checked : dict, optional
-        Records already checked, (path, key, spec) -> root-relative path: a file several
+        Records already read, (path, key, spec) -> (root-relative path, record): a file several
         variants share is read once.
+
+    Returns
+    -------
+    block : dict or None
+        The resolved block (None without one).
+    records : dict
+        Its records read, by key (:func:`check_records` checks them against the case).
 
     Raises
     ------
@@ -51,12 +62,14 @@ def resolve_measured(
         (:class:`~rodimpact.analysis.measured.HistoryError`), with its field.
     """
     if measured is None:
-        return None
-    resolved = dict(measured)
+        return None, {}
+    resolved, records = dict(measured), {}
     for key in RECORDS:
         if measured.get(key):
-            resolved[key] = _resolve_record(key, dict(measured[key]), case_file, case_label, error, checked)
-    return resolved
+            resolved[key], records[key] = _resolve_record(
+                key, dict(measured[key]), case_file, case_label, error, checked
+            )
+    return resolved, records
 
 
 def _resolve_record(
@@ -65,9 +78,9 @@ def _resolve_record(
     case_file: Path,
     case_label: str,
     error: Callable[..., ConfigError],
-    checked: dict[tuple, str] | None,
-) -> dict[str, Any]:
-    """One record of the ``measured`` block, read and checked, with its ``path`` added."""
+    checked: dict[tuple, tuple[str, MeasuredHistory]] | None,
+) -> tuple[dict[str, Any], MeasuredHistory]:
+    """One record of the ``measured`` block, read and checked, with its ``path`` added; and the record."""
     directory = case_file.parent.resolve()
     path = (case_file.parent / history["file"]).resolve()
     if not path.is_relative_to(directory):
@@ -78,16 +91,16 @@ def _resolve_record(
         )
     cache_key = (str(path), key, tuple(sorted((k, str(v)) for k, v in history.items())))
     if checked is not None and cache_key in checked:
-        label = checked[cache_key]
+        label, record = checked[cache_key]
     else:
         try:
-            read_history(path, history, key)
+            record = read_history(path, history, key)
         except HistoryError as problem:
             raise error(problem.reason, field=f"measured.{key}.{problem.field}") from None
         label = (PurePosixPath(case_label).parent / path.relative_to(directory).as_posix()).as_posix()
         if checked is not None:
-            checked[cache_key] = label
-    return {**history, "path": label}
+            checked[cache_key] = label, record
+    return {**history, "path": label}, record
 
 
 def resolve_gauges(
@@ -160,3 +173,25 @@ def check_measured_physics(case: Mapping[str, Any], error: Callable[..., ConfigE
             "the far end's velocity of a rod whose far end is fixed is zero: a record of it needs rod.far_end: free",
             field="measured.velocity_history.of",
         )
+
+
+def check_records(
+    case: Mapping[str, Any], records: Mapping[str, MeasuredHistory], error: Callable[..., ConfigError]
+) -> None:
+    """What each record of a resolved case shows, against what the case's impact allows: a pulse
+    above its noise, its sign, a pre-trigger, its size and its timing
+    (:func:`rodimpact.analysis.record_checks.check_record`).
+
+    Raises
+    ------
+    ConfigError
+        Naming the record's key at fault (``measured.strain_history.sign``, ...).
+    """
+    if not records:
+        return
+    bounds = impact_bounds(ImpactProblem.from_case(case, estimate=True))
+    for key, record in records.items():
+        try:
+            check_record(record, case["measured"][key], bounds)
+        except HistoryError as problem:
+            raise error(problem.reason, field=f"measured.{key}.{problem.field}") from None

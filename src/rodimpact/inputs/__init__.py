@@ -9,5 +9,5 @@ message, at most about 100 characters of it) and :class:`~rodimpact.inputs.files
 (the error, with the file and the reason as data).
 
 What it may import: the standard library only. It is the lowest layer beside
-:mod:`rodimpact.settings`: the configuration, the measurements and the plan cache read with it.
+:mod:`rodimpact.settings`: the configuration and the measurements are read with it.
 """

@@ -1,10 +1,9 @@
 """The machinery around snakemake that the workflow's .smk files call while snakemake parses
-them. :mod:`.locks`, :mod:`.targets` and :mod:`.plan_cache` each open with what snakemake does
-on its own, why that is not enough here, and which test fails when snakemake's internals change
-(the .smk blocks that call ``sys.exit`` and set ``sys.path`` say the same in their comments).
+them. :mod:`.locks` and :mod:`.targets` each open with what snakemake does on its own, why that
+is not enough here, and which test fails when snakemake's internals change (the .smk blocks that
+call ``sys.exit`` and set ``sys.path`` say the same in their comments).
 
-What lives here: :mod:`.plan_cache` (the checked project and the jobs' estimates, kept between
-snakemake runs), :mod:`.locks` (snakemake's lock left by a killed run, released),
+What lives here: :mod:`.locks` (snakemake's lock left by a killed run, released),
 :mod:`.targets` (command-line targets no rule makes, read with snakemake's own argument parser)
 and :mod:`.sources` (the package files a rule runs, from the static import graph, and their digest).
 

@@ -19,7 +19,7 @@ import pandas as pd  # noqa: E402
 from numpy.typing import NDArray  # noqa: E402
 
 from rodimpact.analysis.history_compare import HistoryComparison  # noqa: E402
-from rodimpact.analysis.observations import gauge_column  # noqa: E402
+from rodimpact.analysis.observations import NORMS, gauge_column  # noqa: E402
 from rodimpact.analysis.wave_compare import SignalComparison  # noqa: E402
 from rodimpact.present.table2_figures import short_source  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
@@ -29,12 +29,15 @@ __all__ = ["plot_compare_set", "plot_signal_overlays"]
 #: The measured scalars drawn, in this order, each in its row of panels.
 _DRAWN = (
     "contact_time_us",
+    "signal_contact_time_us",
     "peak_force_n",
     "rebound_velocity_m_s",
     "strain_peak_microstrain",
     "strain_integral_microstrain_us",
     "far_end_peak_velocity_m_s",
 )
+#: The error norms drawn (of a record that gives no value to draw), after the values.
+_DRAWN_NORMS = ("impactor_velocity_l2_pct", "impactor_velocity_max_pct")
 _MARKERS = ("s", "D", "P", "X", "h")
 #: The markers of a method's lines, one per contact law met in the set.
 _LAW_MARKERS = ("o", "^", "v", "D", "s")
@@ -55,7 +58,9 @@ def plot_compare_set(
     descriptions: Mapping[str, str] | None = None,
 ) -> matplotlib.figure.Figure:
     """Measured and computed values against ``x``, a panel per measured quantity (rows) and
-    variant (columns); measured points marked by their source, each method a line.
+    variant (columns); measured points marked by their source, each method a line. The
+    impactor's velocity, which gives error norms alone (no value to set against ``x``), adds
+    each method's norms of it, in %.
 
     Parameters
     ----------
@@ -69,7 +74,10 @@ def plot_compare_set(
         Variant -> its description (panel titles).
     """
     descriptions = dict(descriptions or {})
-    quantities = [q for q in _DRAWN if q in set(frame["quantity"])]
+    present = set(frame["quantity"])
+    quantities = [q for q in (*_DRAWN, *_DRAWN_NORMS) if q in present]
+    if not quantities:
+        raise ValueError(f"frame: no quantity to draw; its quantities: {sorted(present)}")
     variants = list(dict.fromkeys(frame["variant"].fillna("")))
     cols = min(len(variants), _MAX_COLUMNS)
     per_quantity = math.ceil(len(variants) / cols)  # rows of panels each quantity takes
@@ -90,7 +98,8 @@ def plot_compare_set(
         for j, variant in enumerate(variants):
             ax = axes[i * per_quantity + j // cols, j % cols]
             rows = frame[(frame["quantity"] == quantity) & (frame["variant"].fillna("") == variant)]
-            measured = rows.drop_duplicates("case_id").sort_values(x)
+            norm = quantity in NORMS  # a norm is an error already: no measured point, the error drawn
+            measured = rows.drop_duplicates("case_id").sort_values(x).iloc[: 0 if norm else None]
             for source, points in measured.groupby("source", sort=False):
                 ax.plot(
                     points[x],
@@ -108,7 +117,7 @@ def plot_compare_set(
                 marker = _LAW_MARKERS[laws.index(law) % len(_LAW_MARKERS)] if takes_law else "o"
                 ax.plot(
                     computed[x],
-                    computed["computed"],
+                    computed["error_pct" if norm else "computed"],
                     marker=marker,
                     ms=4,
                     lw=1.2,

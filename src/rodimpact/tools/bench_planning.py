@@ -1,11 +1,11 @@
-"""How long snakemake takes to plan the workflow: the dry run, with and without the plan cache,
-against a one-rule workflow (``make bench``, not tests).
+"""How long snakemake takes to plan the workflow: the dry run against a one-rule workflow
+(``make bench``, not tests).
 
 Each figure is the wall time of a whole ``snakemake -n --quiet rules`` process (the
 environment's own snakemake, in ``root``), over ``runs`` runs after one run not counted:
 
-* ``with_cache``: the plan cache (:data:`rodimpact.plumbing.plan_cache.CACHE_FILE`) in place;
-* ``without_cache``: the cache file removed before each run (the run writes it again);
+* ``dry_run``: the workflow in ``root``, which checks the whole configuration and every job's
+  resources at each start;
 * ``one_rule``: a workflow of one rule that touches a file, in a temporary directory: what
   snakemake itself takes to start and plan, whatever the workflow.
 
@@ -22,11 +22,10 @@ import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from rodimpact.plumbing.plan_cache import CACHE_FILE
 from rodimpact.storage.atomic import atomic_output
 
 __all__ = ["Timing", "main", "time_dry_runs", "write_timings"]
@@ -51,11 +50,10 @@ def _snakemake() -> str:
     return str(Path(sys.executable).parent / "snakemake")
 
 
-def _timed(root: Path, runs: int, before: Callable[[], None]) -> tuple[float, ...]:
+def _timed(root: Path, runs: int) -> tuple[float, ...]:
     command = [_snakemake(), "-n", "--quiet", "rules"]
     seconds = []
-    for index in range(runs + 1):  # the first run is not counted (files cached, the cache written)
-        before()
+    for index in range(runs + 1):  # the first run is not counted (files cached)
         started = time.perf_counter()
         subprocess.run(command, cwd=root, check=True, capture_output=True)
         if index:
@@ -64,7 +62,7 @@ def _timed(root: Path, runs: int, before: Callable[[], None]) -> tuple[float, ..
 
 
 def time_dry_runs(root: str | Path, runs: int) -> list[Timing]:
-    """The three timings of the module's docstring, ``runs`` runs each.
+    """The two timings of the module's docstring, ``runs`` runs each.
 
     Raises
     ------
@@ -75,14 +73,11 @@ def time_dry_runs(root: str | Path, runs: int) -> list[Timing]:
     """
     if runs < 1:
         raise ValueError(f"runs: must be at least 1, got {runs}")
-    root = Path(root)
-    cache = root / CACHE_FILE
-    timings = [Timing("without_cache", _timed(root, runs, lambda: cache.unlink(missing_ok=True)))]
-    timings.append(Timing("with_cache", _timed(root, runs, lambda: None)))
+    timings = [Timing("dry_run", _timed(Path(root), runs))]
     with tempfile.TemporaryDirectory() as folder:
         (Path(folder) / "Snakefile").write_text(_ONE_RULE, encoding="utf-8")
         (Path(folder) / "a.txt").touch()
-        timings.append(Timing("one_rule", _timed(Path(folder), runs, lambda: None)))
+        timings.append(Timing("one_rule", _timed(Path(folder), runs)))
     return timings
 
 
