@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from rodimpact.contact.hertz import HertzLaw, hertz_constant
-from rodimpact.contact.law import ContactLaw, RigidImpact
+from rodimpact.contact.law import ContactLaw, RigidImpact, check_positive
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.model.responses import Rod
 from rodimpact.solvers.fem1d.options import FEM1DOptions
@@ -139,3 +139,10 @@ def test_the_stored_contact_energy_is_the_laws(spring_runs):
     for result in spring_runs.values():
         alpha = np.maximum(result.approach, 0.0)
         np.testing.assert_allclose(result.extra_series["contact_energy"][0], 0.5 * SPRING * alpha**2, rtol=1e-14)
+
+
+@pytest.mark.parametrize("value", [0.0, -1.0, math.inf, math.nan])
+def test_check_positive_names_the_first_value_that_is_not_positive_and_finite(value):
+    check_positive(mass_kg=1.0, velocity_m_s=1e-3)  # positive and finite: passes
+    with pytest.raises(ValueError, match=r"^velocity_m_s must be > 0, got"):
+        check_positive(mass_kg=1.0, velocity_m_s=value, c=-1.0)

@@ -37,7 +37,7 @@ def rod():
 
 def areas(mesh):
     """Signed triangle areas, m^2."""
-    return mesh_geometry._area2(mesh.p, mesh.t) / 2
+    return mesh_geometry.area2(mesh.p, mesh.t) / 2
 
 
 def volume(mesh):
@@ -83,7 +83,7 @@ def test_rod_coordinates_graded_and_exact(rod):
         assert np.isclose(x[in_fine.sum()], extent, rtol=1e-12, atol=0)
         assert np.allclose(h[in_fine], h[0], rtol=1e-9, atol=0) and h[0] <= fine
         ratio = h[1:] / h[:-1]
-        assert ratio.max() <= mesh_geometry.GROWTH_RATIO + 1e-12
+        assert ratio.max() <= meshes.GROWTH_RATIO + 1e-12
         assert ratio.min() >= 1 - 1e-9  # never shrinks
         assert h.max() <= coarse * (1 + 1e-12)
     assert rod.fine_size_m <= fine and rod.contact_extent_m == extent
@@ -114,14 +114,28 @@ def test_rod_grading_corner_cases():
     body = rod_mesh(1e-3, 2e-3, 0.1e-3, 5e-3, layout="tensor")
     assert np.allclose(np.diff(np.unique(body.mesh.p[1])), 0.1e-3, rtol=1e-9, atol=0)
     # a tail too short to grade: uniform at the fine spacing (<= fine)
-    x = mesh_geometry._graded(1.0e-3, 0.1e-3, 0.95e-3, 1.0)
+    x = meshes._graded(1.0e-3, 0.1e-3, 0.95e-3, 1.0)
     assert x[-1] == 1.0e-3 and np.diff(x).max() <= 0.1e-3 * (1 + 1e-12)
     # an explicit coarse size caps r and z
     body = rod_mesh(5e-3, 0.1, 0.1e-3, 1e-3, coarse_size_m=0.4e-3, layout="tensor")
     for k in range(2):
         h = np.diff(np.unique(body.mesh.p[k]))
         assert h.max() <= 0.4e-3 * (1 + 1e-12)
-        assert (h[1:] / h[:-1]).max() <= mesh_geometry.GROWTH_RATIO + 1e-12
+        assert (h[1:] / h[:-1]).max() <= meshes.GROWTH_RATIO + 1e-12
+
+
+@pytest.mark.parametrize(
+    ("radius", "length", "size_r", "size_z"), [(1e-3, 2e-3, 0.25e-3, 0.5e-3), (5e-3, 0.1, 1.3e-3, 2.6e-3)]
+)
+def test_the_coarse_rod_grid_is_uniform_and_no_finer_than_needed(radius, length, size_r, size_z):
+    """Equal spacings of at most the size, as few as that allows (an integral quotient is not
+    rounded up), from 0 to exactly a and L."""
+    r, z = meshes.coarse_rod_grid(radius, length, size_r, size_z)
+    for x, end, size in ((r, radius, size_r), (z, length, size_z)):
+        h = np.diff(x)
+        assert x[0] == 0.0 and x[-1] == end
+        assert np.allclose(h, h[0], rtol=1e-12, atol=0) and h[0] <= size * (1 + 1e-12)
+        assert x.size - 1 == math.ceil(end / size - 1e-9)
 
 
 # ---------------------------------------------------------------------- curved bodies
@@ -157,8 +171,8 @@ def test_curved_boundaries_exact(curved):
 def test_curved_element_sizes(curved):
     body, radius, height, fine, extent = curved
     mesh = body.mesh
-    longest = mesh_geometry._longest_edges(mesh)
-    near = mesh_geometry._distance_to_origin(mesh) <= extent
+    longest = mesh_geometry.longest_edges(mesh)
+    near = mesh_geometry.distance_to_origin(mesh) <= extent
     assert near.sum() > 0
     assert longest[near].max() <= fine and body.fine_size_m == longest[near].max()
     assert body.contact_extent_m == extent
@@ -259,7 +273,7 @@ def test_bad_input_names_the_argument(call, argument):
 def test_coarse_fine_size_gives_a_uniform_body():
     """A fine size above R/4 leaves every element at most min(fine, R/4)."""
     body = ball_mesh(1e-3, 0.5e-3, 0.1e-3)
-    assert mesh_geometry._longest_edges(body.mesh).max() <= 0.25e-3
+    assert mesh_geometry.longest_edges(body.mesh).max() <= 0.25e-3
     assert np.all(areas(body.mesh) > 0)
 
 

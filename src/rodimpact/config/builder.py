@@ -34,7 +34,7 @@ from rodimpact.config.measured import (
 )
 from rodimpact.config.paths import format_path
 from rodimpact.config.plausible import Budget, check_plausible
-from rodimpact.config.project import ConfigError, Project, _File
+from rodimpact.config.project import ConfigError, ConfigFile, Project
 from rodimpact.config.schema import Schemas, deep_merge, with_floats
 from rodimpact.solvers.field import FIELD_OUTPUT, FieldGrid
 from rodimpact.solvers.options import OptionError
@@ -71,18 +71,18 @@ _VARIANT_FIELDS = ("impactor", "rod", "contact", "methods", "numerics")  # what 
 class ProjectBuilder:
     """Collects resolved cases file by file, checking each as it goes."""
 
-    def __init__(self, config: dict, config_source: _File, materials: dict[str, dict]):
+    def __init__(self, config: dict, config_source: ConfigFile, materials: dict[str, dict]):
         self.config, self.config_source, self.materials = config, config_source, materials
         self.cases: dict[str, dict] = {}
         self.sets: dict[str, list[str]] = {}
         self.variants: dict[str, dict[str, dict]] = {}
         self.compare: dict[str, dict] = {}
-        self.calibrate: dict[str, tuple[dict, _File]] = {}  # set -> its calibrate block and the file declaring it
+        self.calibrate: dict[str, tuple[dict, ConfigFile]] = {}  # set -> its calibrate block and the file declaring it
         self.schemas: Schemas | None = None
         self.sweeps: dict[str, dict] = {}
         self.histories: dict[tuple, tuple] = {}  # measured records read (config.measured)
 
-    def add_file(self, source: _File, schemas: Schemas) -> None:
+    def add_file(self, source: ConfigFile, schemas: Schemas) -> None:
         document = source.read()
         if document is None:
             raise source.error("file is empty; expected a mapping with a non-empty 'cases' list")
@@ -118,7 +118,7 @@ class ProjectBuilder:
                 self._add_case(source, schemas, set_name, variant, deep_merge(base, changes))
         logger.debug("%s: set %r has %d cases", source.label, set_name, len(self.sets[set_name]))
 
-    def _add_variants(self, source: _File, set_name: str, variants: dict) -> None:
+    def _add_variants(self, source: ConfigFile, set_name: str, variants: dict) -> None:
         known = self.variants.setdefault(set_name, {})
         for name, variant in variants.items():
             if known.get(name, variant) != variant:
@@ -127,7 +127,7 @@ class ProjectBuilder:
             known[name] = variant
 
     @staticmethod
-    def _variant_names(source: _File, case: dict, variants: dict) -> list[str | None]:
+    def _variant_names(source: ConfigFile, case: dict, variants: dict) -> list[str | None]:
         """The variants a case is expanded over ([None]: no expansion)."""
         if "variants" not in case:
             return list(variants) or [None]
@@ -138,7 +138,7 @@ class ProjectBuilder:
                 raise source.error(message, case=case["id"], field=f"variants[{index}]")
         return list(case["variants"])
 
-    def _add_case(self, source: _File, schemas: Schemas, set_name: str, variant: str | None, case: dict) -> None:
+    def _add_case(self, source: ConfigFile, schemas: Schemas, set_name: str, variant: str | None, case: dict) -> None:
         case.pop("variants", None)  # already expanded
         row = case["id"]
         case_id = f"{row}-{variant}" if variant else row
@@ -202,7 +202,7 @@ class ProjectBuilder:
         self.cases[case_id] = resolved
         self.sets[set_name].append(case_id)
 
-    def _sweep(self, case: dict, sweep: dict, source: _File) -> dict:
+    def _sweep(self, case: dict, sweep: dict, source: ConfigFile) -> dict:
         """The sweep case with its grid's values; every point's runs checked like a case's."""
         try:
             points = sweep_points(sweep)
@@ -251,7 +251,7 @@ class ProjectBuilder:
             "material": self._material(rod["material"], error, "rod.material"),
         }
 
-    def _numerics(self, case: dict, case_id: str, source: _File) -> dict:
+    def _numerics(self, case: dict, case_id: str, source: ConfigFile) -> dict:
         """The global numerics of each of the case's methods, the case's overrides on top."""
         resolved = {}
         for method in case["methods"]:
@@ -276,7 +276,7 @@ class ProjectBuilder:
             resolved[method] = options.as_settings()
         return resolved
 
-    def _check_runs(self, case: dict, source: _File) -> None:
+    def _check_runs(self, case: dict, source: ConfigFile) -> None:
         """The case's runs are plausible (:mod:`.plausible`) and each method's options fit
         the case (e.g. sem_paper's step is stable)."""
         finding = check_plausible(case, Budget.of(self.config["limits"]))

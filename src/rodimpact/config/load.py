@@ -24,7 +24,7 @@ from typing import Any
 
 from rodimpact.config.bodies import check_material_ranges
 from rodimpact.config.builder import CASES_SCHEMA, COMPLETE_MATERIAL, METHODS, OUTPUTS, ProjectBuilder
-from rodimpact.config.project import ConfigError, Project, _File
+from rodimpact.config.project import ConfigError, ConfigFile, Project
 from rodimpact.config.schema import Schemas
 from rodimpact.config.yamlfile import YamlError
 from rodimpact.contact.laws import contact_schema
@@ -99,9 +99,9 @@ def _load_schemas(schema_dir: Path, root: Path) -> Schemas:
     try:
         return Schemas(schema_dir, extra=registry_schema())
     except FileNotFoundError as exc:
-        raise _File.under(exc.filename or schema_dir, root).error("schema file not found") from None
+        raise ConfigFile.under(exc.filename or schema_dir, root).error("schema file not found") from None
     except YamlError as exc:
-        raise _File.under(exc.path, root).error(f"bad schema: {exc}") from None
+        raise ConfigFile.under(exc.path, root).error(f"bad schema: {exc}") from None
 
 
 def _find_root(path: Path) -> Path:
@@ -112,7 +112,7 @@ def _find_root(path: Path) -> Path:
     return Path.cwd()
 
 
-def _checked_config(config: Any, source: _File, schemas: Schemas) -> dict:
+def _checked_config(config: Any, source: ConfigFile, schemas: Schemas) -> dict:
     """A checked deep copy of the global config, its defaults filled in."""
     config = {} if config is None else copy.deepcopy(config)
     config = dict(config) if isinstance(config, Mapping) else config
@@ -146,7 +146,7 @@ def load_global_config(path: str | Path, schema_dir: str | Path | None = None) -
     path = Path(path)
     root = _find_root(path)
     schemas = _load_schemas(Path(schema_dir) if schema_dir else root / DEFAULT_SCHEMA_DIR, root)
-    source = _File.under(path, root)
+    source = ConfigFile.under(path, root)
     return _checked_config(source.read(), source, schemas)
 
 
@@ -185,7 +185,7 @@ def load_project(
     """
     root = Path(root)
     schemas = _load_schemas(Path(schema_dir) if schema_dir else root / DEFAULT_SCHEMA_DIR, root)
-    config_source = _File.under(config_file, root)
+    config_source = ConfigFile.under(config_file, root)
     checked = _checked_config(config, config_source, schemas)
     builder = ProjectBuilder(checked, config_source, _load_materials(checked, root, schemas))
     for source in _case_files(checked, root, config_source):
@@ -201,15 +201,15 @@ def load_case_file(path: str | Path, config: Mapping, root: str | Path = ".") ->
     (``rodimpact run``). Raises :class:`ConfigError` like :func:`load_project`."""
     root = Path(root)
     schemas = _load_schemas(root / DEFAULT_SCHEMA_DIR, root)
-    config_source = _File.under(DEFAULT_CONFIG_FILE, root)
+    config_source = ConfigFile.under(DEFAULT_CONFIG_FILE, root)
     checked = _checked_config(config, config_source, schemas)
     builder = ProjectBuilder(checked, config_source, _load_materials(checked, root, schemas))
-    builder.add_file(_File.under(path, root), schemas)
+    builder.add_file(ConfigFile.under(path, root), schemas)
     return builder.cases
 
 
 def _load_materials(config: dict, root: Path, schemas: Schemas) -> dict[str, dict]:
-    source = _File.under(config["materials"], root)
+    source = ConfigFile.under(config["materials"], root)
     document = source.read()
     if document is None:
         raise source.error("file is empty; expected a 'materials' mapping")
@@ -218,13 +218,13 @@ def _load_materials(config: dict, root: Path, schemas: Schemas) -> dict[str, dic
     return document["materials"]
 
 
-def _case_files(config: dict, root: Path, config_source: _File) -> list[_File]:
-    directory = _File.under(config["cases_dir"], root)
+def _case_files(config: dict, root: Path, config_source: ConfigFile) -> list[ConfigFile]:
+    directory = ConfigFile.under(config["cases_dir"], root)
     if not directory.path.is_dir():
         raise config_source.error(f"directory not found: {directory.label}", field="cases_dir")
     for other in sorted(directory.path.glob("*.yml")):
         if not other.name.startswith("."):
-            raise _File.under(other, root).error(
+            raise ConfigFile.under(other, root).error(
                 f"a case file ends in .yaml; rename it {other.stem}.yaml (only *.yaml files are read)"
             )
     # a case file below the directory is not read: refused by name, never ignored (a directory
@@ -232,11 +232,11 @@ def _case_files(config: dict, root: Path, config_source: _File) -> list[_File]:
     for nested in sorted(directory.path.rglob("*.y*ml")):
         inner = nested.relative_to(directory.path)
         if len(inner.parts) > 1 and not any(part.startswith(".") for part in inner.parts):
-            raise _File.under(nested, root).error(
+            raise ConfigFile.under(nested, root).error(
                 f"a case file in a subdirectory is not read; move it to {directory.label}/ (only "
                 f"{directory.label}/*.yaml are case files)"
             )
     paths = sorted(p for p in directory.path.glob("*.yaml") if not p.name.startswith("."))
     if not paths:
         raise config_source.error(f"no *.yaml case files in {directory.label}", field="cases_dir")
-    return [_File.under(p, root) for p in paths]
+    return [ConfigFile.under(p, root) for p in paths]

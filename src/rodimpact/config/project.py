@@ -1,7 +1,9 @@
-"""The loaded configuration (:class:`Project`) and its errors (:class:`ConfigError`).
+"""The loaded configuration (:class:`Project`), its errors (:class:`ConfigError`) and the file
+they are found in (:class:`ConfigFile`).
 
-:mod:`rodimpact.config.load` reads and checks the YAML; this module holds what it returns and
-raises, and the file handle (:class:`_File`) that locates a problem in a file.
+:mod:`rodimpact.config.load` reads and checks the YAML, and :mod:`rodimpact.config.builder`
+resolves the case files; this module holds what they return and raise, and the handle of a file
+being read (:class:`ConfigFile`), which locates a problem in that file.
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ from rodimpact.config.paths import format_path
 if TYPE_CHECKING:
     from rodimpact.config.schema import Problem, Schemas
 
-__all__ = ["ConfigError", "Project"]
+__all__ = ["ConfigError", "ConfigFile", "Project"]
 
 
 class ConfigError(ValueError):
@@ -43,14 +45,35 @@ class ConfigError(ValueError):
 
 
 @dataclass(frozen=True)
-class _File:
-    """A file being read, with its name as shown in messages (relative to the root)."""
+class ConfigFile:
+    """A configuration file being read, with its name as messages show it.
+
+    Attributes
+    ----------
+    path : pathlib.Path
+        Where the file is.
+    label : str
+        Its name in messages: relative to the project's root when it lies under it.
+    """
 
     path: Path
     label: str
 
     @classmethod
-    def under(cls, path: str | Path, root: Path) -> _File:
+    def under(cls, path: str | Path, root: Path) -> ConfigFile:
+        """The file at ``path``, relative to ``root`` unless absolute, labelled relative to ``root``.
+
+        Parameters
+        ----------
+        path : str or pathlib.Path
+            The file, absolute or relative to ``root``.
+        root : pathlib.Path
+            The project's root.
+
+        Returns
+        -------
+        ConfigFile
+        """
         path = Path(path) if Path(path).is_absolute() else root / path
         try:
             label = path.resolve().relative_to(root.resolve()).as_posix()
@@ -58,11 +81,33 @@ class _File:
             label = str(path)
         return cls(path, label)
 
-    def error(self, message: str, *, case: str | None = None, field: str | None = None):
+    def error(self, message: str, *, case: str | None = None, field: str | None = None) -> ConfigError:
+        """A :class:`ConfigError` in this file, optionally naming the case and the field.
+
+        Parameters
+        ----------
+        message : str
+            What is wrong.
+        case : str, optional
+            The case's id.
+        field : str, optional
+            The field's dotted path.
+
+        Returns
+        -------
+        ConfigError
+            Not raised: the caller raises it.
+        """
         return ConfigError(message, file=self.label, case=case, field=field)
 
     def read(self) -> Any:
-        """The file's YAML content (None when empty); ConfigError if missing or not YAML."""
+        """The file's YAML content (None when empty).
+
+        Raises
+        ------
+        ConfigError
+            The file is missing, unreadable or not YAML.
+        """
         from rodimpact.config.yamlfile import YamlError, read_yaml  # the checker's; a checked Project needs none
 
         try:
@@ -75,7 +120,25 @@ class _File:
             raise self.error(str(exc)) from None
 
     def check(self, document: Any, schemas: Schemas, schema: str, *, fill: bool = False) -> None:
-        """Raise ConfigError for the first schema problem or non-finite number in `document`."""
+        """Check ``document``, read from this file, against a schema.
+
+        Parameters
+        ----------
+        document : Any
+            The file's content.
+        schemas : Schemas
+            The project's schemas.
+        schema : str
+            The schema's name (and its fragment, if any).
+        fill : bool
+            Fill in the schema's defaults while checking.
+
+        Raises
+        ------
+        ConfigError
+            The first schema problem or non-finite number in ``document``, naming the case when
+            it lies in ``cases[i]`` of a case file.
+        """
         from rodimpact.config.schema import first_non_finite
 
         problem = schemas.first_problem(document, schema, fill_defaults=fill)

@@ -1,12 +1,12 @@
 """Contact laws: the quasi-static force-approach law of the impactor's contact with the rod.
 
-What lives here: the interface every law implements and what a law declares of itself (its
-name, label, settings, needs, methods and conflicts: :mod:`.law`), each law in its own module
-with its settings (:mod:`.hertz`, :mod:`.film` (its rigid impact in :mod:`.film_impact`),
-:mod:`.stack` (a stack of bonded layers, and the geometry every method reads of a film or
-stack), :mod:`.tabulated`, :mod:`.spring` (a reference spring with closed forms)), and the
-table of laws by
-name with the functions that read the declarations for the rest of the project (:mod:`.laws`).
+What lives here: the interface every law implements, what a law declares of itself (its
+name, label, settings, needs, methods and conflicts) and the check of a law's positive arguments
+(:mod:`.law`), each law in its own module with its settings (:mod:`.hertz`, :mod:`.film` (its
+rigid impact in :mod:`.film_impact`), :mod:`.stack` (a stack of bonded layers, and the geometry
+every method reads of a film or stack), :mod:`.tabulated`, :mod:`.spring` (a reference spring
+with closed forms)), and the table of laws by name with the functions that read the
+declarations for the rest of the project (:mod:`.laws`).
 
 What it may import: numpy, scipy and :mod:`rodimpact.settings` (how a setting is declared).
 The model, the solvers and everything above them use it; it uses none of them.

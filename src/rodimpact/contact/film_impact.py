@@ -32,7 +32,7 @@ import math
 
 import numpy as np
 
-from rodimpact.contact.law import MAX_STEP_ITERATIONS, RigidImpact, StepNotConverged, _check_positive
+from rodimpact.contact.law import MAX_STEP_ITERATIONS, RigidImpact, StepNotConverged, check_positive
 
 __all__ = ["NODES", "thin_layer_rigid_impact"]
 
@@ -80,7 +80,7 @@ def thin_layer_rigid_impact(a: float, b: float, mass_kg: float, velocity_m_s: fl
     RigidImpact
         alpha_max = A s_max^4 + B s_max^3, the contact time, and the peak force s_max^6.
     """
-    _check_positive(mass_kg=mass_kg, velocity_m_s=velocity_m_s)
+    check_positive(mass_kg=mass_kg, velocity_m_s=velocity_m_s)
     s_max = _stop_root(a, b, 0.5 * mass_kg * velocity_m_s**2)
     root = math.sqrt(s_max)
     u = 0.5 * root * (_NODES + 1.0)  # the nodes on [0, sqrt(s_max)]

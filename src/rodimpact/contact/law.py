@@ -31,6 +31,9 @@ it (the configuration's schema and checks, the rules, the runner, the tables):
 - ``method_contact``: which methods can run it, by how a method treats the contact (the
   registry's ``Method.contact``: ``law``, ``continuum``);
 - ``conflicts``: the case fields it cannot be combined with, and why.
+
+:func:`check_positive` is the check a law makes of its arguments: the mass and velocity of a
+rigid impact (the generic one here, and every law's closed form), and its own constants.
 """
 
 from __future__ import annotations
@@ -47,7 +50,15 @@ from numpy.typing import ArrayLike, NDArray
 
 from rodimpact.settings.declare import Settings
 
-__all__ = ["ContactLaw", "LawSettings", "Needs", "RigidImpact", "StepNotConverged"]
+__all__ = [
+    "MAX_STEP_ITERATIONS",
+    "ContactLaw",
+    "LawSettings",
+    "Needs",
+    "RigidImpact",
+    "StepNotConverged",
+    "check_positive",
+]
 
 #: Newton iterations :meth:`ContactLaw.solve_step` takes at most.
 MAX_STEP_ITERATIONS = 60
@@ -100,7 +111,20 @@ class Needs:
     curve_rule: str | None = None
 
 
-def _check_positive(**values: float) -> None:
+def check_positive(**values: float) -> None:
+    """Check that each value is a positive finite number: a rigid impact's mass and velocity,
+    a law's constants.
+
+    Parameters
+    ----------
+    **values : float
+        The values, by the names a message gives them.
+
+    Raises
+    ------
+    ValueError
+        The first value that is not > 0 and finite, by name.
+    """
     for name, value in values.items():
         if not (math.isfinite(value) and value > 0):
             raise ValueError(f"{name} must be > 0, got {value!r}")
@@ -255,7 +279,7 @@ class ContactLaw(abc.ABC):
         from scipy.integrate import quad
         from scipy.optimize import brentq
 
-        _check_positive(mass_kg=mass_kg, velocity_m_s=velocity_m_s)
+        check_positive(mass_kg=mass_kg, velocity_m_s=velocity_m_s)
         kinetic = 0.5 * mass_kg * velocity_m_s**2
         upper = velocity_m_s * 1e-9
         while float(self.energy(upper)) < kinetic:

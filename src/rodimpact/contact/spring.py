@@ -25,7 +25,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rodimpact.contact.hertz import ElasticMaterial
-from rodimpact.contact.law import ContactLaw, LawSettings, RigidImpact, _check_positive
+from rodimpact.contact.law import ContactLaw, LawSettings, RigidImpact, check_positive
 from rodimpact.settings.declare import REQUIRED, setting
 
 __all__ = ["SpringLaw", "SpringSettings", "SemiInfiniteContact", "semi_infinite_rod_contact"]
@@ -59,7 +59,7 @@ class SpringLaw(ContactLaw):
     method_contact = frozenset({"law"})
 
     def __post_init__(self) -> None:
-        _check_positive(c=self.c)
+        check_positive(c=self.c)
 
     @classmethod
     def from_bodies(
@@ -94,7 +94,7 @@ class SpringLaw(ContactLaw):
     def rigid_impact(self, mass_kg: float, velocity_m_s: float) -> RigidImpact:
         """Half a period of the oscillator m alpha'' = -c alpha: t = pi sqrt(m / c),
         alpha_max = v0 sqrt(m / c), P_max = v0 sqrt(m c)."""
-        _check_positive(mass_kg=mass_kg, velocity_m_s=velocity_m_s)
+        check_positive(mass_kg=mass_kg, velocity_m_s=velocity_m_s)
         root = math.sqrt(mass_kg / self.c)
         return RigidImpact(
             max_approach_m=velocity_m_s * root,
@@ -156,7 +156,7 @@ def semi_infinite_rod_contact(
     ValueError
         A value that is not > 0, or a damping ratio >= 1 (the spring never separates).
     """
-    _check_positive(
+    check_positive(
         stiffness_n_per_m=stiffness_n_per_m, mass_kg=mass_kg, velocity_m_s=velocity_m_s, impedance_kg_s=impedance_kg_s
     )
     omega0 = math.sqrt(stiffness_n_per_m / mass_kg)

@@ -1,12 +1,14 @@
 """``fem_axi``: the axisymmetric continuum of rod and impactor with real (unilateral) contact.
 
 What lives here: :mod:`.problem` (the geometry of both bodies and the scales), :mod:`.options`
-(the settings), :mod:`.meshes` (meshes in the (r, z) half-plane), :mod:`.mesh_geometry` (their
-geometry and refinement helpers), :mod:`.film_mesh` (the rod with a bonded film disc on its
-struck end), :mod:`.layers` (how a film or stack is divided through its thickness, without the
-mesher's imports), :mod:`.film_model` (the film's region and its contact nodes), :mod:`.axisym`
-(the r-weighted elasticity forms), :mod:`.axibody` (one body's Newmark operators),
-:mod:`.farbar` (the rod beyond a few diameters as a 1-D bar joined to the continuum),
+(the settings), :mod:`.meshes` (the meshes of the bare rod, the ball and the cap in the (r, z)
+half-plane), :mod:`.mesh_geometry` (the measures and operations on triangle meshes that both
+meshers share: areas, longest edges, orientation, named boundaries, the graded target size and
+the refinement loop), :mod:`.film_mesh` (the rod with a bonded film disc on its struck end),
+:mod:`.layers` (how a film or stack is divided through its thickness, and the check of a positive
+argument, without the mesher's imports), :mod:`.film_model` (the film's region and its contact
+nodes), :mod:`.axisym` (the r-weighted elasticity forms), :mod:`.axibody` (one body's Newmark
+operators), :mod:`.farbar` (the rod beyond a few diameters as a 1-D bar joined to the continuum),
 :mod:`.gauges` (where the stations' and gauges' strain is read, and how far the continuum
 must reach for the gauges),
 :mod:`.contact` (the candidate gaps, G = K_eff^-1 B^T and the contact LCP), :mod:`.separation`

@@ -35,21 +35,19 @@ import numpy as np
 from numpy.typing import NDArray
 from skfem import MeshTri
 
-from rodimpact.solvers.fem_axi.layers import FILM_ASPECT, layer_elements
+from rodimpact.solvers.fem_axi.layers import FILM_ASPECT, layer_elements, positive
 from rodimpact.solvers.fem_axi.mesh_geometry import (
     SIZE_GRADIENT,
-    _area2,
-    _ceil,
-    _distance_to_origin,
-    _fine_sizes,
-    _longest_edges,
-    _oriented,
-    _positive,
-    _tagged,
+    area2,
+    distance_to_origin,
+    fine_sizes,
     graded_size,
+    longest_edges,
+    oriented,
     refine_until,
+    tagged,
 )
-from rodimpact.solvers.fem_axi.meshes import BodyMesh
+from rodimpact.solvers.fem_axi.meshes import BodyMesh, coarse_rod_grid
 from rodimpact.solvers.fem_axi.options import FILM_LAYERS
 
 __all__ = ["FILM_ASPECT", "FILM_LAYERS", "FilmRodMesh", "film_rod_mesh", "layer_elements", "layers_within"]
@@ -92,22 +90,22 @@ def _distance_to_disc(mesh: MeshTri, radius: float) -> NDArray[np.float64]:
     r, z = p[0, t], p[1, t]
     vertex = np.where(r <= radius, z, np.hypot(r - radius, z)).min(axis=0)
     shifted = MeshTri(p - np.array([[radius], [0.0]]), t, sort_t=False, validate=False)
-    return np.minimum.reduce([vertex, _distance_to_origin(mesh), _distance_to_origin(shifted)])
+    return np.minimum.reduce([vertex, distance_to_origin(mesh), distance_to_origin(shifted)])
 
 
 def _rod_under_film(
     a: float, length: float, fine: float, extent: float, film_radius: float, face_spacing: float
 ) -> MeshTri:
-    """The rod's mesh refined as ``rod_mesh(layout='refined')`` (the same coarse grid, the same
+    """The rod's mesh refined as ``rod_mesh(layout='refined')`` (the same coarse grid,
+    :func:`~rodimpact.solvers.fem_axi.meshes.coarse_rod_grid`, the same
     target about the origin) and, near the film's disc, to face edges of ``face_spacing``;
     then the end-face vertex nearest to r = film_radius is moved there (along the face)."""
     coarse_r, coarse_z = max(a / 4, fine), max(a / 2, fine)
-    r = np.linspace(0.0, a, max(1, _ceil(a / coarse_r)) + 1)
-    z = np.linspace(0.0, length, max(1, _ceil(length / coarse_z)) + 1)
+    r, z = coarse_rod_grid(a, length, coarse_r, coarse_z)
     mesh = MeshTri.init_tensor(r, z)
     # red refinement keeps the coarse triangles' shape: a face edge is 1/kappa of the longest
     kappa = math.hypot(r[1], z[1]) / r[1]
-    coarse = float(_longest_edges(mesh).max())
+    coarse = float(longest_edges(mesh).max())
 
     def target(m: MeshTri) -> NDArray[np.float64]:
         band = kappa * face_spacing + SIZE_GRADIENT * _distance_to_disc(m, film_radius)
@@ -120,7 +118,7 @@ def _rod_under_film(
     face = np.nonzero((p[1] == 0.0) & (p[0] > 0.0) & (p[0] < a))[0]  # not the corners
     nearest = face[np.argmin(np.abs(p[0, face] - film_radius))]
     p[0, nearest] = film_radius
-    if np.any(_area2(p, mesh.t) * _area2(mesh.p, mesh.t) <= 0.0):
+    if np.any(area2(p, mesh.t) * area2(mesh.p, mesh.t) <= 0.0):
         raise RuntimeError("moving a vertex to the film's edge folded a triangle")
     return MeshTri(p, mesh.t, sort_t=False)
 
@@ -159,18 +157,18 @@ def film_rod_mesh(
     -------
     FilmRodMesh
     """
-    a, length = _positive("radius_m", radius_m), _positive("length_m", length_m)
-    fine, extent = _fine_sizes(fine_size_m, fine_extent_m, min(a, length))
+    a, length = positive("radius_m", radius_m), positive("length_m", length_m)
+    fine, extent = fine_sizes(fine_size_m, fine_extent_m, min(a, length))
     thicknesses = [film_thickness_m] if isinstance(film_thickness_m, (int, float)) else list(film_thickness_m)
     counts = layer_elements(thicknesses, layers)
-    film_radius = _positive("film_radius_m", film_radius_m)
+    film_radius = positive("film_radius_m", film_radius_m)
     h = thicknesses[0] if len(thicknesses) == 1 else math.fsum(thicknesses)
     if film_radius > a:
         raise ValueError(f"film_radius_m must not exceed the rod's radius {a!r} m, got {film_radius_m!r}")
     if h > length:
         raise ValueError(f"film_thickness_m must not exceed the rod's length {length!r} m, got {film_thickness_m!r}")
     height = min(t / n for t, n in zip(thicknesses, counts))
-    face_spacing = min(_positive("aspect", aspect) * height, film_radius / 2)
+    face_spacing = min(positive("aspect", aspect) * height, film_radius / 2)
     rod = _rod_under_film(a, length, fine, extent, film_radius, face_spacing)
     p, n_rod = rod.p, rod.nvertices
     face = np.nonzero((p[1] == 0.0) & (p[0] <= film_radius))[0]
@@ -195,9 +193,9 @@ def film_rod_mesh(
     hi_l, hi_r = index[1:, :-1].ravel(), index[1:, 1:].ravel()
     film_t = np.hstack([np.vstack([lo_l, lo_r, hi_r]), np.vstack([lo_l, hi_r, hi_l])])
     points = np.hstack([p, new])
-    mesh = _oriented(points, np.hstack([rod.t, film_t]))
+    mesh = oriented(points, np.hstack([rod.t, film_t]))
     q = mesh.p
-    mesh, boundaries = _tagged(
+    mesh, boundaries = tagged(
         mesh,
         {
             "axis": q[0] == 0.0,
@@ -211,7 +209,7 @@ def film_rod_mesh(
     n_rod_t = rod.t.shape[1]
     element_layer = np.tile(np.repeat(np.asarray(row_layer), m), 2)
     per_layer = tuple(n_rod_t + np.nonzero(element_layer == i)[0].astype(np.int64) for i in range(len(thicknesses)))
-    fine_reached = float(_longest_edges(mesh)[_distance_to_origin(mesh) <= extent].max())
+    fine_reached = float(longest_edges(mesh)[distance_to_origin(mesh) <= extent].max())
     log.info(
         "rod + film mesh: %d vertices, %d triangles (%d in %d layer(s), %s elements through, %.3g m in all, "
         "%d columns out to r = %.3g m); size %.3g m within %.3g m",

@@ -2,7 +2,10 @@
 cost model needs, without the mesher's imports (scikit-fem, scipy).
 
 ``case_file`` jobs estimate every method's cost of every case; they import this module, not
-:mod:`.film_mesh`, which re-exports both names.
+:mod:`.film_mesh`, which re-exports :data:`FILM_ASPECT` and :func:`layer_elements`. The check of
+a positive finite argument (:func:`positive`) lives here, at the bottom of the meshers' imports:
+every mesher (:mod:`.mesh_geometry`, :mod:`.meshes`, :mod:`.film_mesh`) checks its arguments
+with it.
 """
 
 from __future__ import annotations
