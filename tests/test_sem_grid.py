@@ -1,18 +1,20 @@
 """The SEM's constant-cost rod sum on a step commensurate with the wave round trip:
-the recursion W(t) = Q(t) + s W(t - 2T) against the direct sum, the tight contact loop
-against the general step, and what the automatic step's check costs."""
+the recursion W(t) = Q(t) + s W(t - 2T) against the direct sum, the implicit step's inline
+sum and history against the force history's own, and what the automatic step's check costs."""
 
 import math
+import time
 
 import numpy as np
 import pytest
 
-import rodimpact.solvers.sem.stepper as stepper
 from rodimpact.model.responses import Rod
+from rodimpact.solvers.result import ImpactResult
 from rodimpact.solvers.sem.grid import CommensurateGrid, commensurate_step
 from rodimpact.solvers.sem.history import ForceHistory
 from rodimpact.solvers.sem.options import PaperSEMOptions, SEMOptions
 from rodimpact.solvers.sem.solver import solve_sem
+from rodimpact.solvers.sem.stepper import SEMRun
 
 from helpers.paper import STEEL, model_problem, two_contact_problem
 
@@ -83,21 +85,63 @@ def test_commensurate_step_divides_or_spans_whole_round_trips():
     assert CommensurateGrid.of(0.37e-6, period, -1, True) is None
 
 
+#: A grid step (commensurate) and a step on no grid (just off it), in contact times on a rigid rod.
+_STEPS = {"grid": 1.0, "no_grid": 1.0 + 1e-7}
+
+
+def _run(problem, where: str) -> tuple[SEMRun, ImpactResult]:
+    """An implicit run at about 3000 steps a contact, and its result."""
+    h = commensurate_step(problem.rigid_contact.contact_time_s / 3000, problem.rod.reflection_period) * _STEPS[where]
+    run = SEMRun(problem, SEMOptions(dt_s=h), h)
+    return run, run.finish((), time.perf_counter(), {})
+
+
+@pytest.mark.parametrize("where", list(_STEPS))
 @pytest.mark.parametrize(
     "problem",
     [model_problem(), two_contact_problem(), model_problem("free")],
     ids=["model", "two_contacts", "free_end"],
 )
-def test_tight_contact_loop_is_the_general_step_bit_for_bit(problem, monkeypatch):
-    """The contact loop of the fast path does the general step's operations: the same
-    histories to the last bit, contacts, events and all."""
-    h = commensurate_step(problem.rigid_contact.contact_time_s / 3000, problem.rod.reflection_period)
-    fast = solve_sem(problem, SEMOptions(dt_s=h))
-    monkeypatch.setattr(stepper, "_FAST", False)
-    general = solve_sem(problem, SEMOptions(dt_s=h))
-    assert fast.n_contacts == general.n_contacts >= 1
-    for name in ("time", "contact_force", "approach", "impactor_velocity", "rod_end_displacement"):
-        assert np.array_equal(getattr(fast, name), getattr(general, name)), name
+def test_the_step_sums_and_records_as_the_force_history_does(problem, where):
+    """The implicit step sums the rod on the grid and appends its nodes inline (for speed):
+    the run's nodes replayed through ForceHistory.rod_step_terms and append give its rod end
+    displacement at every node that is not an event, and its impulse and W, to the last bit."""
+    st = _run(problem, where)[0].st
+    assert (st.hist.grid is not None) == (where == "grid")
+    assert len(st.ends) >= 1 and st.n_events >= 1
+    replay = ForceHistory(problem.rod, linear=True, grid=st.hist.grid)
+    checked = 0
+    for t, p, u in zip(st.t[1:], st.force[1:], st.u_end[1:]):
+        step, t_next = replay.next_step(st.h)
+        if t == t_next:  # not an event inside the step
+            known, coef = replay.rod_step_terms(step)
+            assert known + coef * p == u
+            checked += 1
+        replay.append(t, p, u)
+    assert checked == len(st.t) - 1 - st.n_events
+    assert replay.t == st.hist.t and replay.Q == st.hist.Q and replay.W == st.hist.W
+
+
+@pytest.mark.parametrize("where", list(_STEPS))
+@pytest.mark.parametrize(
+    "problem",
+    [model_problem(), two_contact_problem(), model_problem("free")],
+    ids=["model", "two_contacts", "free_end"],
+)
+def test_returning_after_every_node_changes_no_bit(problem, where):
+    """The implicit step goes on from node to node inside a contact, carrying the last node in
+    local variables; returned to the driver after every node (its time limit already reached),
+    it gives the same run to the last bit: contacts, events, Newton iterations and histories."""
+    whole, result = _run(problem, where)
+    h = whole.st.h
+    run = SEMRun(problem, SEMOptions(dt_s=h), h)
+    stepper_step = type(run.st).step
+    run.st.step = lambda t_max, force_bound, max_nodes: stepper_step(run.st, -math.inf, force_bound, max_nodes)
+    by_node = run.finish((), time.perf_counter(), {})
+    assert by_node.n_contacts == result.n_contacts >= 1
+    assert (by_node.n_events, by_node.n_newton_iterations) == (result.n_events, result.n_newton_iterations)
+    for name in ("time", "contact_force", "approach", "impactor_velocity", "rod_end_displacement", "contact_end_s"):
+        assert np.array_equal(getattr(by_node, name), getattr(result, name)), name
 
 
 def test_grid_and_general_sums_agree_on_a_whole_run():

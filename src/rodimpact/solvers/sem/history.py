@@ -84,7 +84,9 @@ class ForceHistory:
         """Add the node (t, P); t must exceed the last node's time.
 
         On a grid, a node at the next grid time also records W from the rod end's
-        ``displacement`` there, m (required for such a node).
+        ``displacement`` there, m (required for such a node). The implicit scheme's step
+        (:mod:`.stepper`) appends its nodes by these same operations inline, for speed
+        (``tests/test_sem_grid.py`` replays its runs through this method to the last bit).
         """
         h = t - self.t[-1]
         mean = 0.5 * (self.P[-1] + force) if self.linear else self.P[-1]
@@ -169,6 +171,12 @@ class ForceHistory:
         -------
         known, coef : float
             u(t_last + h) = known + coef * P_new, in m and m/N.
+
+        Notes
+        -----
+        The grid's step from a grid node costs O(1) (:class:`.CommensurateGrid`); the implicit
+        scheme's step (:mod:`.stepper`) does that sum by these same operations inline, for
+        speed (``tests/test_sem_grid.py`` checks its runs against this method to the last bit).
         """
         grid = self.grid
         if grid is not None and self.on_grid and h == grid.step:
