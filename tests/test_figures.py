@@ -21,24 +21,29 @@ matplotlib.use("Agg")
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
+import rodimpact.present.compare_figures as compare_figures  # noqa: E402
 import rodimpact.present.figures as figures  # noqa: E402
+import rodimpact.present.study_figures as study_figures  # noqa: E402
 from rodimpact.analysis.studies import level_case, map_point_case, map_point_names  # noqa: E402
 from rodimpact.analysis.sweeps import sweep_point_case, sweep_points  # noqa: E402
 from rodimpact.jobs.indentation import indentation_to_file  # noqa: E402
 from rodimpact.jobs.runner import run_to_file  # noqa: E402
-from rodimpact.present.artifacts import (  # noqa: E402
+from rodimpact.present.figure_artifacts import (  # noqa: E402
     make_fig2,
     make_fig4,
     make_fig_film_force,
     make_fig_force_fit,
     make_fig_readings,
-    make_stability_map,
-    make_work_precision_figure,
 )
 from rodimpact.present.figures import METHOD_LABELS  # noqa: E402
 from rodimpact.present.forces import export_forces  # noqa: E402
-from rodimpact.present.study_figures import order_text, quantity_words  # noqa: E402
-from rodimpact.present.table2_drawing import SECOND_CONTACT_LABEL, short_source  # noqa: E402
+from rodimpact.present.study_figures import (  # noqa: E402
+    make_stability_map,
+    make_work_precision_figure,
+    order_text,
+    quantity_words,
+)
+from rodimpact.present.table2_figures import SECOND_CONTACT_LABEL, short_source  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
 from rodimpact.storage.bands import BAND_PARAMETERS, CaseBand, write_band  # noqa: E402
 from rodimpact.storage.runs import read_summary  # noqa: E402
@@ -59,6 +64,8 @@ def rendered(monkeypatch: pytest.MonkeyPatch) -> list:
             Path(path).write_bytes(b"")
 
     monkeypatch.setattr(figures, "save_figure", keep)
+    for module in (study_figures, compare_figures):  # the modules that took it by name
+        monkeypatch.setattr(module, "save_figure", keep)
     return kept
 
 
@@ -410,13 +417,8 @@ def test_work_precision_has_a_panel_per_quantity_and_one_legend_of_methods(
                     case, method, tmp_path / f"{method}_level{level}.h5", level=level, code_version="1.2.3+gdeadbeef"
                 )
             )
-    make_work_precision_figure(
-        runs,
-        methods,
-        3,
-        arrival_window=shipped_config["work_precision"]["arrival_window"],
-        **outputs(tmp_path, "work_precision"),
-    )
+    study = {"methods": methods, "fit_levels": 3, "arrival_window": shipped_config["work_precision"]["arrival_window"]}
+    make_work_precision_figure(runs, study, **outputs(tmp_path, "work_precision"))
     (fig,) = rendered
     assert_journal_ready(fig)
     panels = [ax for ax in fig.axes if ax.get_visible()]

@@ -11,24 +11,21 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from rodimpact.present.artifacts import (
-    make_axes_table,
-    make_fig_film_force,
-    make_film_indentation_table,
-    make_film_table,
-)
-from rodimpact.present.columns import headers_with_units
+from rodimpact.present.figure_artifacts import make_fig_film_force
 from rodimpact.present.film_figures import plot_film_force
 from rodimpact.present.film_tables import (
     INDENTATION_COLUMNS,
     film_band_frame,
     film_indentation_frame,
+    film_table,
     film_table_frame,
-    readings_frame,
-    table2_panels,
+    make_film_indentation_table,
+    make_film_table,
 )
+from rodimpact.present.readings import readings_frame, table2_frame, table2_panels, variants_summary
+from rodimpact.present.sensor_tables import make_axes_table
+from rodimpact.present.table import write_artifact
 from rodimpact.present.table2_figures import plot_table2_contact_time
-from rodimpact.present.tables import table2_frame, variants_summary
 from rodimpact.storage.bands import BAND_PARAMETERS, CaseBand, read_band, write_band
 from rodimpact.storage.curves import ContactCurve, read_contact_curve, write_contact_curve
 from rodimpact.storage.runs import read_run, read_summary, write_run
@@ -247,7 +244,13 @@ def test_film_indentation_frame(tmp_path: Path) -> None:
 
 def test_no_indentation_curve_is_a_table_of_its_header_alone(tmp_path: Path) -> None:
     out = {k: tmp_path / f"film_indentation.{k}" for k in ("csv", "md", "html", "provenance.json")}
-    make_film_indentation_table([], csv=out["csv"], md=out["md"], html=out["html"], provenance=out["provenance.json"])
+    write_artifact(
+        make_film_indentation_table([]),
+        csv=out["csv"],
+        md=out["md"],
+        html=out["html"],
+        provenance=out["provenance.json"],
+    )
     assert out["csv"].read_text(encoding="utf-8") == ",".join(INDENTATION_COLUMNS) + "\n"
     assert list(pd.read_csv(out["csv"]).columns) == list(INDENTATION_COLUMNS)
 
@@ -270,15 +273,21 @@ def test_readings_variants_summary_and_panels(store: dict) -> None:
     assert table2_panels(readings, ["rod_film"]) == {"rod": ["rod_film"]}  # calibrated readings not drawn
 
 
-def test_headers_carry_units() -> None:
-    headers = headers_with_units(["measured_us", "mass_g", "sem_film_error_pct", "row", "force_N"])
+def test_the_film_table_is_headed_in_words_with_units(store: dict) -> None:
+    """The film table declares its columns: the shared ones, those made per method and reading,
+    and its own (the bands, the contact radius, the model-form errors)."""
+    records = [read_summary(p) for p in store["runs"]]
+    _, bands = read_band(store["band"])
+    table = film_table(records, ROLES, bands)
+    headers = {name: table.column(name).header for name in ("measured_us", "mass_g", "sem_film_error_pct", "row")}
     assert headers == {
         "measured_us": "Measured (µs)",
         "mass_g": "Mass (g)",
         "sem_film_error_pct": "SEM, film error (%)",
         "row": "Ball",
-        "force_N": "Force (N)",
     }
+    assert table.column("thin_layer_band_min_us").header == "Thin-layer band min (approximation) (µs)"
+    assert all(1 <= len(panel.columns) <= 8 for panel in table.panels)
 
 
 def test_film_force_figure_renders(store: dict, tmp_path: Path) -> None:
@@ -304,10 +313,8 @@ def test_film_force_figure_renders(store: dict, tmp_path: Path) -> None:
 
 def test_table2_film_artifact_and_sidecar(store: dict, tmp_path: Path) -> None:
     out = {k: tmp_path / f"table2_film.{k}" for k in ("csv", "md", "html", "provenance.json")}
-    make_film_table(
-        store["runs"],
-        ROLES,
-        store["band"],
+    write_artifact(
+        make_film_table(store["runs"], ROLES, store["band"]),
         csv=out["csv"],
         md=out["md"],
         html=out["html"],
@@ -323,14 +330,7 @@ def test_table2_film_artifact_and_sidecar(store: dict, tmp_path: Path) -> None:
     assert [f["kind"] for f in record["input_files"]] == ["band"]
     assert set(record["sha256"]) == {str(out["csv"]), str(out["md"]), str(out["html"])}
     with pytest.raises(ValueError, match="not of the film reading"):
-        make_film_table(
-            store["runs"],
-            {**ROLES, "film": "rod"},
-            store["band"],
-            csv=out["csv"],
-            md=out["md"],
-            provenance=out["provenance.json"],
-        )
+        make_film_table(store["runs"], {**ROLES, "film": "rod"}, store["band"])
 
 
 def test_table2_figure_draws_the_film_on_its_rod(store: dict) -> None:
@@ -378,7 +378,9 @@ def test_the_film_axes_table_and_the_band_table_without_axes(store: dict, tmp_pa
     """make film-axes' table: a row per case and constant, monotone where the band's axis is; the
     default build's band (no axes) has no Monotone column, and no axes table can be made of it."""
     out = {k: tmp_path / f"axes.{k}" for k in ("csv", "md", "html")}
-    make_axes_table([store["band"]], [], kind="film", provenance=tmp_path / "axes.provenance.json", **out)
+    write_artifact(
+        make_axes_table([store["band"]], [], kind="film"), provenance=tmp_path / "axes.provenance.json", **out
+    )
     frame = pd.read_csv(out["csv"])
     assert len(frame) == 2 * len(BAND_PARAMETERS) and set(frame["constant"]) == set(BAND_PARAMETERS)
     assert frame.groupby("case_id")["monotone"].all().to_dict() == {"ball_a-rod_film": True, "ball_b-rod_film": False}
@@ -388,4 +390,4 @@ def test_the_film_axes_table_and_the_band_table_without_axes(store: dict, tmp_pa
     path = write_band(tmp_path / "film_band_bare.h5", bare, variant=variant, method="sem", config=[])
     assert "monotone" not in film_band_frame({variant: read_band(path)[1]}, {}).columns
     with pytest.raises(ValueError, match="has its axes"):
-        make_axes_table([path], [], kind="film", provenance=tmp_path / "bare.provenance.json", **out)
+        make_axes_table([path], [], kind="film")

@@ -22,10 +22,6 @@ import pytest
 SRC = Path(__file__).resolve().parents[1] / "src"
 PACKAGE = SRC / "rodimpact"
 
-#: Packages still being refactored by others, whose modules are not yet held to the rule.
-#: The lead removes this constant (and its use below) once both are done.
-NOT_YET = ("rodimpact.present", "rodimpact.solvers.sem")
-
 _DOTTED_FUNCTION = re.compile(r"^(rodimpact(?:\.\w+)+):(\w+)$")
 
 
@@ -109,11 +105,7 @@ def private_uses(module: str, source: str, *, is_package: bool = False) -> list[
 
 
 def _checked_modules() -> list[Path]:
-    return [
-        path
-        for path in sorted(PACKAGE.rglob("*.py"))
-        if not any(_module_name(path) == held or _module_name(path).startswith(held + ".") for held in NOT_YET)
-    ]
+    return [path for path in sorted(PACKAGE.rglob("*.py"))]
 
 
 @pytest.mark.parametrize(
@@ -147,11 +139,6 @@ def test_the_check_finds_each_way_of_reaching_a_private_name(source, found):
 )
 def test_the_check_lets_public_names_and_a_modules_own_pass(source):
     assert private_uses("rodimpact.contact.spring", source) == []
-
-
-def test_the_exempt_packages_exist():
-    """:data:`NOT_YET` names real packages (a rename would silently exempt nothing)."""
-    assert all(_is_module(held) for held in NOT_YET)
 
 
 def test_no_module_imports_another_modules_private_name():

@@ -1,5 +1,6 @@
 """The static import graph that decides which code changes rerun which rules."""
 
+import re
 from pathlib import Path
 
 import pytest
@@ -27,16 +28,39 @@ def test_solver_closure_has_the_physics_and_not_the_presentation():
     assert not any(f.startswith("present/") for f in files) and "tools/bench.py" not in files
 
 
+#: Every presentation rule's module (workflow/rules/*.smk, ``presentation("module:function")``).
+PRESENTATION = sorted(
+    {
+        m.group(1)
+        for path in (SRC.parent / "workflow" / "rules").glob("*.smk")
+        for m in re.finditer(r'presentation\("([\w.]+):\w+"\)', path.read_text(encoding="utf-8"))
+    }
+)
+#: The compute jobs' code (their scripts' entry modules), each with its own solver where it runs one.
+COMPUTE = {
+    "solve": ["rodimpact.jobs.batch", "rodimpact.jobs.logs", "rodimpact.solvers.fem_axi.solver"],
+    "case_file": ["rodimpact.jobs.cases"],
+    "calibrate": ["rodimpact.jobs.calibrate", "rodimpact.solvers.sem.solver"],
+    "indentation": ["rodimpact.jobs.indentation"],
+    "film_band": ["rodimpact.jobs.band"],
+    "sensor_band": ["rodimpact.jobs.sensor_band"],
+}
+
+
 def test_presentation_closure_has_no_solver():
-    files = names(module_sources(SRC, ["rodimpact.present.artifacts"]))
-    assert {
-        "present/artifacts.py",
-        "present/figures.py",
-        "present/tables.py",
-        "storage/runs.py",
-        "storage/atomic.py",
-    } <= files
-    assert not any(f.endswith(("solver.py", "stepper.py")) for f in files)
+    assert len(PRESENTATION) >= 10 and "rodimpact.present.readings" in PRESENTATION
+    for module in PRESENTATION:
+        files = names(module_sources(SRC, [module, "rodimpact.jobs.logs"]))
+        assert {"storage/atomic.py"} <= files
+        assert not any(f.endswith(("solver.py", "stepper.py")) for f in files), module
+
+
+@pytest.mark.parametrize("job", sorted(COMPUTE))
+def test_no_compute_job_runs_presentation_code(job: str):
+    """Compute stores numbers, presentation adds words: no compute job's code digest covers a
+    module of rodimpact.present, so a change there reruns no compute job."""
+    files = names(module_sources(SRC, COMPUTE[job]))
+    assert not any(f.startswith("present/") for f in files), sorted(f for f in files if f.startswith("present/"))
 
 
 def test_unknown_entry_module_is_an_error():
@@ -66,7 +90,8 @@ def test_the_digest_follows_exactly_the_closure(tmp_path):
         handle.write("# touched\n")
     assert source_digest(copy, solver) != before
     # and the presentation's digest moved with the figure's file, not with the solver's
-    assert source_digest(copy, ["rodimpact.present.artifacts"]) != source_digest(SRC, ["rodimpact.present.artifacts"])
+    figure = ["rodimpact.present.figure_artifacts"]
+    assert source_digest(copy, figure) != source_digest(SRC, figure)
 
 
 def test_a_module_imported_anew_enters_the_digest(tmp_path):

@@ -10,7 +10,7 @@ import pytest
 from snakemake.utils import Paramspace
 
 from rodimpact.analysis.sweeps import SWEEP_PARAMETERS, sweep_frame, sweep_point_case, sweep_values
-from rodimpact.present.tables import sweep_results_frame
+from rodimpact.present.sweep_table import sweep_results_frame
 
 
 @pytest.fixture(scope="module")

@@ -1,9 +1,10 @@
 """The tables written for people: headers in words with units, chosen columns, a page's width.
 
-The CSV keeps every column at full precision under its machine name; the HTML (the report),
-the LaTeX (Table 2, for a paper) and the Markdown take their labels, units and rounding from
-``rodimpact.present.columns``. Checked on Table 2 built from in-memory runs, and on every
-view of every table from frames with the columns the workflow writes.
+A table is declared once (rodimpact.present.table.Table): its frame, every column at full
+precision under its machine name (the CSV), and a Column for each, its words, unit and format,
+which every format written for people reads (Markdown, HTML for the report, LaTeX for a paper).
+Checked on Table 2 built from in-memory runs, on the declarations themselves, and on every
+table for people the small configuration's build writes.
 """
 
 from __future__ import annotations
@@ -20,22 +21,28 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from rodimpact.present import table_views
-from rodimpact.present.columns import Column, column, headers_with_units, method_header, words_only
-from rodimpact.present.table_formats import (
+from rodimpact.analysis.sweeps import SWEEP_PARAMETERS
+from rodimpact.present.columns import COLUMNS, method_error, method_header, method_time
+from rodimpact.present.readings import reading_table
+from rodimpact.present.sweep_table import SWEPT
+from rodimpact.present.table import (
     LATEX_CHAR_PT,
     MAX_COLUMNS,
+    Column,
     Panel,
+    Table,
+    for_people,
     header_lines,
-    html_tables,
     latex_escape,
     latex_tables,
     latex_width_pt,
     panels,
+    write_table,
 )
-from rodimpact.present.tables import table2_frame, write_table
 from rodimpact.solvers.registry import METHODS
 from rodimpact.storage.runs import RunRecord
+
+from helpers.copies import DotTestBuild
 
 #: The widest table a one-column journal page takes: a 6 in text block, pt (1 in = 72.27 pt).
 PAGE_WIDTH_PT = 6.0 * 72.27
@@ -97,16 +104,12 @@ def table2(tmp_path_factory) -> dict:
     """Table 2 of three methods, written as CSV, Markdown, HTML and LaTeX."""
     out = tmp_path_factory.mktemp("table2")
     records = _records(("sem", "fem1d", "fem_axi"))
-    frame = table2_frame(records)
+    table = reading_table(records, "r10_l30", "Table 2", "Belyaev, Shurpatov and Ma (2018)")
     paths = {ext: out / f"table2_r10_l30.{ext}" for ext in ("csv", "md", "html", "tex")}
-    write_table(
-        frame,
-        **paths,
-        caption="Table 2",
-        views=table_views.reading_views(frame, "r10_l30", records, "Table 2", "Belyaev, Shurpatov and Ma (2018)"),
-    )
+    write_table(table, **paths)
     return {
-        "frame": frame,
+        "table": table,
+        "frame": table.frame,
         "records": records,
         **{ext: p.read_text(encoding="utf-8") for ext, p in paths.items()},
         "paths": paths,
@@ -114,24 +117,33 @@ def table2(tmp_path_factory) -> dict:
 
 
 # ---------------------------------------------------------------------------------------------
-# columns: one place for labels and units
+# columns: declared once, with their words, units and formats
 # ---------------------------------------------------------------------------------------------
 
 
-@pytest.mark.parametrize("name, header", [
-    ("measured_us", "Measured (µs)"), ("published_sem_error_pct", "Paper SEM error (%)"),
-    ("mass_g", "Mass (g)"), ("diameter_mm", "Diameter (mm)"), ("sem_us", "SEM (µs)"),
-    ("fem_axi_error_pct", "FEM axisym. error (%)"), ("sem_paper_us", "SEM, explicit (µs)"),
-    ("fem1d_film_us", "FEM 1-D, film (µs)"),
-    ("sem_no_film_calibrated_error_pct", "SEM, calibrated, no film error (%)"),
-    ("max_2_kN", "2nd maximum (kN)"), ("contact_time_vs_fem1d_pct", "Contact time vs FEM 1-D (%)"),
-    ("continuum_approach_um", "Continuum approach (µm)"), ("velocity_m_s", "Velocity (m/s)"),
-    ("film_modulus_pa", "Film modulus (Pa)"), ("some_new_length_um", "Some new length (µm)"), ("row", "Ball"),
-    ("some_flag", "Some flag"),
+@pytest.mark.parametrize("column, header", [
+    (COLUMNS["measured_us"], "Measured (µs)"), (COLUMNS["published_sem_error_pct"], "Paper SEM error (%)"),
+    (COLUMNS["mass_g"], "Mass (g)"), (COLUMNS["diameter_mm"], "Diameter (mm)"), (method_time("sem"), "SEM (µs)"),
+    (method_error("fem_axi"), "FEM axisym. error (%)"), (method_time("sem_paper"), "SEM, explicit (µs)"),
+    (method_time("fem1d", "film"), "FEM 1-D, film (µs)"),
+    (method_error("sem", "no_film_calibrated"), "SEM, calibrated, no film error (%)"),
+    (COLUMNS["velocity_m_s"], "Velocity (m/s)"), (COLUMNS["film_modulus_pa"], "Film modulus (Pa)"),
+    (COLUMNS["row"], "Ball"),
 ])  # fmt: skip
-def test_a_header_is_words_and_its_unit(name: str, header: str) -> None:
-    assert column(name).header == header
-    assert headers_with_units([name]) == {name: header}
+def test_a_header_is_words_and_its_unit(column: Column, header: str) -> None:
+    assert column.header == header
+
+
+def test_columns_made_per_method_are_named_by_the_method() -> None:
+    assert method_time("fem1d", "film").name == "fem1d_film_us"
+    assert method_error("sem").name == "sem_error_pct"
+
+
+def test_every_swept_parameter_has_its_column() -> None:
+    """A sweep's table shows each swept parameter under its declared words: every parameter a
+    sweep may vary is declared, and nothing else."""
+    assert set(SWEPT) == set(SWEEP_PARAMETERS)
+    assert all(column.name == name for name, column in SWEPT.items())
 
 
 def test_every_method_has_a_short_header() -> None:
@@ -144,11 +156,20 @@ def test_every_method_has_a_short_header() -> None:
 
 
 def test_cells_round_and_mark_what_is_missing() -> None:
-    assert Column("t", "µs").text(36.4249) == "36.42"
-    assert Column("t", "µs").text(np.float64(math.nan)) == "–"
-    assert Column("f").text(np.bool_(True)) == "yes" and Column("f", fmt="").text(False) == "no"
-    assert Column("n", fmt="").text(np.int64(6)) == "6"
-    assert column("mass_g").text(0.0041) == "0.0041" and column("mass_g").text(8.46) == "8.46"
+    assert Column("t", "t", "µs").text(36.4249) == "36.42"
+    assert Column("t", "t", "µs").text(np.float64(math.nan)) == "–"
+    assert Column("f", "f").text(np.bool_(True)) == "yes" and Column("f", "f", fmt="").text(False) == "no"
+    assert Column("n", "n", fmt="").text(np.int64(6)) == "6"
+    assert COLUMNS["mass_g"].text(0.0041) == "0.0041" and COLUMNS["mass_g"].text(8.46) == "8.46"
+
+
+def test_a_table_declares_every_column_once() -> None:
+    frame = pd.DataFrame({"mass_g": [1.0], "sem_us": [2.0]})
+    Table(frame, (COLUMNS["mass_g"], method_time("sem"), method_time("fem1d")))  # an extra one is allowed
+    with pytest.raises(ValueError, match="sem_us not declared"):
+        Table(frame, (COLUMNS["mass_g"],))
+    with pytest.raises(ValueError, match="declared twice: mass_g"):
+        Table(frame, (COLUMNS["mass_g"], method_time("sem"), COLUMNS["mass_g"]))
 
 
 def test_latex_escapes_text_and_sets_units() -> None:
@@ -169,9 +190,14 @@ def test_long_labels_wrap_in_two_balanced_lines() -> None:
 # ---------------------------------------------------------------------------------------------
 
 
+def _numbers(names: list[str], rows: int = 2) -> Table:
+    frame = pd.DataFrame({c: [1.0 + i for i in range(rows)] for c in names})
+    return Table(frame, tuple(Column(c, c.upper(), "µs") for c in names))
+
+
 def test_panels_split_evenly_and_repeat_the_key() -> None:
-    frame = pd.DataFrame({c: [1.0, 2.0] for c in ["mass_g", *(f"v{i}_us" for i in range(9))]})
-    shown = panels(frame, "T", ["mass_g", "absent_us"], [f"v{i}_us" for i in range(9)], label="tab:t")
+    table = _numbers(["mass_g", *(f"v{i}_us" for i in range(9))])
+    shown = panels(table, "T", ["mass_g", "absent_us"], [f"v{i}_us" for i in range(9)], label="tab:t")
     assert [p.columns for p in shown] == [
         ("mass_g", "v0_us", "v1_us", "v2_us", "v3_us", "v4_us"),
         ("mass_g", "v5_us", "v6_us", "v7_us", "v8_us"),
@@ -179,224 +205,18 @@ def test_panels_split_evenly_and_repeat_the_key() -> None:
     assert [p.label for p in shown] == ["tab:t-1", "tab:t-2"]
     assert [p.title for p in shown] == ["T, part 1 of 2", "T, part 2 of 2"]
     with pytest.raises(ValueError, match="no room"):
-        panels(frame, "T", [f"v{i}_us" for i in range(8)], ["mass_g"])
+        panels(table, "T", [f"v{i}_us" for i in range(8)], ["mass_g"])
 
 
 def test_panels_by_a_column_show_each_group_alone() -> None:
     frame = pd.DataFrame({"variant": ["a", "b", "a"], "row": ["x", "y", "z"], "force_N": [1.0, 2.0, 3.0]})
-    shown = panels(frame, "Indentation", ["row"], ["force_N"], by="variant")
+    table = Table(frame, (COLUMNS["variant"], COLUMNS["row"], Column("force_N", "Force", "N")))
+    shown = panels(table, "Indentation", ["row"], ["force_N"], by="variant")
     assert [(p.title, p.columns, p.rows) for p in shown] == [
         ("Indentation: reading a", ("row", "force_N"), (0, 2)),
         ("Indentation: reading b", ("row", "force_N"), (1,)),
     ]
-    assert list(shown[0].cells(frame)["row"]) == ["x", "z"]
-
-
-#: The columns each table's frame has (the CSV headers the workflow writes), and its view.
-FRAMES = {
-    "table2_variants": (
-        table_views.variants_views,
-        [
-            "variant",
-            "film",
-            "contact_law",
-            "method",
-            "n_cases",
-            "mean_error_pct",
-            "max_error_pct",
-            "mean_signed_error_pct",
-            "paper_method",
-            "paper_mean_error_pct",
-            "paper_max_error_pct",
-        ],
-    ),
-    "fig2_comparison": (
-        table_views.comparison_views,
-        [
-            "case_id",
-            "method",
-            "contact_time_us",
-            "n_maxima",
-            "max_1_kN",
-            "max_2_kN",
-            "max_3_kN",
-            "contact_time_vs_sem_pct",
-            "maxima_vs_sem_pct",
-            "paper_fem_vs_sem_contact_time_pct",
-            "paper_fem_vs_sem_extrema_pct",
-        ],
-    ),
-    "table2_film": (
-        table_views.film_table_views,
-        [
-            "row",
-            "mass_g",
-            "diameter_mm",
-            "measured_us",
-            "published_fem_us",
-            "published_sem_us",
-            "sem_no_film_us",
-            "fem1d_no_film_us",
-            "fem_axi_no_film_us",
-            "sem_film_us",
-            "fem1d_film_us",
-            "fem_axi_film_us",
-            "sem_film_calibrated_us",
-            "sem_no_film_calibrated_us",
-            "band_min_us",
-            "band_max_us",
-            "published_fem_error_pct",
-            "published_sem_error_pct",
-            "sem_no_film_error_pct",
-            "fem1d_no_film_error_pct",
-            "fem_axi_no_film_error_pct",
-            "sem_film_error_pct",
-            "fem1d_film_error_pct",
-            "fem_axi_film_error_pct",
-            "sem_film_calibrated_error_pct",
-            "sem_no_film_calibrated_error_pct",
-            "radius_to_thickness",
-            "model_form_pct",
-        ],
-    ),
-    "film_band": (
-        table_views.film_band_views,
-        [
-            "variant",
-            "row",
-            "case_id",
-            "mass_g",
-            "measured_us",
-            "nominal_us",
-            "band_min_us",
-            "band_max_us",
-            "measured_in_band",
-            "monotone",
-        ],
-    ),
-    "film_indentation": (
-        table_views.film_indentation_views,
-        [
-            "case_id",
-            "variant",
-            "row",
-            "point",
-            "force_N",
-            "continuum_approach_um",
-            "law_approach_um",
-            "law",
-            "law_error_pct",
-            "contact_radius_um",
-            "film_thickness_um",
-            "radius_to_film_thickness",
-            "interpolation_error_half",
-        ],
-    ),
-    "sweep": (
-        table_views.sweep_views,
-        [
-            "sweep",
-            "row",
-            "variant",
-            "method",
-            "ball_diameter_m",
-            "mass_g",
-            "diameter_mm",
-            "velocity_m_s",
-            "rod_length_mm",
-            "contact_time_us",
-            "first_peak_force_N",
-            "max_force_N",
-            "n_contacts",
-            "film_modulus_pa",
-        ],
-    ),
-    "work_precision_orders": (
-        table_views.orders_views,
-        [
-            "case_id",
-            "method",
-            "quantity",
-            "expected_order",
-            "observed_order",
-            "order_stderr",
-            "fitted_levels",
-            "monotone",
-            "sign_change",
-            "within_expected",
-            "asymptotic",
-            "arrival_offset",
-            "gci_order",
-            "gci_pct",
-            "oscillatory",
-            "u_osc_pct",
-        ],
-    ),
-    "stability": (
-        table_views.stability_views,
-        [
-            "case_id",
-            "method",
-            "status",
-            "success",
-            "finite",
-            "min_force_N",
-            "energy_error",
-            "energy_tolerance",
-            "contact_time_s",
-            "reference_contact_time_s",
-            "contact_time_error",
-            "contact_time_tolerance",
-            "n_contacts",
-            "contact_intervals_us",
-            "wall_time_s",
-            "message",
-            "verdict",
-        ],
-    ),
-}
-
-
-def _frame(columns: list[str]) -> pd.DataFrame:
-    text = {
-        "variant",
-        "row",
-        "case_id",
-        "method",
-        "sweep",
-        "contact_law",
-        "paper_method",
-        "law",
-        "quantity",
-        "fitted_levels",
-        "status",
-        "message",
-        "verdict",
-        "contact_intervals_us",
-    }
-    return pd.DataFrame({c: (["r10_l30", "r1_l30", "r10_l30"] if c in text else [1.25, 2.5, 3.75]) for c in columns})
-
-
-@pytest.mark.parametrize("name", sorted(FRAMES))
-def test_every_view_shows_words_and_units_in_a_page(name: str) -> None:
-    views, columns = FRAMES[name]
-    frame = _frame(columns)
-    shown = views(frame)
-    assert shown, name
-    for panel in shown:
-        assert 1 <= len(panel.columns) <= MAX_COLUMNS, (name, panel.columns)
-        assert set(panel.columns) <= set(columns)
-        for c in panel.columns:
-            spec = panel.header(c)
-            assert "_" not in spec.header and not spec.label[:1].islower(), (name, c, spec.header)
-            suffix = re.search(r"_(us|um|mm|g|N|kN|pct)$", c)
-            if suffix:
-                unit = {"us": "µs", "um": "µm", "pct": "%"}.get(suffix.group(1), suffix.group(1))
-                assert spec.unit == unit, (name, c, spec)
-    # the HTML names no column by its machine name, and shows every row of every panel
-    text = html_tables(frame, shown)
-    for c in columns:
-        assert f">{c}<" not in text and f">{column(c).label}_" not in text
+    assert list(table.cells(shown[0])["row"]) == ["x", "z"]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -461,7 +281,7 @@ class _Tables(HTMLParser):
 def test_table2_html_is_two_tables_with_units(table2: dict) -> None:
     parser = _Tables()
     parser.feed(table2["html"])
-    assert parser.tags <= {"div", "table", "caption", "thead", "tbody", "tr", "th", "td", "br", "span"}
+    assert parser.tags <= {"div", "style", "table", "caption", "thead", "tbody", "tr", "th", "td"}
     times, errors = parser.tables
     assert times["th"] == [
         "Diameter (mm)",
@@ -521,7 +341,7 @@ def _tabulars(tex: str) -> list[tuple[str, list[str], list[str]]]:
     return out
 
 
-def _check_latex(tex: str, frame: pd.DataFrame, shown: list[Panel]) -> None:
+def _check_latex(tex: str, table: Table, shown: list[Panel] | tuple[Panel, ...]) -> None:
     assert _environments(tex) == ["table", "tabular"] * len(shown)
     assert _braces_balance(tex)
     floats = re.findall(r"\\begin\{table\}.*?\\end\{table\}", tex, re.S)
@@ -535,15 +355,14 @@ def _check_latex(tex: str, frame: pd.DataFrame, shown: list[Panel]) -> None:
             assert line.count("&") == len(spec) - 1, line
         header = " ".join(head)
         assert "\\_" not in header, header  # no machine name in a header
-        assert latex_width_pt(frame, panel) <= PAGE_WIDTH_PT, (panel.title, latex_width_pt(frame, panel))
+        assert latex_width_pt(table, panel) <= PAGE_WIDTH_PT, (panel.title, latex_width_pt(table, panel))
     assert not re.search(r"\bus\b|\bum\b", tex), "a unit written as us or um"
     assert "booktabs" in tex.splitlines()[0]
 
 
 def test_table2_latex_is_journal_ready(table2: dict) -> None:
-    tex, frame = table2["tex"], table2["frame"]
-    shown = table_views.reading_views(frame, "r10_l30", table2["records"], "Table 2")
-    _check_latex(tex, frame, shown)
+    tex, table = table2["tex"], table2["table"]
+    _check_latex(tex, table, table.panels)
     assert r"\label{tab:table2-r10-l30-times}" in tex and r"\label{tab:table2-r10-l30-errors}" in tex
     assert r"\ref{tab:table2-r10-l30-times}" in tex
     (_, head, body), _ = _tabulars(tex)[0], None
@@ -555,44 +374,45 @@ def test_table2_latex_is_journal_ready(table2: dict) -> None:
 
 def test_table2_of_four_methods_splits_within_a_page() -> None:
     records = _records(("sem", "sem_paper", "fem1d", "fem_axi"), variant="r1_l30")
-    frame = table2_frame(records)
-    shown = table_views.reading_views(frame, "r1_l30", records, "Table 2")
+    table = reading_table(records, "r1_l30", "Table 2")
+    shown = table.panels
     assert len(shown) == 4  # the times and the errors, each in two parts
     assert all(p.columns[:2] == ("diameter_mm", "mass_g") for p in shown)
-    _check_latex(latex_tables(frame, shown), frame, shown)
+    _check_latex(latex_tables(table), table, shown)
 
 
 def test_table2_markdown_has_every_column_in_words(table2: dict) -> None:
     """Every column with a value, each once: the case id gives way to its ball's (the row's)."""
-    frame = table2["frame"]
+    table = table2["table"]
     header = table2["md"].splitlines()[2]
     cells = [c.strip() for c in header.strip("|").split("|")]
-    empty = [c for c in frame.columns if frame[c].isna().all()]
-    assert cells == [column(c).header for c in words_only(frame.columns, empty)]
+    assert cells == [table.column(c).header for c in for_people(table)]
     assert "Measured (µs)" in cells and not any("_" in c for c in cells)
     assert "ball_3.16mm" in table2["md"] and "Case" not in cells
 
 
 def test_a_table_for_people_says_each_thing_once_in_words() -> None:
     """An id with its words in another column gives way to it, under the id's header; an id
-    another column says is left out; a column of method or law ids is shown in their words."""
-    names = ["case_id", "row", "method", "method_label", "contact_law", "quantity", "quantity_words", "measured"]
-    assert words_only(names) == ["row", "method_label", "quantity_words", "measured"]
-    assert words_only(["case_id", "method", "note"], empty=["note"]) == ["case_id", "method"]
-    assert column("method_label").header == column("method").header == "Method"
-    assert column("quantity_words").header == "Quantity"
-    assert column("method").text("fem_axi") == "FEM, axisymmetric continuum"
-    assert column("contact_law").text("hertz_film") == "Hertz with a thin film (approximation)"
-    assert column("method").text("my_method") == "my_method"  # an id it does not know: as it is
-    frame = pd.DataFrame({"case_id": ["a"], "row": ["a"], "method": ["sem"], "method_label": ["SEM, Hertz"]})
-    panel = panels(frame, "t", ["case_id", "row", "method"], ["method_label"])[0]
+    another column says is left out, and so is a column without a value; a column of method or
+    law ids is shown in their words."""
+    names = ["case_id", "row", "method", "method_label", "contact_law", "measured_us"]
+    frame = pd.DataFrame({n: ["x"] if n != "measured_us" else [1.0] for n in names})
+    table = Table(frame, tuple(COLUMNS[n] for n in names))
+    assert for_people(table) == ["row", "method_label", "measured_us"]
+    blank = Table(frame.assign(measured_us=math.nan), table.columns)
+    assert for_people(blank) == ["row", "method_label"]
+    assert COLUMNS["method_label"].header == COLUMNS["method"].header == "Method"
+    assert COLUMNS["method"].text("fem_axi") == "FEM, axisymmetric continuum"
+    assert COLUMNS["contact_law"].text("hertz_film") == "Hertz with a thin film (approximation)"
+    assert COLUMNS["method"].text("my_method") == "my_method"  # an id it does not know: as it is
+    panel = panels(table, "t", ["case_id", "row", "method"], ["method_label"])[0]
     assert panel.columns == ("row", "method_label")
 
 
 def test_the_width_estimate_counts_the_widest_line() -> None:
-    frame = pd.DataFrame({"measured_us": [36.42, 111.1]})
+    table = Table(pd.DataFrame({"measured_us": [36.42, 111.1]}), (COLUMNS["measured_us"],))
     panel = Panel("t", ("measured_us",))
-    assert latex_width_pt(frame, panel) == pytest.approx(LATEX_CHAR_PT * len("Measured") + 12.0)
+    assert latex_width_pt(table, panel) == pytest.approx(LATEX_CHAR_PT * len("Measured") + 12.0)
 
 
 @pytest.mark.skipif(
@@ -619,13 +439,52 @@ def test_table2_latex_compiles(table2: dict, tmp_path: Path) -> None:
 
 def test_a_table_with_no_rows_says_so(tmp_path: Path) -> None:
     """A configuration with no calibrated reading has no indentation points: the table is
-    written, empty, and says so in Markdown and HTML."""
-    empty = pd.DataFrame()
-    views = table_views.film_indentation_views(empty)
-    assert views == []
+    written, its header alone in the CSV, and says so in Markdown and HTML."""
+    from rodimpact.present.film_tables import INDENTATION_COLUMNS, film_indentation_table
+
+    table = film_indentation_table([])
+    assert table.panels == ()
     paths = {ext: tmp_path / f"t.{ext}" for ext in ("csv", "md", "html")}
-    write_table(empty, csv=paths["csv"], md=paths["md"], html=paths["html"], caption="Nothing here.", views=views)
-    assert paths["md"].read_text(encoding="utf-8") == "Nothing here.\n\nThe table has no rows.\n"
+    write_table(table, **paths)
+    assert paths["csv"].read_text(encoding="utf-8").strip() == ",".join(INDENTATION_COLUMNS)
+    assert paths["md"].read_text(encoding="utf-8").endswith("\n\nThe table has no rows.\n")
     assert "no rows" in paths["html"].read_text(encoding="utf-8")
-    with pytest.raises(ValueError, match="give views"):
-        write_table(empty, csv=paths["csv"], html=paths["html"])
+
+
+class _Headers(HTMLParser):
+    """The header cells' texts of every HTML table."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.headers: list[str] = []
+        self._in = False
+
+    def handle_starttag(self, tag, attrs) -> None:
+        self._in = tag == "th"
+        if self._in:
+            self.headers.append("")
+
+    def handle_endtag(self, tag) -> None:
+        self._in = False if tag == "th" else self._in
+
+    def handle_data(self, data) -> None:
+        if self._in:
+            self.headers[-1] += data
+
+
+@pytest.mark.workflow
+def test_every_table_the_build_writes_is_headed_in_words(dottest: DotTestBuild) -> None:
+    """Every table for people the small configuration's build writes (HTML and Markdown): no
+    header is a machine name, and every header of the HTML is words (with its unit in parentheses)."""
+    tables = sorted((dottest.workdir / "results" / "tables").glob("*.html"))
+    assert len(tables) >= 10, tables
+    for path in tables:
+        parser = _Headers()
+        parser.feed(path.read_text(encoding="utf-8"))
+        for header in parser.headers:
+            assert "_" not in header and not header[:1].islower(), (path.name, header)
+        markdown = path.with_suffix(".md")
+        if markdown.exists():
+            lines = [ln for ln in markdown.read_text(encoding="utf-8").splitlines() if ln.startswith("|")]
+            for header in (c.strip() for c in lines[0].strip("|").split("|")) if lines else ():
+                assert "_" not in header, (markdown.name, header)

@@ -414,6 +414,38 @@ def test_figure_code_change_reruns_no_solver(changed: DotTestBuild) -> None:
     assert stats.get("paper_model") == 1 and stats.get("fig_readings") == 1, run.describe()
 
 
+#: The rules that compute (solvers, the continuum's indentation, the bands, the calibration, the
+#: case files): none of them runs presentation code.
+COMPUTE_RULES = (
+    "case_file",
+    "solve",
+    "solve_levels",
+    "solve_stress",
+    "solve_map",
+    "solve_sweep",
+    "indentation",
+    "film_band",
+    "sensor_band",
+    "calibrate",
+)
+
+
+@pytest.mark.parametrize(
+    "module", ["table.py", "columns.py", "compare.py", "calibration_tables.py", "figures.py", "words.py"]
+)
+def test_a_presentation_change_reruns_only_presentation_jobs(changed: DotTestBuild, module: str) -> None:
+    """Compute stores numbers, presentation adds words: a change to any presentation module
+    (the table machinery, the shared columns, a table, a figure, the words) plans no solver,
+    indentation, band, case file or calibration job, and reruns the presentation that imports it."""
+    with open(changed.project / "src/rodimpact/present" / module, "a", encoding="utf-8") as handle:
+        handle.write("# touched\n")
+    run = snakemake(changed.project, "-n", "-j2", workdir=DOTTEST)
+    assert run.returncode == 0, run.describe()
+    stats = job_stats(run.output)
+    assert stats and not set(stats) & set(COMPUTE_RULES), run.describe()
+    assert set(stats) - {"all"}, run.describe()
+
+
 def test_the_studys_separate_cases_are_a_target_of_their_own(tmp_path: Path) -> None:
     """work_precision.separate: outside rule all; its target runs only its methods' levels on
     its cases and its table."""

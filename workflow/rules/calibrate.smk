@@ -40,7 +40,7 @@ rule calibration_artifacts:
     """One set's calibration as tables (per measurement, per constant) and a figure; one job, as
     both read the same file."""
     input:
-        h5="results/calibration/{set}.h5",
+        calibration="results/calibration/{set}.h5",
     output:
         csv=report(
             "results/tables/calibration_{set}.csv",
@@ -78,7 +78,10 @@ rule calibration_artifacts:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_CALIBRATION_ARTIFACTS,
+        **presentation("rodimpact.present.calibration_tables:make_calibration_artifacts"),
         title=lambda w: PROJECT.calibrate[w.set].get("title", f"the constants of {set_title(w.set)}"),
     script:
-        "../scripts/calibration_artifacts.py"
+        "../scripts/artifact.py"
+
+
+default_target(calibration_targets)

@@ -1,4 +1,4 @@
-# Two parse-time mechanisms of this file, each against what snakemake does on its own:
+# Two mechanisms of this file, each against what snakemake does on its own:
 #
 # refuse(): sys.exit from input functions (and from checked_project at parse time).
 #   What snakemake does: an Exception raised in an input function is caught by
@@ -20,15 +20,19 @@
 #   What snakemake does: its CLI's default --max-jobs-per-timespan, 100/1s, re-arms a
 #   threading.Timer of the timespan after every scheduling round
 #   (JobScheduler._schedule_reevalutation). Every timer starts a round of its own when it fires
-#   and arms the next, so the rounds multiply with the jobs that finish and take a core's time
-#   from the jobs; and the timers are not daemon threads: the last one keeps the process alive
-#   for up to the timespan after the run ends. The API's default, no limiter, arms none.
-#   Why not enough: a local run starts 2 jobs at a time and never reaches the limit, so it drops
-#   the limiter when its jobs start (onstart). A run that submits to a cluster keeps it (dropping
-#   it there did not shorten make test-cluster's build: 105 s either way), and a cluster job's
-#   snakemake (--mode remote, no hooks) keeps its default: up to 1 s at its end.
-#   If snakemake changes (renames the scheduler's attribute): local runs end late again, never
-#   differently; tests/test_plumbing.py::test_no_timer_outlives_a_local_run fails.
+#   and arms the next, so the rounds multiply with the jobs that finish, and each round
+#   re-evaluates the ready jobs' params and resources on snakemake's own core; the timers are not
+#   daemon threads, so the last one holds the process up to the timespan after the run. No
+#   setting turns the limiter off from the command line or a profile (a shorter timespan only
+#   fires the rounds faster, a longer one holds the process longer); the API's default, no
+#   limiter, arms none.
+#   What it pays: the small build of .test/ (79 jobs, snakemake -j2 --directory .test from an
+#   empty results/) takes 1.16 times as long without this (133 s against 115 s, medians of three
+#   pairs run in turn; docs/studies.md, "Planning and scheduling", gives the command).
+#   A run that submits to a cluster keeps the limiter (there it spaces the submissions), and a
+#   cluster job's snakemake (--mode remote, no hooks) keeps its default.
+#   If snakemake changes (renames the scheduler's attribute): local runs take longer again,
+#   never differently; tests/test_plumbing.py::test_no_timer_outlives_a_local_run fails.
 
 # Validation of the configuration (before any job), and the helpers the rules share.
 # (SRC_DIR is on the path: preflight.smk, included before the config file is read.)
@@ -147,7 +151,15 @@ def batch_sources(method=None):
 SRC_CASES = sources(
     "rodimpact.jobs.cases", "rodimpact.jobs.logs", *(spec.cost.partition(":")[0] for spec in METHOD_REGISTRY.values())
 )
-SRC_PRESENT = sources("rodimpact.present.artifacts", "rodimpact.jobs.logs")
+
+
+def presentation(make):
+    """A presentation rule's params: the function its job calls (``module:function``, by
+    ../scripts/artifact.py) and the digest of that module's code, so that a change to it reruns
+    the rules that present with it, and a change to other code does not."""
+    return {"make": make, "code": sources(make.partition(":")[0], "rodimpact.jobs.logs", "rodimpact.present.table")}
+
+
 SRC_BENCH = sources(
     "rodimpact.tools.bench", "rodimpact.tools.bench_scaling", "rodimpact.storage.atomic", "rodimpact.jobs.logs"
 )
@@ -300,41 +312,22 @@ def force_files(cases, ext):
     return [f"results/forces/{c['set']}/{c['id']}/{m}.{ext}" for c in cases for m in c["methods"]]
 
 
+#: What the default target builds, gathered from the files of rules: each registers, beside its
+#: rules, a function of no arguments that lists their outputs the default target builds
+#: (default_target), in the order the files are included. A new artifact's file of rules adds
+#: its own; nothing here names it.
+DEFAULT_TARGETS = []
+
+
+def default_target(function):
+    """Register ``function`` (no arguments -> a list of targets) with the default target."""
+    DEFAULT_TARGETS.append(function)
+    return function
+
+
 def default_targets():
-    sets = config["targets"]["sets"]
-    targets = []
-    if "model" in sets:
-        targets += expand("results/figures/fig2_contact_force.{ext}", ext=["pdf", "png"])
-        targets += expand("results/figures/fig4_midrod_displacement.{ext}", ext=["pdf", "png"])
-        targets += expand("results/tables/fig2_comparison.{ext}", ext=["csv", "md", "provenance.json"])
-    targets += readings_targets()
-    targets += sensor_targets()
-    if "model" in sets:
-        targets += expand("results/figures/force_fit_model.{ext}", ext=["pdf", "png"])
-    for name in sets:
-        targets += run_batches(runs_of(PROJECT.cases_in(name)))
-        # the contact force handed on (forces.smk)
-        targets += [f"results/forces/{name}", f"results/forces/{name}.provenance.json"]
-        # the waves in the rod (waves.smk), for the cases that list strain_field
-        targets += expand(
-            "results/figures/wave_map_{case}.{ext}",
-            ext=["pdf", "png"],
-            case=[c["id"] for c in PROJECT.cases_in(name) if c["id"] in WAVE_CASES],
-        )
-        if PROJECT.sweeps_in(name):
-            targets += expand("results/tables/sweep_{set}.{ext}", set=name, ext=["csv", "md", "provenance.json"])
-    if WORK_PRECISION:
-        targets += ["results/tables/work_precision.csv", "results/tables/work_precision_orders.md"]
-        targets += expand(
-            "results/figures/work_precision_{case}.{ext}", case=WORK_PRECISION["cases"], ext=["pdf", "png"]
-        )
-    targets += compare_targets()
-    targets += calibration_targets()
-    if STABILITY:
-        targets += ["results/tables/stability.csv"]
-    if MAP:
-        targets += expand("results/figures/stability_map.{ext}", ext=["pdf", "png"])
-    return targets
+    """Every registered rule file's default targets (rule all)."""
+    return [target for function in DEFAULT_TARGETS for target in function()]
 
 
 def field_runs(case):

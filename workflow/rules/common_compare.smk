@@ -1,8 +1,6 @@
 # The comparisons' helpers (compare.smk): the compared sets' runs and measured records, and
 # their targets. Included after common.smk.
 
-SRC_COMPARE = sources("rodimpact.present.compare_artifacts", "rodimpact.jobs.logs")
-
 
 def compare_runs(set_name):
     """The runs of a set's cases that carry measurements."""
@@ -69,9 +67,6 @@ def calibration_sources(wildcards):
     return sources(
         *SRC_CALIBRATE, METHOD_REGISTRY[method].solver_module, *(module for r in rules for module in CURVE_CODE[r])
     )
-
-
-SRC_CALIBRATION_ARTIFACTS = sources("rodimpact.present.calibration_artifacts", "rodimpact.jobs.logs")
 
 
 def calibration_cases_of(set_name):

@@ -5,7 +5,6 @@
 # configuration (rodimpact.config.checks.check_sensor), and their cases' band files.
 SENSOR = config.get("sensor", {})
 SRC_SENSOR = sources("rodimpact.jobs.sensor_band", "rodimpact.jobs.logs")
-SRC_SENSOR_TABLES = sources("rodimpact.present.sensor_artifacts", "rodimpact.jobs.logs")
 SENSOR_READINGS = list(SENSOR.get("band", []))
 SENSOR_READING_OF = {c["id"]: v for v in SENSOR_READINGS for c in PROJECT.cases.values() if c.get("variant") == v}
 

@@ -4,6 +4,21 @@
 WORK_PRECISION = config.get("work_precision", {})
 STABILITY = config.get("stability", {})
 MAP = STABILITY.get("map", {})
+
+
+def work_precision_study(methods=None):
+    """What the error-against-run-time tables and figures read of the study (config.yaml
+    work_precision): its methods' settings (of ``methods``, default all), the levels fitted, the
+    arrival window and the expectations per case."""
+    names = list(WORK_PRECISION.get("methods", {})) if methods is None else list(methods)
+    return {
+        "methods": {m: WORK_PRECISION["methods"][m] for m in names},
+        "fit_levels": WORK_PRECISION.get("fit_levels", 4),
+        "arrival_window": WORK_PRECISION.get("arrival_window"),
+        "per_case": WORK_PRECISION.get("per_case", {}),
+    }
+
+
 MAP_POINTS = map_point_names(MAP) if MAP else []
 # The stress runs: each set's cases by each method some case of it lists, and the references
 # (one directory per set and method, one file per case, by the rule solve_stress)
@@ -103,3 +118,19 @@ def sweep_point_runs(sweep_cases):
         for m in c["sweep"]["methods"]
         for point in SWEEPS[c["id"]].instance_patterns
     ]
+
+
+def study_targets():
+    """The error-against-run-time study (its table, orders and figures), the stress cases' table and
+    the stability map, each when config.yaml asks for it."""
+    targets = []
+    if WORK_PRECISION:
+        targets += ["results/tables/work_precision.csv", "results/tables/work_precision_orders.md"]
+        targets += expand(
+            "results/figures/work_precision_{case}.{ext}", case=WORK_PRECISION["cases"], ext=["pdf", "png"]
+        )
+    if STABILITY:
+        targets += ["results/tables/stability.csv"]
+    if MAP:
+        targets += expand("results/figures/stability_map.{ext}", ext=["pdf", "png"])
+    return targets

@@ -52,7 +52,7 @@ rule compare:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_COMPARE,
+        **presentation("rodimpact.present.compare_figures:make_compare"),
         runs=lambda w: compare_runs(w.set),
         set_name="{set}",
         title=lambda w: f"{set_title(w.set)[:1].upper()}{set_title(w.set)[1:]}: measured and computed",
@@ -60,7 +60,7 @@ rule compare:
         descriptions=lambda w: PROJECT.variants.get(w.set, {})
         and {v: d.get("description", v) for v, d in PROJECT.variants[w.set].items()},
     script:
-        "../scripts/compare.py"
+        "../scripts/artifact.py"
 
 
 rule compare_signal:
@@ -98,9 +98,12 @@ rule compare_signal:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_COMPARE,
+        **presentation("rodimpact.present.compare_figures:make_signal_figure"),
         runs=lambda w: signal_runs(w.set, w.ending),
         key=lambda w: SIGNAL_RECORDS[w.ending],
         title=lambda w: f"{set_title(w.set)[:1].upper()}{set_title(w.set)[1:]}: measured and computed {w.ending}",
     script:
-        "../scripts/compare_signal.py"
+        "../scripts/artifact.py"
+
+
+default_target(compare_targets)

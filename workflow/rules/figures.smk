@@ -72,12 +72,12 @@ rule paper_model:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_PRESENT,
+        **presentation("rodimpact.present.figure_artifacts:make_paper_model"),
         runs=lambda w: runs_of([PROJECT.cases["model"]]),
         fraction=0.5,
         jsons=lambda w: force_files([PROJECT.cases["model"]], "json"),
     script:
-        "../scripts/paper_model.py"
+        "../scripts/artifact.py"
 
 
 rule fig_readings:
@@ -88,7 +88,7 @@ rule fig_readings:
     input:
         runs=run_batches(lambda w: set_reading_runs(w.set)),
         sweep_points=lambda w: sweep_point_dirs(PROJECT.sweeps_in(w.set)),
-        bands=lambda w: expand(
+        band_files=lambda w: expand(
             "results/studies/film_band_{variant}.h5", variant=[v for v in FILM_VARIANTS if READING_SET_OF[v] == w.set]
         ),
         sensor_bands=lambda w: sensor_band_dirs([v for v in SENSOR_READINGS if v in sensor_variants(w.set)]),
@@ -142,10 +142,10 @@ rule fig_readings:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_PRESENT,
+        **presentation("rodimpact.present.figure_artifacts:make_fig_readings"),
         runs=lambda w: set_reading_runs(w.set),
         sweep_runs=lambda w: sweep_point_runs(PROJECT.sweeps_in(w.set)),
-        sensor_bands=lambda w: sensor_band_files([v for v in SENSOR_READINGS if v in sensor_variants(w.set)]),
+        sensor_band_files=lambda w: sensor_band_files([v for v in SENSOR_READINGS if v in sensor_variants(w.set)]),
         variants=lambda w: READING_SETS[w.set],
         film_variants=lambda w: [v for v in FILM_VARIANTS if READING_SET_OF[v] == w.set],
         sensors=lambda w: sensor_variants(w.set),
@@ -153,7 +153,7 @@ rule fig_readings:
         title=lambda w: set_title(w.set),
         published=lambda w: set_published(w.set),
     script:
-        "../scripts/fig_readings.py"
+        "../scripts/artifact.py"
 
 
 # The contact force with and without the film: config["sensor"]["film_force"] (common.smk).
@@ -186,10 +186,25 @@ rule fig_film_force:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_PRESENT,
+        **presentation("rodimpact.present.figure_artifacts:make_fig_film_force"),
         runs=FILM_FORCE_RUNS,
         rows=FILM_FORCE["rows"],
         variants=FILM_FORCE["variants"],
         methods=FILM_FORCE["methods"],
     script:
-        "../scripts/fig_film_force.py"
+        "../scripts/artifact.py"
+
+
+# Fig. 2, its numbers, Fig. 4 and the force's closed form, when the set 'model' is built.
+default_target(
+    lambda: (
+        [
+            *expand("results/figures/fig2_contact_force.{ext}", ext=["pdf", "png"]),
+            *expand("results/figures/fig4_midrod_displacement.{ext}", ext=["pdf", "png"]),
+            *expand("results/tables/fig2_comparison.{ext}", ext=["csv", "md", "provenance.json"]),
+            *expand("results/figures/force_fit_model.{ext}", ext=["pdf", "png"]),
+        ]
+        if "model" in config["targets"]["sets"]
+        else []
+    )
+)

@@ -4,7 +4,6 @@
 # fraction of a second, so one job exports a whole case set (its directory), with one
 # provenance sidecar. The closed form drawn over the force of the case 'model' is drawn by the job
 # that draws its other figures (figures.smk, rule paper_model: results/figures/force_fit_model.*).
-SRC_FORCES = sources("rodimpact.present.forces", "rodimpact.jobs.logs")
 
 
 rule forces:
@@ -13,7 +12,7 @@ rule forces:
     input:
         runs=run_batches(lambda w: runs_of(PROJECT.cases_in(w.set))),
     output:
-        forces=directory("results/forces/{set}"),
+        directory=directory("results/forces/{set}"),
         provenance="results/forces/{set}.provenance.json",
     log:
         "logs/forces/{set}.log",
@@ -26,8 +25,14 @@ rule forces:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_FORCES,
+        **presentation("rodimpact.present.forces:export_forces_into"),
         runs=lambda w: runs_of(PROJECT.cases_in(w.set)),
         names=lambda w: [f"{c['id']}/{m}" for c in PROJECT.cases_in(w.set) for m in c["methods"]],
     script:
-        "../scripts/force_export.py"
+        "../scripts/artifact.py"
+
+
+# The contact force handed on, per built set.
+default_target(
+    lambda: [f"results/forces/{s}{ending}" for s in config["targets"]["sets"] for ending in ("", ".provenance.json")]
+)

@@ -1,21 +1,9 @@
 # Before snakemake reads config/config.yaml: the workflow's own code on the path, the file read
 # by rodimpact's YAML reader (a syntax error is one line with its line and column), and the
 # lock of a killed run released (rodimpact.plumbing.locks).
-import gc
 import os
 import sys
 from pathlib import Path
-
-# What snakemake has built by now (its modules, plugins and settings: the objects that live as
-# long as the process) is moved out of the cyclic collector's view (gc.freeze, CPython's own).
-#   What Python does: every full collection walks every tracked object, and parsing the rule
-#   files, checking the configuration and building the job graph allocate enough to trigger
-#   several, each walking snakemake's start-up objects again.
-#   What it gave: a dry run 0.81 of its time with the plan cache and 0.83 without it (11 runs
-#   each, in turn; docs/studies.md, "Planning"). Garbage only cyclic and made before this line
-#   is never collected: what is frozen lives for the whole run anyway.
-#   If Python changes: a dry run only gets slower again; nothing depends on it.
-gc.freeze()
 
 # The workflow runs the code of its own checkout (src/), in this process and in its jobs,
 # whatever else is installed: the sources snakemake tracks are the sources that run.

@@ -40,7 +40,7 @@ rule sensor_band_table:
     """The sensor's band of every case of the band readings."""
     input:
         bands=sensor_band_dirs(SENSOR_READINGS),
-        cases=sorted({case_file_of(case) for case in SENSOR_READING_OF}),
+        case_files=sorted({case_file_of(case) for case in SENSOR_READING_OF}),
     output:
         csv=report(
             "results/tables/sensor_band.csv",
@@ -61,11 +61,10 @@ rule sensor_band_table:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_SENSOR_TABLES,
+        **presentation("rodimpact.present.sensor_tables:make_sensor_band_table"),
         bands=sensor_band_files(SENSOR_READINGS),
-        study="sensor_band",
     script:
-        "../scripts/sensor_band_table.py"
+        "../scripts/artifact.py"
 
 
 rule sensor_band_axes_table:
@@ -74,7 +73,7 @@ rule sensor_band_axes_table:
     sensor-axes)."""
     input:
         bands=sensor_band_dirs(SENSOR_READINGS, "sensor_band_axes"),
-        cases=sorted({case_file_of(case) for case in SENSOR_READING_OF}),
+        case_files=sorted({case_file_of(case) for case in SENSOR_READING_OF}),
     output:
         csv="results/tables/sensor_band_axes.csv",
         md="results/tables/sensor_band_axes.md",
@@ -89,8 +88,11 @@ rule sensor_band_axes_table:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_SENSOR_TABLES,
+        **presentation("rodimpact.present.sensor_tables:make_axes_table"),
         bands=sensor_band_files(SENSOR_READINGS, "sensor_band_axes"),
-        study="sensor_band_axes",
+        kind="sensor",
     script:
-        "../scripts/sensor_band_table.py"
+        "../scripts/artifact.py"
+
+
+default_target(sensor_targets)

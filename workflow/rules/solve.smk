@@ -114,3 +114,9 @@ if MAP:
             timing=None,
         script:
             "../scripts/solve_batch.py"
+
+
+# Every run of the built sets' cases, by their batches' directories.
+default_target(
+    lambda: [batch for name in config["targets"]["sets"] for batch in run_batches(runs_of(PROJECT.cases_in(name)))]
+)

@@ -34,14 +34,11 @@ rule work_precision_table:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_PRESENT,
+        **presentation("rodimpact.present.study_tables:make_work_precision"),
         runs=sweep_runs(),
-        methods=WORK_PRECISION.get("methods", {}),
-        fit_levels=WORK_PRECISION.get("fit_levels", 4),
-        arrival_window=WORK_PRECISION.get("arrival_window"),
-        per_case=WORK_PRECISION.get("per_case", {}),
+        study=work_precision_study(),
     script:
-        "../scripts/work_precision.py"
+        "../scripts/artifact.py"
 
 
 if WORK_PRECISION_SEPARATE:
@@ -67,12 +64,9 @@ if WORK_PRECISION_SEPARATE:
         log:
             "logs/tables/work_precision_separate.log",
         params:
-            code=SRC_PRESENT,
+            **presentation("rodimpact.present.study_tables:make_work_precision"),
             runs=sweep_runs(WORK_PRECISION_SEPARATE["cases"], WORK_PRECISION_SEPARATE["methods"]),
-            methods={m: WORK_PRECISION["methods"][m] for m in WORK_PRECISION_SEPARATE["methods"]},
-            fit_levels=WORK_PRECISION.get("fit_levels", 4),
-            arrival_window=WORK_PRECISION.get("arrival_window"),
-            per_case=WORK_PRECISION.get("per_case", {}),
+            study=work_precision_study(WORK_PRECISION_SEPARATE["methods"]),
 
 
 rule work_precision_figure:
@@ -105,14 +99,11 @@ rule work_precision_figure:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_PRESENT,
+        **presentation("rodimpact.present.study_figures:make_work_precision_figure"),
         runs=lambda w: sweep_runs([w.case]),
-        methods=WORK_PRECISION.get("methods", {}),
-        fit_levels=WORK_PRECISION.get("fit_levels", 4),
-        arrival_window=WORK_PRECISION.get("arrival_window"),
-        per_case=WORK_PRECISION.get("per_case", {}),
+        study=work_precision_study(),
     script:
-        "../scripts/work_precision_figure.py"
+        "../scripts/artifact.py"
 
 
 rule stability_table:
@@ -139,12 +130,12 @@ rule stability_table:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_PRESENT,
+        **presentation("rodimpact.present.study_tables:make_stability"),
         runs=STRESS_RUNS,
         references=STRESS_REFERENCES,
         tolerances=STABILITY.get("tolerances", {}),
     script:
-        "../scripts/stability.py"
+        "../scripts/artifact.py"
 
 
 rule stability_map:
@@ -183,9 +174,12 @@ rule stability_map:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_PRESENT,
+        **presentation("rodimpact.present.study_figures:make_stability_map"),
         runs=[f"results/stability_map/{m}/{p}.h5" for p in MAP_POINTS for m in MAP.get("methods", [])],
         references=[f"results/stability_map/reference/{p}.h5" for p in MAP_POINTS],
         spec=MAP,
     script:
-        "../scripts/stability_map.py"
+        "../scripts/artifact.py"
+
+
+default_target(study_targets)

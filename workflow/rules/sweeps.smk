@@ -56,7 +56,17 @@ rule sweep_table:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_PRESENT,
+        **presentation("rodimpact.present.sweep_table:make_sweep_table"),
         runs=lambda w: sweep_point_runs(PROJECT.sweeps_in(w.set)),
     script:
-        "../scripts/sweep_table.py"
+        "../scripts/artifact.py"
+
+
+# The sweep table of every built set that has sweeps.
+default_target(
+    lambda: expand(
+        "results/tables/sweep_{set}.{ext}",
+        set=[name for name in config["targets"]["sets"] if PROJECT.sweeps_in(name)],
+        ext=["csv", "md", "provenance.json"],
+    )
+)

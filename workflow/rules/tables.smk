@@ -29,14 +29,14 @@ rule readings_table:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_PRESENT,
+        **presentation("rodimpact.present.readings:make_readings_table"),
         runs=lambda w: reading_runs(w.variant),
         variant="{variant}",
         title=lambda w: set_title(w.set),
         reference=lambda w: PROJECT.compare.get(w.set, {}).get("reference", ""),
         published=lambda w: set_published(w.set),
     script:
-        "../scripts/readings_table.py"
+        "../scripts/artifact.py"
 
 
 rule readings_summary:
@@ -65,12 +65,12 @@ rule readings_summary:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_PRESENT,
+        **presentation("rodimpact.present.readings:make_readings_summary"),
         runs=lambda w: set_reading_runs(w.set),
         variants=lambda w: READING_SETS[w.set],
         published=lambda w: set_published(w.set),
     script:
-        "../scripts/readings_summary.py"
+        "../scripts/artifact.py"
 
 
 # The sensor film: one rod's readings by role (config["sensor"]["film_table"]), side by side.
@@ -104,19 +104,19 @@ rule film_table:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_PRESENT,
+        **presentation("rodimpact.present.film_tables:make_film_table"),
         sensor_bands=sensor_band_files([v for v in [FILM_TABLE.get("sensor_calibrated")] if v in SENSOR_READINGS]),
         runs=[run for v in FILM_TABLE.values() for run in reading_runs(v)] if FILM_TABLE_SETS else [],
         variants=FILM_TABLE,
     script:
-        "../scripts/film_table.py"
+        "../scripts/artifact.py"
 
 
 rule film_band_table:
     """The film's prediction band of every case of every reading with the film."""
     input:
         bands=expand("results/studies/film_band_{variant}.h5", variant=FILM_VARIANTS),
-        cases=sorted({case_file_of(c["id"]) for v in FILM_VARIANTS for c in reading_cases(v)}),
+        case_files=sorted({case_file_of(c["id"]) for v in FILM_VARIANTS for c in reading_cases(v)}),
     output:
         csv=report(
             "results/tables/film_band.csv",
@@ -137,11 +137,10 @@ rule film_band_table:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_PRESENT,
+        **presentation("rodimpact.present.film_tables:make_film_band_table"),
         variants=FILM_VARIANTS,
-        study="film_band",
     script:
-        "../scripts/film_band_table.py"
+        "../scripts/artifact.py"
 
 
 rule film_band_axes_table:
@@ -149,7 +148,7 @@ rule film_band_axes_table:
     whether the time is monotone along it (make film-axes)."""
     input:
         bands=expand("results/studies/film_band_axes_{variant}.h5", variant=FILM_VARIANTS),
-        cases=sorted({case_file_of(c["id"]) for v in FILM_VARIANTS for c in reading_cases(v)}),
+        case_files=sorted({case_file_of(c["id"]) for v in FILM_VARIANTS for c in reading_cases(v)}),
     output:
         csv="results/tables/film_band_axes.csv",
         md="results/tables/film_band_axes.md",
@@ -164,11 +163,11 @@ rule film_band_axes_table:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_PRESENT,
+        **presentation("rodimpact.present.sensor_tables:make_axes_table"),
         variants=FILM_VARIANTS,
-        study="film_band_axes",
+        kind="film",
     script:
-        "../scripts/film_band_table.py"
+        "../scripts/artifact.py"
 
 
 rule film_indentation_table:
@@ -195,8 +194,11 @@ rule film_indentation_table:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_PRESENT,
+        **presentation("rodimpact.present.film_tables:make_film_indentation_table"),
         curves=[curve_file_of(PROJECT.cases[c]) for c in CALIBRATED_CASES],
         cases=CALIBRATED_CASES,
     script:
-        "../scripts/film_indentation_table.py"
+        "../scripts/artifact.py"
+
+
+default_target(readings_targets)

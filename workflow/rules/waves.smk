@@ -3,7 +3,6 @@
 # records_field), on one colour scale, with the wave fronts' paths and the contacts marked
 # (rodimpact.present.wave_figures). No other case pays for it: the rule's {case} takes only
 # the cases asking for the field (WAVE_CASES, common.smk).
-SRC_WAVES = sources("rodimpact.present.wave_figures", "rodimpact.jobs.logs")
 
 
 rule wave_map:
@@ -37,9 +36,19 @@ rule wave_map:
     resources:
         **PRESENTATION_RESOURCES,
     params:
-        code=SRC_WAVES,
+        **presentation("rodimpact.present.wave_figures:make_wave_map"),
         runs=lambda w: field_runs(PROJECT.cases[w.case]),
         field_grid=lambda w: PROJECT.cases[w.case]["field_grid"],  # for the caption
         far_end=lambda w: PROJECT.cases[w.case]["rod"]["far_end"],
     script:
-        "../scripts/wave_map.py"
+        "../scripts/artifact.py"
+
+
+# The strain map of every built case that lists strain_field.
+default_target(
+    lambda: expand(
+        "results/figures/wave_map_{case}.{ext}",
+        ext=["pdf", "png"],
+        case=[c["id"] for s in config["targets"]["sets"] for c in PROJECT.cases_in(s) if c["id"] in WAVE_CASES],
+    )
+)

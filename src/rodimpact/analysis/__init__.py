@@ -1,6 +1,7 @@
 """Analysis of histories and stored runs: features of a force history, and the studies.
 
-What lives here: :mod:`.signals` (force maxima, the zig-zag of an unstable step),
+What lives here: :mod:`.errors` (an error relative to a reference, signed: the one
+definition), :mod:`.signals` (force maxima, the zig-zag of an unstable step),
 :mod:`.studies` (the cases of the numerical studies: work-precision levels, stress
 references, stability-map points), :mod:`.work_precision` (errors against run time and
 observed orders), :mod:`.convergence` (an order fitted with its standard error, Roache's grid

@@ -36,6 +36,7 @@ from rodimpact.analysis.calibration import (
     calibrate,
     check_inputs,
 )
+from rodimpact.analysis.errors import relative_error_pct
 
 __all__ = ["TOO_FEW", "LeaveOneOut", "leave_one_out"]
 
@@ -120,8 +121,8 @@ def _mean_abs(values: NDArray[np.float64]) -> float:
 
 
 def _error_pct(predicted: NDArray[np.float64], measured: NDArray[np.float64]) -> NDArray[np.float64]:
-    with np.errstate(divide="ignore", invalid="ignore"):
-        out = np.where(measured != 0, 100.0 * (predicted - measured) / np.abs(measured), math.nan)
+    """:func:`~rodimpact.analysis.errors.relative_error_pct`, read-only (a frozen result's array)."""
+    out = np.array(relative_error_pct(predicted, measured), dtype=float, ndmin=1)
     out.setflags(write=False)
     return out
 

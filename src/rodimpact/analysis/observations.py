@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from rodimpact.analysis.errors import relative_error_pct
 from rodimpact.analysis.history_compare import DEFAULT_THRESHOLD, HistoryComparison, compare_force_histories
 from rodimpact.analysis.measured import MeasuredHistory
 from rodimpact.analysis.wave_compare import SignalComparison, compare_signals
@@ -35,7 +36,9 @@ from rodimpact.analysis.wave_compare import SignalComparison, compare_signals
 __all__ = [
     "NEEDS",
     "NORMS",
+    "QUANTITIES",
     "QUANTITY_ORDER",
+    "Quantity",
     "SCALARS",
     "Observed",
     "bar_speed",
@@ -43,59 +46,75 @@ __all__ = [
     "gauge_column",
     "gives",
     "observed",
+    "quantity_words",
     "signal_comparison",
 ]
 
-#: Measured scalars a case may give: key -> (words, unit, the computed value from a run's summary).
-SCALARS: dict[str, tuple[str, str, Callable[[Mapping[str, Any]], float]]] = {
-    "contact_time_us": ("contact time", "µs", lambda s: 1e6 * float(s["contact_time_s"])),
-    "peak_force_n": (
-        "peak force",
-        "N",
-        lambda s: float(np.max(s["peak_force_N"])) if len(s["peak_force_N"]) else math.nan,
-    ),
-    "rebound_velocity_m_s": ("rebound velocity", "m/s", lambda s: -float(s["rebound_velocity_m_s"])),
+#: Measured scalars a case may give: key -> the computed value from a run's summary.
+SCALARS: dict[str, Callable[[Mapping[str, Any]], float]] = {
+    "contact_time_us": lambda s: 1e6 * float(s["contact_time_s"]),
+    "peak_force_n": lambda s: float(np.max(s["peak_force_N"])) if len(s["peak_force_N"]) else math.nan,
+    "rebound_velocity_m_s": lambda s: -float(s["rebound_velocity_m_s"]),
 }
 
+
+@dataclass(frozen=True)
+class Quantity:
+    """What a measured quantity is: its words (``{threshold}``: the force record's threshold),
+    its unit, the key of the ``measured`` block it comes from (a scalar's own key, or a record's)
+    and, for a velocity record, whose velocity (``of``); a norm is an error already."""
+
+    words: str
+    unit: str
+    record: str
+    of: str | None = None
+    norm: bool = False
+
+
+def _norm_of(words: str, record: str, of: str | None = None) -> Quantity:
+    return Quantity(words, "%", record, of, norm=True)
+
+
 #: Every quantity :func:`observed` gives, in the order tables list them.
-QUANTITY_ORDER: tuple[str, ...] = (
-    *SCALARS,
-    "signal_contact_time_us",
-    "history_l2_pct",
-    "history_max_pct",
-    "strain_arrival_us",
-    "strain_peak_microstrain",
-    "strain_integral_microstrain_us",
-    "strain_l2_pct",
-    "strain_max_pct",
-    "far_end_arrival_us",
-    "far_end_peak_velocity_m_s",
-    "far_end_displacement_um",
-    "far_end_velocity_l2_pct",
-    "far_end_velocity_max_pct",
-    "impactor_velocity_l2_pct",
-    "impactor_velocity_max_pct",
-)
-
-
-def _needs(quantity: str) -> tuple[str, str | None]:
-    """The ``measured`` key a quantity is read from, and the velocity record's ``of`` it needs."""
-    if quantity in SCALARS:
-        return quantity, None
-    if quantity.startswith(("signal_", "history_")):
-        return "force_history", None
-    if quantity.startswith("strain_"):
-        return "strain_history", None
-    if quantity.startswith("far_end_"):
-        return "velocity_history", "far_end"
-    return "velocity_history", "impactor"
-
-
+QUANTITIES: dict[str, Quantity] = {
+    "contact_time_us": Quantity("contact time", "µs", "contact_time_us"),
+    "peak_force_n": Quantity("peak force", "N", "peak_force_n"),
+    "rebound_velocity_m_s": Quantity("rebound velocity", "m/s", "rebound_velocity_m_s"),
+    "signal_contact_time_us": Quantity(
+        "contact time read from the signal at {threshold:g} of its peak", "µs", "force_history"
+    ),
+    "history_l2_pct": _norm_of("force history, L2 error after alignment", "force_history"),
+    "history_max_pct": _norm_of("force history, max-norm error after alignment", "force_history"),
+    "strain_arrival_us": Quantity("arrival of the first wave at the gauge, at half its crest", "µs", "strain_history"),
+    "strain_peak_microstrain": Quantity("peak strain of the first pulse", "microstrain", "strain_history"),
+    "strain_integral_microstrain_us": Quantity(
+        "time integral of the first pulse's strain", "µstrain·µs", "strain_history"
+    ),
+    "strain_l2_pct": _norm_of("strain at the gauge, L2 error after alignment", "strain_history"),
+    "strain_max_pct": _norm_of("strain at the gauge, max-norm error after alignment", "strain_history"),
+    "far_end_arrival_us": Quantity(
+        "arrival of the first wave at the far end, at half its crest", "µs", "velocity_history", "far_end"
+    ),
+    "far_end_peak_velocity_m_s": Quantity(
+        "peak velocity of the far end's first pulse", "m/s", "velocity_history", "far_end"
+    ),
+    "far_end_displacement_um": Quantity(
+        "the far end's displacement over the first pulse", "µm", "velocity_history", "far_end"
+    ),
+    "far_end_velocity_l2_pct": _norm_of("far end's velocity, L2 error after alignment", "velocity_history", "far_end"),
+    "far_end_velocity_max_pct": _norm_of(
+        "far end's velocity, max-norm error after alignment", "velocity_history", "far_end"
+    ),
+    "impactor_velocity_l2_pct": _norm_of("impactor's velocity, L2 error", "velocity_history", "impactor"),
+    "impactor_velocity_max_pct": _norm_of("impactor's velocity, max-norm error", "velocity_history", "impactor"),
+}
+#: The quantities, in the order tables list them.
+QUANTITY_ORDER: tuple[str, ...] = tuple(QUANTITIES)
 #: Which record (or scalar) of the ``measured`` block each quantity comes from: quantity ->
 #: (key, the velocity record's ``of`` or None).
-NEEDS: dict[str, tuple[str, str | None]] = {quantity: _needs(quantity) for quantity in QUANTITY_ORDER}
+NEEDS: dict[str, tuple[str, str | None]] = {name: (q.record, q.of) for name, q in QUANTITIES.items()}
 #: The quantities that are error norms (nothing measured to set a value against).
-NORMS = frozenset(q for q in QUANTITY_ORDER if q.endswith("_pct"))
+NORMS = frozenset(name for name, q in QUANTITIES.items() if q.norm)
 
 
 def gives(config: Mapping[str, Any], quantity: str) -> bool:
@@ -138,15 +157,31 @@ class Observed:
         return math.isnan(self.measured)
 
 
+def quantity_words(quantity: str, config: Mapping[str, Any], *, transit: bool = True) -> str:
+    """A quantity of a case in words: its declared words (:data:`QUANTITIES`) with the force
+    record's threshold, and for an arrival the wave's transit x/c at the case's modulus
+    (``transit=False`` leaves it out: a calibration varies the modulus)."""
+    measured = config.get("measured") or {}
+    threshold = float((measured.get("force_history") or {}).get("threshold", DEFAULT_THRESHOLD))
+    words = QUANTITIES[quantity].words.format(threshold=threshold)
+    if transit and quantity.endswith("_arrival_us"):
+        if quantity.startswith("strain"):
+            x = float(measured["strain_history"]["station_m"])
+        else:
+            x = float(config["rod"]["length_m"])
+        words += f" (x/c = {1e6 * x / bar_speed(config):.4g} µs at x = {x:g} m)"
+    return words
+
+
 def _value(
-    quantity: str, words: str, unit: str, measured: float, computed: float, measured_sd: float = math.nan
+    config: Mapping[str, Any], quantity: str, measured: float, computed: float, measured_sd: float = math.nan
 ) -> Observed:
-    error = 100.0 * (computed - measured) / abs(measured)
-    return Observed(quantity, words, unit, measured, computed, error, measured_sd)
+    words, unit = quantity_words(quantity, config), QUANTITIES[quantity].unit
+    return Observed(quantity, words, unit, measured, computed, relative_error_pct(computed, measured), measured_sd)
 
 
-def _norm(quantity: str, words: str, error: float) -> Observed:
-    return Observed(quantity, words, "%", math.nan, math.nan, 100.0 * error)
+def _norm(config: Mapping[str, Any], quantity: str, error: float) -> Observed:
+    return Observed(quantity, quantity_words(quantity, config), "%", math.nan, math.nan, 100.0 * error)
 
 
 def bar_speed(config: Mapping[str, Any]) -> float:
@@ -234,86 +269,67 @@ def observed(
     """
     measured, records = config.get("measured") or {}, dict(records or {})
     rows = [
-        _value(key, words, unit, float(measured[key]), computed_of(summary))
-        for key, (words, unit, computed_of) in SCALARS.items()
+        _value(config, key, float(measured[key]), computed_of(summary))
+        for key, computed_of in SCALARS.items()
         if measured.get(key) is not None
     ]
     if "force_history" in records:
         threshold = float(measured["force_history"].get("threshold", DEFAULT_THRESHOLD))
         result = force_comparison(series, records["force_history"], threshold)
-        words = f"contact time read from the signal at {threshold:g} of its peak"
         signal, model = 1e6 * result.measured_contact_time_s, 1e6 * result.model_contact_time_s
-        rows.append(_value("signal_contact_time_us", words, "µs", signal, model))
-        rows.append(_norm("history_l2_pct", "force history, L2 error after alignment", result.l2_error))
-        rows.append(_norm("history_max_pct", "force history, max-norm error after alignment", result.max_error))
+        rows.append(_value(config, "signal_contact_time_us", signal, model))
+        rows.append(_norm(config, "history_l2_pct", result.l2_error))
+        rows.append(_norm(config, "history_max_pct", result.max_error))
     if "strain_history" in records:
         spec = measured["strain_history"]
         result = signal_comparison("strain_history", spec, series, summary, records["strain_history"])
-        x = float(spec["station_m"])
-        rows += _pulse_rows("strain", result, x / bar_speed(config), x)
+        rows += _pulse_rows(config, "strain", result)
     velocity = measured.get("velocity_history")
     if "velocity_history" in records and velocity["of"] == "far_end":
         result = signal_comparison("velocity_history", velocity, series, summary, records["velocity_history"])
-        length = float(config["rod"]["length_m"])
-        rows += _pulse_rows("far_end", result, length / bar_speed(config), length)
+        rows += _pulse_rows(config, "far_end", result)
     elif "velocity_history" in records:
         result = signal_comparison("velocity_history", velocity, series, summary, records["velocity_history"])
-        rows.append(_norm("impactor_velocity_l2_pct", "impactor's velocity, L2 error", result.l2_error))
-        rows.append(_norm("impactor_velocity_max_pct", "impactor's velocity, max-norm error", result.max_error))
+        rows.append(_norm(config, "impactor_velocity_l2_pct", result.l2_error))
+        rows.append(_norm(config, "impactor_velocity_max_pct", result.max_error))
     return rows
 
 
-@dataclass(frozen=True)
-class _Pulse:
-    """What the rows of one kind of wave signal are called, and their units and scales (from SI)."""
-
-    where: str
-    peak: tuple[str, str, str, float]  # quantity, words, unit, scale
-    integral: tuple[str, str, str, float]
-    norms: tuple[str, str]  # the norms' quantity prefix and words
-
-
+#: A wave signal's quantities (``strain``: the strain at a gauge; ``far_end``: the far end's
+#: velocity): arrival, peak, integral, the two norms, each with its scale from SI.
 _PULSES = {
-    "strain": _Pulse(
-        "the gauge",
-        ("strain_peak_microstrain", "peak strain of the first pulse", "microstrain", 1e6),
-        ("strain_integral_microstrain_us", "time integral of the first pulse's strain", "µstrain·µs", 1e12),
-        ("strain", "strain at the gauge"),
+    "strain": (
+        "strain_arrival_us",
+        ("strain_peak_microstrain", 1e6),
+        ("strain_integral_microstrain_us", 1e12),
+        "strain",
     ),
-    "far_end": _Pulse(
-        "the far end",
-        ("far_end_peak_velocity_m_s", "peak velocity of the far end's first pulse", "m/s", 1.0),
-        ("far_end_displacement_um", "the far end's displacement over the first pulse", "µm", 1e6),
-        ("far_end_velocity", "far end's velocity"),
+    "far_end": (
+        "far_end_arrival_us",
+        ("far_end_peak_velocity_m_s", 1.0),
+        ("far_end_displacement_um", 1e6),
+        "far_end_velocity",
     ),
 }
 
 
-def _pulse_rows(prefix: str, result: SignalComparison, transit_s: float, x_m: float) -> list[Observed]:
+def _pulse_rows(config: Mapping[str, Any], prefix: str, result: SignalComparison) -> list[Observed]:
     """The first pulse's rows and the norms of a wave signal (``prefix`` ``strain``: the strain at a
     gauge; ``far_end``: the far end's velocity)."""
     measured, model = result.measured_pulse, result.model_pulse
     if measured is None or model is None:
         raise ValueError("a wave signal is compared with its first pulses")
-    kind = _PULSES[prefix]
-    norm, norm_words = kind.norms
-
-    def scaled(row: tuple[str, str, str, float], got: float, computed: float, sd: float) -> Observed:
-        quantity, words, unit, scale = row
-        return _value(quantity, words, unit, scale * got, scale * computed, scale * sd)
-
+    arrival, (peak, peak_scale), (integral, integral_scale), norm = _PULSES[prefix]
     return [
+        _value(config, arrival, 1e6 * measured.arrival_s, 1e6 * model.arrival_s, 1e6 * measured.arrival_sd_s),
+        _value(config, peak, peak_scale * measured.peak, peak_scale * model.peak, peak_scale * measured.peak_sd),
         _value(
-            f"{prefix}_arrival_us",
-            f"arrival of the first wave at {kind.where}, at half its crest (x/c = {1e6 * transit_s:.4g} µs at "
-            f"x = {x_m:g} m)",
-            "µs",
-            1e6 * measured.arrival_s,
-            1e6 * model.arrival_s,
-            1e6 * measured.arrival_sd_s,
+            config,
+            integral,
+            integral_scale * measured.integral,
+            integral_scale * model.integral,
+            integral_scale * measured.integral_sd,
         ),
-        scaled(kind.peak, measured.peak, model.peak, measured.peak_sd),
-        scaled(kind.integral, measured.integral, model.integral, measured.integral_sd),
-        _norm(f"{norm}_l2_pct", f"{norm_words}, L2 error after alignment", result.l2_error),
-        _norm(f"{norm}_max_pct", f"{norm_words}, max-norm error after alignment", result.max_error),
+        _norm(config, f"{norm}_l2_pct", result.l2_error),
+        _norm(config, f"{norm}_max_pct", result.max_error),
     ]

@@ -25,11 +25,11 @@ from numpy.typing import NDArray
 
 from rodimpact.analysis.calibration import STEP, Calibration, Observation, Parameter, calibrate
 from rodimpact.analysis.calibration_loo import LeaveOneOut, leave_one_out
+from rodimpact.analysis.errors import relative_error_pct
 from rodimpact.analysis.measured import RECORDS, read_history
 from rodimpact.analysis.observations import NORMS, Observed
 from rodimpact.config.calibration import applied_cases, calibration_cases
 from rodimpact.jobs.calibration_model import GridModel, SetModel, predicted_values
-from rodimpact.present.artifact_common import case_in_words
 from rodimpact.storage.calibrations import StoredCalibration, write_calibration
 from rodimpact.storage.provenance import file_sha256
 
@@ -91,19 +91,11 @@ def calibration_parameters(block: Mapping[str, Any]) -> list[Parameter]:
     ]
 
 
-def _words(rows: Sequence[Observed], model: Model) -> list[dict[str, Any]]:
-    """Each measurement's case (its id and in words), quantity, words and unit (the words without
-    what depends on the constants: x/c at the start's modulus)."""
-    cases = {case["id"]: case for case in model.cases}
+def _measurements(rows: Sequence[Observed], model: Model) -> list[dict[str, Any]]:
+    """Each measurement's case id, quantity and unit, and whether it is a norm (ids and units
+    only: the presentation says them in words, from the cases the file's configuration holds)."""
     return [
-        {
-            "case": cid,
-            "case_words": case_in_words(cases[cid]),
-            "quantity": quantity,
-            "words": row.words.split(" (x/c")[0],
-            "unit": row.unit,
-            "norm": quantity in NORMS,
-        }
+        {"case": cid, "quantity": quantity, "unit": row.unit, "norm": quantity in NORMS}
         for (cid, quantity), row in zip(model.rows, rows, strict=True)
     ]
 
@@ -149,9 +141,9 @@ def _stored(
             {"path": p.name, "unit": p.unit, "source": p.source, "grid": list(map(float, grids.get(p.name, [])))}
             for p in params
         ],
-        "observations": _words(words, model),
+        "observations": _measurements(words, model),
         "loo": {"cases": list(loo.cases), "status": list(loo.status), "row_status": list(loo.row_status)},
-        "applied": [] if applied is None else _words(applied.rows, applied.model),
+        "applied": [] if applied is None else _measurements(applied.rows, applied.model),
     }
     arrays = {
         "low": [p.low for p in params],
@@ -211,8 +203,7 @@ class Applied:
         norm = np.asarray([row.is_norm for row in rows], bool)
         measured = np.asarray([0.0 if row.is_norm else row.measured for row in rows], float)
         predicted = model(fit.values)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            relative = 100.0 * (predicted - measured) / np.abs(measured)
+        relative = relative_error_pct(predicted, measured)
         return cls(
             model,
             rows,

@@ -29,7 +29,7 @@ def plot_calibration(
     Parameters
     ----------
     constants, measurements : DataFrame
-        :func:`rodimpact.present.calibration_artifacts.calibration_frames`.
+        :func:`rodimpact.present.calibration_tables.calibration_frames`.
     title : str
         The fit's heading ("A fit, not a prediction: ...").
     verdict : str

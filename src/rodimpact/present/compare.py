@@ -1,4 +1,4 @@
-"""A case set against its measurements: the frames behind ``results/tables/compare_{set}.*``.
+"""A case set against its measurements: the table ``results/tables/compare_{set}.*`` and its summary.
 
 Any case set whose cases carry ``measured`` values is compared the same way, whatever its
 name. For each case (and variant) and each method that ran it, every measured quantity is set
@@ -8,7 +8,8 @@ each record gives (:mod:`rodimpact.analysis.observations`): for a force history,
 time read from both signals and the errors of the force after alignment; for a strain at a
 gauge, or the far end's velocity, the first pulse's arrival, peak and integral and the errors
 after alignment; for the impactor's velocity, its errors. Errors are signed, in % of the
-measured value: (computed - measured) / |measured|; a history's norms are errors already.
+measured value: (computed - measured) / |measured|; a history's norms are errors already. Each
+table is declared here once, its columns beside its frame (:mod:`rodimpact.present.table`).
 """
 
 from __future__ import annotations
@@ -22,10 +23,12 @@ import numpy as np
 import pandas as pd
 
 from rodimpact.analysis.history_compare import HistoryComparison
-from rodimpact.analysis.measured import MeasuredHistory
+from rodimpact.analysis.measured import RECORDS, MeasuredHistory, read_history
 from rodimpact.analysis.observations import QUANTITY_ORDER, force_comparison, observed
 from rodimpact.contact.laws import law_of
 from rodimpact.model.problem import ImpactProblem
+from rodimpact.present.columns import shared
+from rodimpact.present.table import Column, Table, markdown_table, panels
 from rodimpact.solvers.registry import METHODS
 from rodimpact.storage.runs import RunRecord
 
@@ -35,8 +38,13 @@ __all__ = [
     "X_NAMES",
     "compare_frame",
     "compare_summary",
+    "compare_table",
+    "comparison_markdown",
     "history_comparison",
+    "history_files",
     "model_label",
+    "read_histories",
+    "summary_table",
     "x_axis",
 ]
 
@@ -261,3 +269,96 @@ def compare_summary(frame: pd.DataFrame) -> pd.DataFrame:
         mean_signed_error_pct="mean",
     ).reset_index()
     return summary
+
+
+#: The comparison's own columns (the case's and the method's are shared).
+_COMPARE_COLUMNS = (
+    Column("quantity", "Quantity", fmt="", in_words="quantity_words"),
+    Column("quantity_words", "Quantity", fmt=""),
+    Column("unit", "Unit", fmt=""),
+    Column("measured", "Measured", fmt=".5g"),
+    Column("computed", "Computed", fmt=".5g"),
+    Column("error_pct", "Error", "%"),
+    Column("source", "Source", fmt=""),
+)
+
+_CAPTION = (
+    "Measured against computed, per case, method and quantity: the measured value and its source, the "
+    "computed value, and the error (computed − measured) / |measured| in %. A measured force history adds "
+    "the contact time read from both signals at the history's threshold, and the L2 and max-norm errors "
+    "of the computed force after the two are aligned where each first rises through that fraction of its "
+    "peak. A strain at a gauge, or the far end's velocity, adds its first pulse's arrival (against x/c), "
+    "peak and time integral, and the errors after the arrivals are aligned "
+    '(config/README.md, "Comparing with your experiment").'
+)
+
+
+def compare_table(
+    records: Sequence[RunRecord], histories: Mapping[str, Mapping[str, MeasuredHistory]], set_name: str
+) -> Table:
+    """The set's comparison (:func:`compare_frame`): for people, per quantity the models'
+    measured, computed and error, a panel per variant; a warning column only where a
+    measurement is flagged (:func:`rigid_wall_warnings`)."""
+    frame = compare_frame(records, histories)
+    table = Table(
+        frame,
+        (
+            *shared(["case_id", "row", "variant", "mass_g", "velocity_m_s", "diameter_mm", "rod_length_mm"]),
+            *shared(["method", "method_label", "contact_law", "warning"]),
+            *_COMPARE_COLUMNS,
+        ),
+        _CAPTION,
+    )
+    values = ["method_label", "measured", "computed", "error_pct"]
+    if frame["warning"].notna().any():
+        values.append("warning")
+    return table.showing(
+        panels(
+            table,
+            f"Set {set_name} against its measurements",
+            ["row", "quantity_words", "unit"],
+            values,
+            by="variant" if frame["variant"].notna().any() else "",
+        )
+    )
+
+
+def summary_table(frame: pd.DataFrame) -> Table:
+    """Per variant, model and quantity (:func:`compare_summary` of a comparison's frame)."""
+    return Table(
+        compare_summary(frame),
+        (
+            *shared(["variant", "method", "method_label"]),
+            *_COMPARE_COLUMNS[:2],
+            Column("cases", "Cases", fmt=""),
+            Column("mean_abs_error_pct", "Mean |error|", "%"),
+            Column("max_abs_error_pct", "Largest |error|", "%"),
+            Column("mean_signed_error_pct", "Mean signed error", "%"),
+        ),
+        "Per method and quantity: the cases compared, the mean and the largest |error|, and the mean signed error (%).",
+    )
+
+
+def read_histories(records: Sequence[RunRecord]) -> dict[str, dict[str, MeasuredHistory]]:
+    """Case id -> its records, read, by their key in the ``measured`` block."""
+    out: dict[str, dict[str, MeasuredHistory]] = {}
+    for record in records:
+        measured = record.config.get("measured") or {}
+        if record.case_id in out:
+            continue
+        found = {key: read_history(measured[key]["path"], measured[key], key) for key in RECORDS if measured.get(key)}
+        if found:
+            out[record.case_id] = found
+    return out
+
+
+def history_files(records: Sequence[RunRecord]) -> list[str]:
+    """The measured records' files of the runs' cases."""
+    return sorted(
+        {spec["path"] for r in records for key in RECORDS if (spec := (r.config.get("measured") or {}).get(key))}
+    )
+
+
+def comparison_markdown(table: Table, totals: Table) -> str:
+    """The comparison's Markdown: its caption and table, then its summary's caption and table."""
+    return f"{table.caption}\n\n{markdown_table(table)}\n\n{totals.caption}\n\n{markdown_table(totals)}\n"

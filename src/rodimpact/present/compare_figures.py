@@ -1,11 +1,14 @@
 """The figures of a case set against its measurements: one for the set, one per kind of measured
-record (a row per case)."""
+record (a row per case); each drawn from the set's stored runs and measured files only, and saved
+with its provenance."""
 
 from __future__ import annotations
 
+import logging
 import math
 import textwrap
 from collections.abc import Mapping, Sequence
+from pathlib import Path
 from typing import Any
 
 import matplotlib
@@ -18,13 +21,34 @@ import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 from numpy.typing import NDArray  # noqa: E402
 
-from rodimpact.analysis.history_compare import HistoryComparison  # noqa: E402
-from rodimpact.analysis.observations import NORMS, gauge_column  # noqa: E402
+from rodimpact.analysis.history_compare import DEFAULT_THRESHOLD, HistoryComparison  # noqa: E402
+from rodimpact.analysis.measured import MeasuredHistory  # noqa: E402
+from rodimpact.analysis.observations import NORMS, gauge_column, signal_comparison  # noqa: E402
 from rodimpact.analysis.wave_compare import SignalComparison  # noqa: E402
+from rodimpact.present.compare import (  # noqa: E402
+    compare_table,
+    comparison_markdown,
+    history_comparison,
+    history_files,
+    read_histories,
+    summary_table,
+    x_axis,
+)
+from rodimpact.present.figures import save_figure  # noqa: E402
+from rodimpact.present.table import write_csv, write_table  # noqa: E402
 from rodimpact.present.table2_figures import short_source  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
+from rodimpact.storage.atomic import atomic_output  # noqa: E402
+from rodimpact.storage.runs import RunRecord, read_run  # noqa: E402
+from rodimpact.storage.sidecar import provenance_record, write_provenance  # noqa: E402
 
-__all__ = ["plot_compare_set", "plot_signal_overlays"]
+__all__ = [
+    "SIGNAL_FIGURES",
+    "make_compare",
+    "make_signal_figure",
+    "plot_compare_set",
+    "plot_signal_overlays",
+]
 
 #: The measured scalars drawn, in this order, each in its row of panels.
 _DRAWN = (
@@ -38,6 +62,8 @@ _DRAWN = (
 )
 #: The error norms drawn (of a record that gives no value to draw), after the values.
 _DRAWN_NORMS = ("impactor_velocity_l2_pct", "impactor_velocity_max_pct")
+log = logging.getLogger(__name__)
+
 _MARKERS = ("s", "D", "P", "X", "h")
 #: The markers of a method's lines, one per contact law met in the set.
 _LAW_MARKERS = ("o", "^", "v", "D", "s")
@@ -250,3 +276,112 @@ def _traces(
         return result.measured_N, result.model_N, f"aligned at {result.threshold:g} of its peak"
     aligned = "aligned on the first arrival" if result.measured_pulse is not None else "on its own clock"
     return result.measured, result.model, aligned
+
+
+#: A record's figure: its key -> (the signal in words, the y label, the scale to its unit).
+SIGNAL_FIGURES = {
+    "force_history": ("force", "contact force $P$ (N)", 1.0),
+    "strain_history": ("strain", "axial strain at the gauge (µstrain)", 1e6),
+    "velocity_history": ("velocity", "velocity (m/s)", 1.0),
+}
+
+
+def make_signal_figure(
+    runs: Sequence[str | Path],
+    key: str,
+    title: str,
+    *,
+    pdf: str | Path,
+    png: str | Path,
+    provenance: str | Path,
+) -> None:
+    """A set's measured force, strain or velocity records against each method's signals, one
+    row per case (``key``: a key of :data:`SIGNAL_FIGURES`; every run of ``runs`` is of a case
+    with such a record; :func:`~rodimpact.present.compare_figures.plot_signal_overlays`).
+
+    Raises
+    ------
+    ValueError
+        A run's case has no such record.
+    """
+    order = {name: k for k, name in enumerate(METHODS)}
+    records = sorted(
+        (read_run(p) for p in runs), key=lambda r: (r.config["impactor"]["mass_kg"], order.get(r.method, 99))
+    )
+    histories = read_histories(records)
+    panels = []
+    for case_id in dict.fromkeys(r.case_id for r in records):  # a row per case, lightest first
+        if key not in histories.get(case_id, {}):
+            raise ValueError(f"runs: case {case_id!r} has no measured {key}")
+        runs_of_case = [r for r in records if r.case_id == case_id]
+        spec, history = runs_of_case[0].config["measured"][key], histories[case_id][key]
+        comparisons = [(r, _record_comparison(key, spec, r, history)) for r in runs_of_case]
+        description = str(runs_of_case[0].config.get("description") or case_id)
+        panels.append((comparisons, spec, description, history.note))
+    words, ylabel, scale = SIGNAL_FIGURES[key]
+    if key == "velocity_history":
+        whose = {p[1]["of"] for p in panels}
+        ylabel = (f"the {'impactor' if whose == {'impactor'} else 'far end'}'s " if len(whose) == 1 else "") + ylabel
+    save_figure(
+        plot_signal_overlays(panels, ylabel, scale, title),
+        pdf=pdf,
+        png=png,
+        provenance=provenance_record(records, [pdf, png]),
+        title=title,
+    )
+    write_provenance(provenance, records, [pdf, png], {"measured records": history_files(records)})
+
+
+def _record_comparison(
+    key: str, spec: Mapping[str, Any], record: RunRecord, history: MeasuredHistory
+) -> HistoryComparison | SignalComparison:
+    """A run's signal against the record ``key`` names: a force aligned at ``threshold`` of each
+    peak, as the comparison table aligns it (:func:`~rodimpact.present.compare.history_comparison`);
+    a strain or velocity on its first pulse (:func:`~rodimpact.analysis.observations.signal_comparison`).
+    """
+    if key == "force_history":
+        return history_comparison(record, history, float(spec.get("threshold", DEFAULT_THRESHOLD)))
+    return signal_comparison(key, spec, record.series, record.summary, history)
+
+
+def make_compare(
+    runs: Sequence[str | Path],
+    set_name: str,
+    title: str,
+    *,
+    csv: str | Path,
+    summary: str | Path,
+    md: str | Path,
+    html: str | Path,
+    tex: str | Path,
+    provenance: str | Path,
+    pdf: str | Path,
+    png: str | Path,
+    figure_provenance: str | Path,
+    descriptions: Mapping[str, str] | None = None,
+    x: str | None = None,
+) -> None:
+    """A set against its measurements, from one read of its runs and records: the table
+    (:func:`~rodimpact.present.compare.compare_table`; ``csv``, ``html``, ``tex``) and its summary per
+    method and quantity (``summary``; both in ``md``), and the figure of the measured and computed
+    values (:func:`plot_compare_set`) against ``x`` (the set's ``compare.x``) or what varies along
+    the set (:func:`~rodimpact.present.compare.x_axis`); each with its sidecar."""
+    records = [read_run(p) for p in runs]
+    table = compare_table(records, read_histories(records), set_name)
+    totals = summary_table(table.frame)
+    write_table(table, csv=csv, html=html, tex=tex)
+    write_csv(totals.frame, summary)
+    with atomic_output(md) as tmp:
+        tmp.write_text(comparison_markdown(table, totals), encoding="utf-8")
+    files = {"measured records": history_files(records)}
+    write_provenance(provenance, records, [csv, summary, md, html, tex], files)
+    column, x_label = x_axis(table.frame, x or None)
+    save_figure(
+        plot_compare_set(table.frame, title, x=column, x_label=x_label, descriptions=descriptions or None),
+        pdf=pdf,
+        png=png,
+        provenance=provenance_record(records, [pdf, png]),
+        title=f"Set {set_name} against its measurements",
+    )
+    write_provenance(figure_provenance, records, [pdf, png], files)
+    log.info("set %s: %d comparisons of %d runs", set_name, len(table.frame), len(records))

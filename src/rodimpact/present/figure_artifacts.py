@@ -1,6 +1,8 @@
 """The workflow's figures drawn from stored runs (and the band files and force fits beside
 them): Fig. 2, Fig. 4, contact time against ball mass per reading, the contact force with and
-without the film, the force's closed form; each with its provenance in the files and a sidecar.
+without the film, the force's closed form; each with its provenance in the files and a sidecar;
+and the paper's model case as its job writes it (:func:`make_paper_model`: Fig. 2, its numbers,
+Fig. 4 and the closed form).
 
 The figure modules (matplotlib) are imported by the functions that draw, so that importing this
 module does not load them.
@@ -11,30 +13,37 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
-from rodimpact.present.artifact_common import _by_variant, _one_case, _save_figure
-from rodimpact.present.film_tables import (
-    film_band_frame,
-    readings_frame,
-    table2_panels,
-    write_provenance_with_files,
-)
+from rodimpact.present.fig2_table import make_comparison
+from rodimpact.present.film_tables import film_band_frame
+from rodimpact.present.inputs import load_records, one_case
+from rodimpact.present.readings import by_variant, readings_frame, table2_panels
 from rodimpact.present.sensor_tables import sensor_band_frame
-from rodimpact.present.tables import load_records, sweep_results_frame
+from rodimpact.present.sweep_table import sweep_results_frame
+from rodimpact.present.table import write_artifact
 from rodimpact.storage.bands import read_band
 from rodimpact.storage.runs import read_run
-from rodimpact.storage.sidecar import provenance_record
+from rodimpact.storage.sidecar import provenance_record, write_provenance
 
-__all__ = ["make_fig2", "make_fig4", "make_fig_film_force", "make_fig_force_fit", "make_fig_readings"]
+__all__ = [
+    "make_fig2",
+    "make_fig4",
+    "make_fig_film_force",
+    "make_fig_force_fit",
+    "make_fig_readings",
+    "make_paper_model",
+]
 
 
 def make_fig2(runs: Sequence[str | Path], *, pdf: str | Path, png: str | Path, provenance: str | Path) -> None:
     """Fig. 2: contact force against time for one case, every method stored."""
-    from rodimpact.present.figures import plot_contact_force
+    from rodimpact.present.figures import plot_contact_force, save_figure_of_runs
 
     records = [read_run(p) for p in runs]
-    case = _one_case(records, "Fig. 2")
+    case = one_case(records, "Fig. 2")
     fig = plot_contact_force(records, title=f"Contact force, case {case!r} (Fig. 2 of the paper)")
-    _save_figure(fig, records, pdf=pdf, png=png, provenance=provenance, title="Fig. 2: contact force against time")
+    save_figure_of_runs(
+        fig, records, pdf=pdf, png=png, provenance=provenance, title="Fig. 2: contact force against time"
+    )
 
 
 def make_fig4(
@@ -42,17 +51,17 @@ def make_fig4(
 ) -> None:
     """Fig. 4: displacement of the cross-section at ``fraction`` of the rod length, every
     stored run of one case that recorded stations."""
-    from rodimpact.present.figures import plot_station_displacement
+    from rodimpact.present.figures import plot_station_displacement, save_figure_of_runs
 
     records = [read_run(p) for p in runs]
     records = [r for r in records if "station_displacement" in r.series]
-    case = _one_case(records, "Fig. 4 (runs with station histories)")
+    case = one_case(records, "Fig. 4 (runs with station histories)")
     fig = plot_station_displacement(
         records,
         fraction,
         title=(f"Displacement at {fraction:g} of the rod length, case {case!r} (Fig. 4 of the paper)"),
     )
-    _save_figure(
+    save_figure_of_runs(
         fig,
         records,
         pdf=pdf,
@@ -101,7 +110,7 @@ def make_fig_readings(
     from rodimpact.present.figures import save_figure
     from rodimpact.present.table2_figures import plot_table2_contact_time
 
-    records, frames = _by_variant(runs, variants)
+    records, frames = by_variant(runs, variants)
     sweeps = load_records(sweep_runs)
     readings = readings_frame(records)
     bands = film_band_frame(dict(read_band(p) for p in band_files), {r.case_id: r.config for r in records})
@@ -157,7 +166,7 @@ def make_fig_readings(
         save_figure(
             fig, pdf=fig_pdf, png=fig_png, provenance=provenance_record([*records, *sweeps], artifacts), title=fig_title
         )
-        write_provenance_with_files(
+        write_provenance(
             fig_provenance, [*records, *sweeps], artifacts, {"band": band_files, "sensor band": sensor_band_files}
         )
 
@@ -166,6 +175,7 @@ def make_fig_film_force(
     runs: Sequence[str | Path], rows: Sequence[str], *, pdf: str | Path, png: str | Path, provenance: str | Path
 ) -> None:
     """The contact force with and without the film, one panel per row of ``rows``."""
+    from rodimpact.present.figures import save_figure_of_runs
     from rodimpact.present.film_figures import plot_film_force
 
     records = [read_run(p) for p in runs]
@@ -178,7 +188,7 @@ def make_fig_film_force(
             f"length {1000 * rod['length_m']:g} mm"
         ),
     )
-    _save_figure(
+    save_figure_of_runs(
         fig, records, pdf=pdf, png=png, provenance=provenance, title="Contact force with and without the sensor film"
     )
 
@@ -188,16 +198,45 @@ def make_fig_force_fit(
 ) -> None:
     """The exported closed forms (``jsons``, one per run) over the computed forces of one case,
     and their errors."""
-    from rodimpact.present.figures import plot_force_fits
+    from rodimpact.present.figures import plot_force_fits, save_figure_of_runs
     from rodimpact.present.forces import read_force_json
 
     records = [read_run(p) for p in runs]
-    case = _one_case(records, "the force's closed form")
+    case = one_case(records, "the force's closed form")
     fig = plot_force_fits(
         records,
         [read_force_json(p) for p in jsons],
         title=f"Contact force and its Chebyshev closed form, case {case!r}",
     )
-    _save_figure(
+    save_figure_of_runs(
         fig, records, pdf=pdf, png=png, provenance=provenance, title="Contact force and its Chebyshev closed form"
     )
+
+
+def make_paper_model(
+    runs: Sequence[str | Path],
+    fraction: float,
+    jsons: Sequence[str | Path],
+    *,
+    fig2_pdf: str | Path,
+    fig2_png: str | Path,
+    fig2_provenance: str | Path,
+    csv: str | Path,
+    md: str | Path,
+    html: str | Path,
+    table_provenance: str | Path,
+    fig4_pdf: str | Path,
+    fig4_png: str | Path,
+    fig4_provenance: str | Path,
+    force_fit_pdf: str | Path,
+    force_fit_png: str | Path,
+    force_fit_provenance: str | Path,
+) -> None:
+    """The paper's model case as its job writes it, from one read of its runs' files: Fig. 2
+    (:func:`make_fig2`), its numbers (:func:`~rodimpact.present.fig2_table.make_comparison`), Fig. 4
+    at ``fraction`` of the rod (:func:`make_fig4`) and the force's closed form over the force
+    (:func:`make_fig_force_fit`, the exported ``jsons``)."""
+    make_fig2(runs, pdf=fig2_pdf, png=fig2_png, provenance=fig2_provenance)
+    write_artifact(make_comparison(runs), csv=csv, md=md, html=html, provenance=table_provenance)
+    make_fig4(runs, fraction, pdf=fig4_pdf, png=fig4_png, provenance=fig4_provenance)
+    make_fig_force_fit(runs, jsons, pdf=force_fit_pdf, png=force_fit_png, provenance=force_fit_provenance)

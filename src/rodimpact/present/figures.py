@@ -17,6 +17,7 @@ import numpy as np  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
 from rodimpact.storage.atomic import atomic_output  # noqa: E402
 from rodimpact.storage.runs import RunRecord  # noqa: E402
+from rodimpact.storage.sidecar import provenance_record, write_provenance  # noqa: E402
 
 __all__ = [
     "METHOD_LABELS",
@@ -25,6 +26,7 @@ __all__ = [
     "plot_force_fits",
     "plot_station_displacement",
     "save_figure",
+    "save_figure_of_runs",
 ]
 
 log = logging.getLogger(__name__)
@@ -56,6 +58,21 @@ def save_figure(
     with atomic_output(pdf) as tmp:
         fig.savefig(tmp, format="pdf", metadata={"Title": title, "Subject": text, "Creator": software})
     plt.close(fig)
+
+
+def save_figure_of_runs(
+    fig: matplotlib.figure.Figure,
+    records: Sequence[RunRecord],
+    *,
+    pdf: str | Path,
+    png: str | Path,
+    provenance: str | Path,
+    title: str,
+) -> None:
+    """Save a figure made from ``records`` (:func:`save_figure`, their provenance in its metadata)
+    and its provenance sidecar ``provenance``."""
+    save_figure(fig, pdf=pdf, png=png, provenance=provenance_record(records, [pdf, png]), title=title)
+    write_provenance(provenance, records, [pdf, png])
 
 
 def _finish(fig: matplotlib.figure.Figure, ax: matplotlib.axes.Axes, title: str) -> matplotlib.figure.Figure:

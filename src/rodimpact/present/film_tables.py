@@ -1,128 +1,69 @@
-"""Tables of the sensor film, built from stored runs, band files and curve files only.
+"""The tables of the sensor film, from stored runs, band files and curve files only:
 
-- :func:`readings_frame`: what each reading of Table 2 is (its rod, whether it has the film,
-  its contact law);
-- :func:`film_table_frame`: Table 2 on one rod without and with the film, by every method,
-  with the calibrated law, the film's prediction band and the model-form error;
-- :func:`film_band_frame`: the prediction band of every case of the film readings;
-- :func:`film_indentation_frame`: the continuum's indentation curves against the analytic laws.
+- :func:`film_table`: Table 2 on one rod without and with the film and the sensor as built, by
+  every method, with the calibrated law, the prediction bands and the model-form error;
+- :func:`film_band_table`: the prediction band of every case of the film readings;
+- :func:`film_indentation_table`: the continuum's indentation curves against the analytic laws.
 
+Each table is declared here once, its columns beside its frame (:mod:`rodimpact.present.table`).
 Errors against the measurements follow the paper: |model - measured| / measured, in %.
 """
 
 from __future__ import annotations
 
-import json
 import logging
 import math
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pandas as pd
 
-from rodimpact.contact.laws import DEFAULT_LAW
+from rodimpact.analysis.errors import relative_error_pct
 from rodimpact.contact.stack import Stack
-from rodimpact.present.tables import METHOD_ORDER, table2_frame
-from rodimpact.storage.atomic import atomic_output
-from rodimpact.storage.bands import CaseBand
-from rodimpact.storage.curves import ContactCurve
-from rodimpact.storage.provenance import file_sha256
+from rodimpact.present.columns import method_error, method_time, shared
+from rodimpact.present.inputs import cases_in, load_records
+from rodimpact.present.readings import METHOD_ORDER, table2_frame
+from rodimpact.present.table import Column, Table, TableArtifact, panels
+from rodimpact.storage.bands import CaseBand, read_band
+from rodimpact.storage.curves import ContactCurve, read_contact_curve
 from rodimpact.storage.runs import RunRecord
-from rodimpact.storage.sidecar import provenance_record
 
 __all__ = [
     "FILM_ROLES",
     "INDENTATION_COLUMNS",
     "film_band_frame",
+    "film_band_table",
     "film_indentation_frame",
+    "film_indentation_table",
+    "film_table",
     "film_table_frame",
-    "reading_of",
-    "readings_frame",
-    "table2_panels",
-    "write_provenance_with_files",
+    "make_film_band_table",
+    "make_film_indentation_table",
+    "make_film_table",
 ]
 
 log = logging.getLogger(__name__)
 
+#: The columns of the film's band table, in order (all of them shared).
+_BAND = shared(
+    [
+        "variant",
+        "row",
+        "case_id",
+        "mass_g",
+        "measured_us",
+        "nominal_us",
+        "band_min_us",
+        "band_max_us",
+        "measured_in_band",
+        "monotone",
+    ]
+)
 #: The readings :func:`film_table_frame` compares, by role: the column suffix of each.
 FILM_ROLES = ("no_film", "film", "film_calibrated", "no_film_calibrated", "sensor", "sensor_calibrated")
-
-
-def reading_of(config: Mapping[str, Any]) -> dict[str, Any]:
-    """What a run's case reads the experiment as: rod (mm), film (bool: a film or a stack of
-    layers on the struck end), contact law, film modulus (a one-layer film's)."""
-    contact = config.get("contact") or {}
-    film = contact.get("film")
-    material = (film or {}).get("material") or {}
-    return {
-        "rod_radius_mm": 1000.0 * float(config["rod"]["radius_m"]) if "radius_m" in config["rod"] else math.nan,
-        "rod_length_mm": 1000.0 * float(config["rod"]["length_m"]),
-        "film": Stack.of(contact) is not None,
-        "contact_law": str(contact.get("law", DEFAULT_LAW)),
-        "film_modulus_pa": float(material.get("youngs_modulus_pa", math.nan)),
-    }
-
-
-def readings_frame(records: Sequence[RunRecord]) -> pd.DataFrame:
-    """One row per variant (in the order first met): ``variant, rod_radius_mm, rod_length_mm,
-    film, contact_law, film_modulus_pa`` (NaN without a film).
-
-    Raises
-    ------
-    ValueError
-        Two runs of one variant read the experiment differently.
-    """
-    rows: dict[str, dict[str, Any]] = {}
-    for rec in records:
-        variant = rec.config.get("variant")
-        reading = reading_of(rec.config)
-        known = rows.setdefault(variant, {"variant": variant, **reading})
-        if (known["film"], known["contact_law"]) != (reading["film"], reading["contact_law"]):
-            raise ValueError(
-                f"variant {variant!r}: its runs have different contact laws or films "
-                f"({known['contact_law']}, film {known['film']} and {reading['contact_law']}, "
-                f"film {reading['film']})"
-            )
-    columns = ["variant", "rod_radius_mm", "rod_length_mm", "film", "contact_law", "film_modulus_pa"]
-    return pd.DataFrame(list(rows.values()), columns=columns)
-
-
-def table2_panels(readings: pd.DataFrame, film_variants: Sequence[str] = ()) -> dict[str, list[str]]:
-    """The panels of the Table 2 figure: each reading without a film and with the default law
-    (one per rod), with the readings of ``film_variants`` on the same rod drawn on it.
-
-    A reading that is neither (a calibrated law) is not drawn; nor is a film reading whose rod
-    has no reading without the film (both are logged). With no such base reading at all, every
-    reading is its own panel.
-    """
-
-    def rod(reading: Any) -> tuple[float, float]:
-        return (round(float(reading.rod_radius_mm), 9), round(float(reading.rod_length_mm), 9))
-
-    base = [r for r in readings.itertuples() if not r.film and r.contact_law == DEFAULT_LAW]
-    if not base:
-        return {v: [] for v in readings["variant"]}
-    panels: dict[str, list[str]] = {r.variant: [] for r in base}
-    home = {rod(r): r.variant for r in base}
-    for reading in readings.itertuples():
-        if reading.variant in panels:
-            continue
-        if reading.variant in film_variants and rod(reading) in home:
-            panels[home[rod(reading)]].append(reading.variant)
-        else:
-            log.info(
-                "the Table 2 figure does not draw the reading %r (%s law, film: %s)",
-                reading.variant,
-                reading.contact_law,
-                reading.film,
-            )
-    return panels
-
-
-def _error_pct(model: np.ndarray, measured: np.ndarray) -> np.ndarray:
-    return np.abs(np.asarray(model, float) - measured) / measured * 100.0
+_ERROR = " error"
 
 
 def _row_of(case_id: str, variant: str, rows: Mapping[str, str]) -> str:
@@ -229,7 +170,7 @@ def film_table_frame(
             ]
             band_columns.append(f"{prefix}_band_{end}_us")
     for column in model_columns:
-        frame[column.removesuffix("_us") + "_error_pct"] = _error_pct(frame[column], measured)
+        frame[column.removesuffix("_us") + "_error_pct"] = np.abs(relative_error_pct(frame[column], measured))
     film_variant = variants.get("film", "")
     ratio = {
         rec.config.get("row"): float(rec.summary.get("film_radius_to_thickness", math.nan))
@@ -242,7 +183,7 @@ def film_table_frame(
         ("sensor_model_form_pct", f"{calibrated_method}_sensor_calibrated_us", f"{continuum_method}_sensor_us"),
     ):
         if calibrated in frame and continuum in frame:
-            frame[name] = (frame[calibrated] - frame[continuum]) / frame[continuum] * 100.0
+            frame[name] = relative_error_pct(frame[calibrated], frame[continuum])
         else:
             frame[name] = math.nan
     head = base[:6] + model_columns + band_columns + base[6:]
@@ -290,18 +231,7 @@ def film_band_frame(bands: Mapping[str, Sequence[CaseBand]], cases: Mapping[str,
                     "_order": order,
                 }
             )
-    columns = [
-        "variant",
-        "row",
-        "case_id",
-        "mass_g",
-        "measured_us",
-        "nominal_us",
-        "band_min_us",
-        "band_max_us",
-        "measured_in_band",
-        "monotone",
-    ]
+    columns = [column.name for column in _BAND]
     if all(band.monotone is None for group in bands.values() for band in group):
         columns.remove("monotone")
     frame = pd.DataFrame(rows, columns=[*columns, "_order"])
@@ -370,20 +300,218 @@ def film_indentation_frame(curves: Sequence[ContactCurve]) -> pd.DataFrame:
     return frame.sort_values(["case_id", "force_N"], kind="stable").reset_index(drop=True)
 
 
-def write_provenance_with_files(
-    path: str | Path,
+#: The film table's own columns (its bands, the contact radius, the model-form errors).
+_FILM_COLUMNS = (
+    Column("sensor_band_min_us", "Sensor band min (continuum)", "µs"),
+    Column("sensor_band_max_us", "Sensor band max (continuum)", "µs"),
+    Column("thin_layer_band_min_us", "Thin-layer band min (approximation)", "µs"),
+    Column("thin_layer_band_max_us", "Thin-layer band max (approximation)", "µs"),
+    Column("radius_to_thickness", "Contact radius / film thickness"),
+    Column("model_form_pct", "Model-form error", "%"),
+    Column("sensor_model_form_pct", "Model-form error, sensor", "%"),
+)
+
+FILM_TABLE_CAPTION = (
+    "Table 2 on the rod of the text, without the sensor, with the film alone and with the sensor as built "
+    "(electrodes, film and bond line, each from its source): measured and published contact times, ours by "
+    "every method (no film: Hertz; film and sensor: the layers bonded in the continuum, the thin-layer law "
+    "for the 1-D methods, an approximation; calibrated: the law of the continuum's static indentation), "
+    "the sensor's prediction band from the continuum (calibrated SEM over the stack's sourced ranges), the "
+    "film's band with the thin-layer law (approximation), each model's |model - measured| / measured, the "
+    "contact radius over the film thickness (thin-layer law, SEM), and the model-form error of the "
+    "quasi-static contact: (calibrated SEM - continuum) / continuum, with the film and with the sensor."
+)
+
+
+def film_table(
     records: Sequence[RunRecord],
-    artifacts: Iterable[str | Path],
-    files: Mapping[str, Iterable[str | Path]],
-) -> None:
-    """A provenance sidecar (as :func:`rodimpact.storage.sidecar.write_provenance`) that also names
-    the inputs that are not runs (band files, curve files, case files) with their SHA-256:
-    ``input_files``, a list of ``{path, kind, sha256}`` (``files``: kind -> paths)."""
-    artifacts = [str(a) for a in artifacts]
-    record = provenance_record(records, artifacts)
-    record["input_files"] = [
-        {"path": str(p), "kind": kind, "sha256": file_sha256(p)} for kind, paths in files.items() for p in paths
+    variants: Mapping[str, str],
+    bands: Sequence[CaseBand] = (),
+    *,
+    sensor_bands: Sequence[CaseBand] = (),
+) -> Table:
+    """Table 2 on one rod without and with the film and the sensor as built
+    (:func:`film_table_frame`): for people, the times without the film, with the sensor as built
+    and its band, with the film alone and its band, then the errors of each."""
+    frame = film_table_frame(records, variants, bands, sensor_bands=sensor_bands)
+    methods = [m for m in METHOD_ORDER] + sorted({r.method for r in records} - set(METHOD_ORDER))
+    columns = (
+        *shared(["row", "mass_g", "diameter_mm", "measured_us", "published_fem_us", "published_sem_us"]),
+        *shared(["published_fem_error_pct", "published_sem_error_pct"]),
+        *(c for m in methods for role in FILM_ROLES for c in (method_time(m, role), method_error(m, role))),
+        *_FILM_COLUMNS,
+    )
+    table = Table(frame, columns, FILM_TABLE_CAPTION)
+
+    def per(role: str, suffix: str) -> list[str]:
+        return [f"{m}_{role}{suffix}" for m in METHOD_ORDER if f"{m}_{role}{suffix}" in frame.columns]
+
+    key = ["mass_g"]
+    views = [
+        (
+            "Contact time without the film",
+            [
+                "measured_us",
+                "published_fem_us",
+                "published_sem_us",
+                *per("no_film", "_us"),
+                *per("no_film_calibrated", "_us"),
+            ],
+            "",
+        ),
+        (
+            "Contact time with the sensor as built, and its prediction band from the continuum",
+            [
+                "measured_us",
+                *per("sensor", "_us"),
+                *per("sensor_calibrated", "_us"),
+                "sensor_band_min_us",
+                "sensor_band_max_us",
+            ],
+            "",
+        ),
+        (
+            "Contact time with the film alone (the thin-layer law is an approximation)",
+            [
+                "measured_us",
+                *per("film", "_us"),
+                *per("film_calibrated", "_us"),
+                "thin_layer_band_min_us",
+                "thin_layer_band_max_us",
+            ],
+            "",
+        ),
+        (
+            "Error against the measurement without the film",
+            [
+                "published_fem_error_pct",
+                "published_sem_error_pct",
+                *per("no_film", "_error_pct"),
+                *per("no_film_calibrated", "_error_pct"),
+            ],
+            _ERROR,
+        ),
+        (
+            "Error against the measurement with the sensor as built, and the quasi-static contact's",
+            [*per("sensor", "_error_pct"), *per("sensor_calibrated", "_error_pct"), "sensor_model_form_pct"],
+            _ERROR,
+        ),
+        (
+            "Error against the measurement with the film alone, and the quasi-static contact's",
+            [
+                *per("film", "_error_pct"),
+                *per("film_calibrated", "_error_pct"),
+                "model_form_pct",
+                "radius_to_thickness",
+            ],
+            _ERROR,
+        ),
     ]
-    record["sha256"] = {a: file_sha256(a) for a in artifacts}
-    with atomic_output(path) as tmp:
-        tmp.write_text(json.dumps(record, indent=2) + "\n", encoding="utf-8")
+    return table.showing(p for title, values, drop in views for p in panels(table, title, key, values, drop=drop))
+
+
+def film_band_table(bands: Mapping[str, Sequence[CaseBand]], cases: Mapping[str, Mapping[str, Any]]) -> Table:
+    """The film's prediction band of every case (:func:`film_band_frame`), a panel per reading."""
+    frame = film_band_frame(bands, cases)
+    monotone = (
+        "Monotone: whether the time is monotone along each range (then the corners bound it)."
+        if "monotone" in frame.columns
+        else "That the time is monotone along each range, so that the corners bound it, is the table "
+        "film_band_axes (make film-axes)."
+    )
+    table = Table(
+        frame,
+        _BAND,
+        "The sensor film's prediction band per Table 2 row and film reading: the SEM's contact time at the "
+        "film's nominal constants and its min and max over the corners of the box of their ranges (µs), and "
+        f"whether the measurement lies inside. {monotone}",
+    )
+    return table.showing(
+        panels(
+            table,
+            "The film's prediction band of the SEM's contact time",
+            ["row"],
+            ["measured_us", "nominal_us", "band_min_us", "band_max_us", "measured_in_band", "monotone"],
+            by="variant",
+        )
+    )
+
+
+#: The indentation table's own columns.
+_INDENTATION = (
+    Column("point", "Point", fmt=""),
+    Column("force_N", "Force", "N", ".4g"),
+    Column("continuum_approach_um", "Continuum approach", "µm", ".4f"),
+    Column("law_approach_um", "Law approach", "µm", ".4f"),
+    Column("law", "Law", fmt=""),
+    Column("law_error_pct", "Law error", "%"),
+    Column("contact_radius_um", "Contact radius", "µm", ".1f"),
+    Column("film_thickness_um", "Film thickness", "µm", ".1f"),
+    Column("radius_to_film_thickness", "Contact radius / film thickness"),
+    Column("interpolation_error_half", "Interpolation error", fmt=".1e"),
+)
+
+
+def film_indentation_table(curves: Sequence[ContactCurve]) -> Table:
+    """Every point of every indentation curve against its analytic law (:func:`film_indentation_frame`)."""
+    table = Table(
+        film_indentation_frame(curves),
+        (*shared(["case_id", "variant", "row"]), *_INDENTATION),
+        "The continuum's static indentation (the calibrated contact laws) against the analytic law at the "
+        "same force (hertz_film with the film, hertz without): approaches (µm), the law's error "
+        "(law − continuum) / continuum (%), the contact radius (µm) and its ratio to the film thickness, and "
+        "the tabulated law's interpolation error (every other point).",
+    )
+    return table.showing(
+        panels(
+            table,
+            "Static indentation: the continuum against the analytic law",
+            ["row"],
+            [
+                "force_N",
+                "continuum_approach_um",
+                "law_approach_um",
+                "law_error_pct",
+                "contact_radius_um",
+                "radius_to_film_thickness",
+            ],
+            by="variant",
+        )
+    )
+
+
+def make_film_table(
+    runs: Sequence[str | Path],
+    variants: Mapping[str, str],
+    band: str | Path,
+    sensor_bands: Sequence[str | Path] = (),
+) -> TableArtifact:
+    """Table 2 on one rod without and with the film and the sensor as built (:func:`film_table`),
+    from the runs and the band files.
+
+    Raises
+    ------
+    ValueError
+        ``band`` is not the band of the film reading.
+    """
+    records = load_records(runs)
+    band_variant, bands = read_band(band)
+    if band_variant != variants.get("film"):
+        raise ValueError(f"{band}: the band of {band_variant!r}, not of the film reading {variants.get('film')!r}")
+    sensor = [b for p in sensor_bands for b in read_band(p)[1]]
+    table = film_table(records, variants, bands, sensor_bands=sensor)
+    log.info("table 2 with the film: %d rows from %d runs", len(table.frame), len(records))
+    return TableArtifact(table, records, {"band": [band], "sensor band": sensor_bands})
+
+
+def make_film_band_table(bands: Sequence[str | Path], case_files: Sequence[str | Path]) -> TableArtifact:
+    """Every case of every band file (:func:`film_band_table`); rows and masses from the case files."""
+    table = film_band_table(dict(read_band(p) for p in bands), cases_in(case_files))
+    frame = table.frame
+    log.info("film bands: %d cases of %d readings, %d inside", len(frame), len(bands), frame["measured_in_band"].sum())
+    return TableArtifact(table, (), {"band": bands, "case file": case_files})
+
+
+def make_film_indentation_table(curves: Sequence[str | Path]) -> TableArtifact:
+    """Every point of every indentation curve against its analytic law (:func:`film_indentation_table`)."""
+    return TableArtifact(film_indentation_table([read_contact_curve(p) for p in curves]), (), {"contact curve": curves})

@@ -13,7 +13,7 @@ One job exports a whole case set (:func:`export_forces_into`): its directory app
 at all, with one provenance sidecar beside it.
 
 A figure draws the closed form over the computed force for one case (``model``;
-:func:`rodimpact.present.artifacts.make_fig_force_fit`).
+:func:`rodimpact.present.figure_artifacts.make_fig_force_fit`).
 """
 
 from __future__ import annotations

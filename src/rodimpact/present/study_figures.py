@@ -1,8 +1,12 @@
-"""Figures of the numerical studies: error against run time, and the stability map."""
+"""Figures of the numerical studies: error against run time, and the stability map (with the data
+of its points); each drawn from stored runs and saved with its provenance."""
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from fractions import Fraction
+from pathlib import Path
+from typing import Any
 
 import matplotlib
 
@@ -12,27 +16,29 @@ import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
-from rodimpact.analysis.stability_study import MAP_CLASSES, enforced_limit_line  # noqa: E402
+from rodimpact.analysis.stability_study import MAP_CLASSES, enforced_limit_line, map_frame  # noqa: E402
 from rodimpact.analysis.work_precision import levels_in, quantities  # noqa: E402
-from rodimpact.present.figures import METHOD_LABELS  # noqa: E402
+from rodimpact.present.figures import METHOD_LABELS, save_figure, save_figure_of_runs  # noqa: E402
+from rodimpact.present.inputs import one_case  # noqa: E402
+from rodimpact.present.study_tables import STUDY_QUANTITY_WORDS, levels_and_orders  # noqa: E402
+from rodimpact.present.table import write_csv  # noqa: E402
+from rodimpact.present.words import case_in_words  # noqa: E402
 from rodimpact.solvers.registry import METHODS  # noqa: E402
+from rodimpact.storage.runs import read_run  # noqa: E402
+from rodimpact.storage.sidecar import provenance_record, write_provenance  # noqa: E402
 
-__all__ = ["order_text", "plot_stability_map", "plot_work_precision", "quantity_words"]
+__all__ = [
+    "make_stability_map",
+    "make_work_precision_figure",
+    "order_text",
+    "plot_stability_map",
+    "plot_work_precision",
+    "quantity_words",
+]
 
 _COLORS = {name: spec.color for name, spec in METHODS.items()}
 #: Markers of the methods, in the registry's order.
 _MARKERS = ("o", "s", "^", "D", "v", "P")
-_ORDINALS = {
-    1: "first",
-    2: "second",
-    3: "third",
-    4: "fourth",
-    5: "fifth",
-    6: "sixth",
-    7: "seventh",
-    8: "eighth",
-    9: "ninth",
-}
 #: The slope guide lies this factor below the first fitted level's error.
 _GUIDE_OFFSET = 0.35
 #: The error axis reaches this factor below the smallest error: room for each panel's box of orders.
@@ -40,15 +46,9 @@ _LEGEND_ROOM = 10.0**3
 
 
 def quantity_words(quantity: str) -> str:
-    """An error quantity of the work-precision table in words (``max_2`` -> ``second force maximum``)."""
-    if quantity.startswith("max_") and quantity[4:].isdigit():
-        k = int(quantity[4:])
-        return f"{_ORDINALS.get(k, f'{k}th')} force maximum"
-    return {
-        "contact_time": "contact time",
-        "history_l2": "force history, $L_2$ norm",
-        "history_max": r"force history, max norm",
-    }.get(quantity, quantity.replace("_", " "))
+    """An error quantity of the work-precision table in words, as a figure sets them (the table's
+    words, :data:`~rodimpact.present.study_tables.STUDY_QUANTITY_WORDS`, with L2 as mathtext)."""
+    return STUDY_QUANTITY_WORDS.get(quantity, quantity.replace("_", " ")).replace("L2", "$L_2$")
 
 
 def order_text(order: float) -> str:
@@ -270,3 +270,39 @@ def plot_stability_map(frame: pd.DataFrame, steps_per_contact: int, accuracy: fl
         fontsize=10,
     )
     return fig
+
+
+def make_work_precision_figure(
+    runs: Sequence[str | Path], study: Mapping[str, Any], *, pdf: str | Path, png: str | Path, provenance: str | Path
+) -> None:
+    """Error against wall time for one case (:func:`plot_work_precision`; the study's levels and
+    orders: :func:`~rodimpact.present.study_tables.levels_and_orders`): every method and quantity,
+    the observed and expected orders in the legends, a slope guide of the expected order, the
+    fitted levels filled; with its sidecar."""
+    records, frame, orders = levels_and_orders(runs, study)
+    case = one_case(records, "a work-precision figure")
+    fig = plot_work_precision(frame, orders, case, title=case_in_words(records[0].config))
+    save_figure_of_runs(
+        fig, records, pdf=pdf, png=png, provenance=provenance, title=f"Error against run time, case {case}"
+    )
+
+
+def make_stability_map(
+    runs: Sequence[str | Path],
+    references: Sequence[str | Path],
+    spec: Mapping[str, Any],
+    *,
+    csv: str | Path,
+    pdf: str | Path,
+    png: str | Path,
+    provenance: str | Path,
+) -> None:
+    """The stability map: the data of its points (CSV) and the figure (:func:`plot_stability_map`)."""
+    records = [read_run(p) for p in runs]
+    refs = {r.config["row"]: r for r in (read_run(p) for p in references)}
+    frame = map_frame(records, refs, float(spec["accuracy"]))
+    write_csv(frame, csv)
+    fig = plot_stability_map(frame, int(spec["steps_per_contact"]), float(spec["accuracy"]))
+    prov = provenance_record([*records, *refs.values()], [csv, pdf, png])
+    save_figure(fig, pdf=pdf, png=png, provenance=prov, title="Stability map of the SEM schemes")
+    write_provenance(provenance, [*records, *refs.values()], [csv, pdf, png])

@@ -4,7 +4,8 @@ table and figure read.
 Layout: root attributes ``set``, ``method``, ``status``, ``message``, ``success``,
 ``identifiable``, ``warnings_json``, ``evaluations``, ``dof``, ``s2``, ``condition_number``,
 ``parameters_json`` (each constant's path, unit, source and grid, empty without one),
-``observations_json`` (each measurement's case, quantity, words and unit), ``loo_json`` (the
+``observations_json`` (each measurement's case id, quantity, unit and whether it is an error norm:
+ids and units, no words), ``loo_json`` (the
 held-out cases and their statuses, each row's status), ``applied_json`` (each measurement of
 the cases predicted at the fitted constants, as ``observations_json``), the provenance
 (``code_version``, ``library_versions``, ``config_json``: the block and the cases,
@@ -26,7 +27,7 @@ from __future__ import annotations
 import hashlib
 import json
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
@@ -61,11 +62,13 @@ _JSON = ("warnings", "parameters", "observations", "loo", "applied")
 @dataclass(frozen=True)
 class StoredCalibration:
     """A calibration as stored (module docstring): ``scalars`` by name, ``described`` the JSON
-    attributes by name (without ``_json``), ``arrays`` the datasets by name."""
+    attributes by name (without ``_json``), ``arrays`` the datasets by name, and, as read, the
+    ``config`` it was made from (the block and the cases: ``config_json``)."""
 
     scalars: Mapping[str, Any]
     described: Mapping[str, Any]
     arrays: Mapping[str, NDArray[Any]]
+    config: Mapping[str, Any] = field(default_factory=dict)
 
 
 def _sha256(scalars: Mapping[str, Any], described: Mapping[str, Any], arrays: Mapping[str, NDArray[Any]]) -> str:
@@ -131,8 +134,9 @@ def read_calibration(path: str | Path) -> StoredCalibration:
             described = {name: json.loads(str(h5.attrs[f"{name}_json"])) for name in _JSON}
             arrays = {name: dataset[()] for name, dataset in h5.items()}
             expected = str(h5.attrs["data_sha256"])
+            config = json.loads(str(h5.attrs["config_json"]))
     except (OSError, KeyError, ValueError) as error:
         raise StoredFileError(path, f"not a readable calibration file ({error})") from None
     if _sha256(scalars, described, arrays) != expected:
         raise StoredFileError(path, "the data do not match their data_sha256 (edited or corrupt)")
-    return StoredCalibration(scalars, described, arrays)
+    return StoredCalibration(scalars, described, arrays, config)

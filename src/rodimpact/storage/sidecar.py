@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import datetime as _dt
 import json
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -35,10 +35,23 @@ def provenance_record(records: Sequence[RunRecord], artifacts: Iterable[str | Pa
     }
 
 
-def write_provenance(path: str | Path, records: Sequence[RunRecord], artifacts: Iterable[str | Path]) -> None:
+def write_provenance(
+    path: str | Path,
+    records: Sequence[RunRecord],
+    artifacts: Iterable[str | Path | None],
+    files: Mapping[str, Iterable[str | Path]] | None = None,
+) -> None:
     """Write :func:`provenance_record` as JSON, with the SHA-256 of each artifact as written
-    (``sha256``: path -> hex digest; ``make provenance`` checks them)."""
-    artifacts = [str(a) for a in artifacts]
-    record = {**provenance_record(records, artifacts), "sha256": {a: file_sha256(a) for a in artifacts}}
+    (``sha256``: path -> hex digest; ``make provenance`` checks them). ``files`` names the inputs
+    that are not runs (band files, curve files, case files, measured records), kind -> paths:
+    ``input_files``, a list of ``{path, kind, sha256}``. An artifact given as None (an optional
+    output not asked for) is left out."""
+    artifacts = [str(a) for a in artifacts if a is not None]
+    record = provenance_record(records, artifacts)
+    if files is not None:
+        record["input_files"] = [
+            {"path": str(p), "kind": kind, "sha256": file_sha256(p)} for kind, paths in files.items() for p in paths
+        ]
+    record["sha256"] = {a: file_sha256(a) for a in artifacts}
     with atomic_output(path) as tmp:
         tmp.write_text(json.dumps(record, indent=2) + "\n", encoding="utf-8")
