@@ -476,6 +476,18 @@ def _set(path: str, *keys_and_value):
     return path, change
 
 
+def _both(first, second):
+    """Two edits of one file, in turn."""
+    (path, apply_first), (other, apply_second) = first, second
+    assert path == other
+
+    def change(document: dict) -> None:
+        apply_first(document)
+        apply_second(document)
+
+    return path, change
+
+
 def _rename(path: str, keys: tuple, old: str, new: str):
     def change(document: dict) -> None:
         node = document
@@ -487,6 +499,9 @@ def _rename(path: str, keys: tuple, old: str, new: str):
 
 
 INLINE_STEEL = {"youngs_modulus_pa": 2.1e11, "poisson_ratio": 0.3, "density_kg_m3": 7800.0}
+#: The yielding variants of the materials file, as a message lists them.
+YIELDING = "steel_ball_yielding, aluminium_rod_yielding, pvdf_yielding, cyanoacrylate_yielding, silver_ink_yielding"
+THORNTON = {"law": "thornton"}
 
 MALFORMED = {
     "missing mass": (
@@ -557,12 +572,12 @@ MALFORMED = {
     "unknown material name": (
         _set(MODEL, "cases", 0, "rod", "material", "steal"),
         f"{MODEL}: case 'model': field 'rod.material': unknown material 'steal'; known: steel, "
-        "aluminium_table1, rubber, pvdf, silver_ink, cyanoacrylate",
+        "aluminium_table1, rubber, pvdf, silver_ink, cyanoacrylate, " + YIELDING,
     ),
     "unknown contact law": (
         _set(TABLE2, "variants", "r10_l30_film", "contact", "law", "hertz_flim"),
         f"{TABLE2}: field 'variants.r10_l30_film.contact.law': unknown contact law 'hertz_flim'; "
-        "known: hertz, hertz_film, hertz_stack, tabulated, spring",
+        "known: hertz, hertz_film, hertz_stack, tabulated, spring, thornton",
     ),
     "negative film thickness": (
         _set(TABLE2, "variants", "r10_l30_film", "contact", "film", "thickness_m", -2.8e-5),
@@ -571,7 +586,7 @@ MALFORMED = {
     "unknown film material": (
         _set(TABLE2, "variants", "r10_l30_film", "contact", "film", "material", "pvfd"),
         f"{TABLE2}: case 'ball_3.16mm-r10_l30_film': field 'contact.film.material': unknown material 'pvfd'; "
-        "known: steel, aluminium_table1, rubber, pvdf, silver_ink, cyanoacrylate",
+        "known: steel, aluminium_table1, rubber, pvdf, silver_ink, cyanoacrylate, " + YIELDING,
     ),
     "film on the hertz law": (
         _set(TABLE2, "variants", "r10_l30_film", "contact", "law", "hertz"),
@@ -587,6 +602,39 @@ MALFORMED = {
         _set(TABLE2, "variants", "r10_l30_film", "contact", "film", "thickness_range_m", [3e-5, 4e-5]),
         f"{TABLE2}: case 'ball_3.16mm-r10_l30_film': field 'contact.film.thickness_range_m': the thickness 2.8e-05 m "
         "must lie inside a non-empty range, got [3e-05, 4e-05]",
+    ),
+    "yield stress not positive": (
+        _set("config/materials.yaml", "materials", "pvdf_yielding", "yield_stress_pa", 0),
+        "config/materials.yaml: field 'materials.pvdf_yielding.yield_stress_pa': must be > 0, got 0",
+    ),
+    "hardening modulus above Young's": (
+        _set("config/materials.yaml", "materials", "aluminium_rod_yielding", "hardening_modulus_pa", 8.0e10),
+        "config/materials.yaml: field 'materials.aluminium_rod_yielding.hardening_modulus_pa': must be >= 0 and "
+        "below Young's modulus 7.342e+10 Pa, got 80000000000.0",
+    ),
+    "hardening modulus without a yield stress inline": (
+        _set(MODEL, "cases", 0, "rod", "material", {**INLINE_STEEL, "hardening_modulus_pa": 1e9}),
+        f"{MODEL}: case 'model': field 'rod.material.hardening_modulus_pa': needs a yield_stress_pa: a material "
+        "without one stays elastic",
+    ),
+    "thornton without a limiting pressure": (
+        _set(MODEL, "cases", 0, "contact", THORNTON),
+        f"{MODEL}: case 'model': field 'contact.limiting_pressure_pa': missing; the thornton law needs it, or a "
+        "yield_stress_pa in the impactor's or the rod's material",
+    ),
+    "thornton limiting pressure below first yield": (
+        _both(
+            _set(MODEL, "cases", 0, "contact", {**THORNTON, "limiting_pressure_pa": 1.0e9}),
+            _set(MODEL, "cases", 0, "rod", "material", "steel_ball_yielding"),
+        ),
+        f"{MODEL}: case 'model': field 'contact.limiting_pressure_pa': 1e+09 Pa lies below what the contact "
+        "reaches elastically: Hertz's peak pressure first yields the softer material at 1.6 x its yield stress "
+        "2.03e+09 Pa = 3.248e+09 Pa",
+    ),
+    "thornton on fem_axi": (
+        _set(MODEL, "cases", 0, "contact", {**THORNTON, "limiting_pressure_pa": 4.0e9}),
+        f"{MODEL}: case 'model': field 'methods[3]': method 'fem_axi' cannot carry the memory of the thornton law "
+        "(its largest approach and the dent it leaves); methods that can: sem, sem_paper, fem1d",
     ),
     "both area and radius": (
         _set(MODEL, "cases", 0, "rod", "radius_m", 0.004),

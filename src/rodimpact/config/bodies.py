@@ -1,7 +1,8 @@
 """Resolving a case's materials and contact (the configuration layer's part for the bodies).
 
 A material is a name from the materials file or an inline mapping; it resolves to its three
-constants (and the source's ``ranges`` where the materials file gives them). A case's
+elastic constants, its yield stress and hardening modulus where it gives them (a material
+without them stays elastic), and the source's ``ranges`` where the materials file gives them. A case's
 ``contact`` block resolves, through its law's declared settings, to ``{"law", ...settings}``
 with every material resolved, or to nothing for the default law with no settings, so that a
 case that does not name a law is the same resolved case as one that names it. Every error
@@ -14,6 +15,7 @@ from collections.abc import Callable, Mapping
 from typing import Any
 
 from rodimpact.contact.laws import DEFAULT_LAW, LAWS, UnknownLaw, law_of
+from rodimpact.model.materials import Material as MaterialModel
 from rodimpact.settings.declare import Material, MissingSetting, OptionError
 from rodimpact.solvers.registry import CONTACT_KINDS, METHODS
 
@@ -25,12 +27,22 @@ ErrorFactory = Callable[..., Exception]
 
 
 def check_material_ranges(materials: Mapping[str, Mapping[str, Any]], error: ErrorFactory) -> None:
-    """Each material's ``ranges`` are non-empty and hold the nominal value.
+    """Each material's plastic constants are sound (a positive yield stress, a hardening modulus
+    with it and below Young's) and its ``ranges`` are non-empty and hold the nominal value.
 
     ``error(message, field=...)`` builds the exception raised.
     """
     for name, material in materials.items():
+        plastic = Material.plastic_problem(
+            material["youngs_modulus_pa"], material.get("yield_stress_pa"), material.get("hardening_modulus_pa")
+        )
+        if plastic is not None:
+            raise error(plastic[1], field=f"materials.{name}.{plastic[0]}")
         for key, (low, high) in material.get("ranges", {}).items():
+            if key not in material:
+                raise error(
+                    f"a range of {key}, which the material does not give", field=f"materials.{name}.ranges.{key}"
+                )
             if not low < high:
                 raise error(
                     f"range [{low:g}, {high:g}] is empty (low must be < high)", field=f"materials.{name}.ranges.{key}"
@@ -53,6 +65,14 @@ def resolve_material(
     else:
         name, data = value.get("name"), value
     resolved: dict[str, Any] = {"name": name, **{key: float(data[key]) for key in MATERIAL_FIELDS}}
+    # a plastic constant only where the material gives it: an elastic material resolves as ever
+    resolved.update({key: float(data[key]) for key in Material.PLASTIC if data.get(key) is not None})
+    plastic = Material.plastic_problem(
+        resolved["youngs_modulus_pa"], resolved.get("yield_stress_pa"), resolved.get("hardening_modulus_pa")
+    )
+    if plastic is not None:
+        where = f"materials.{value}" if isinstance(value, str) else field
+        raise error(plastic[1], field=f"{where}.{plastic[0]}")
     if data.get("ranges"):
         resolved["ranges"] = {key: [float(x) for x in data["ranges"][key]] for key in sorted(data["ranges"])}
     return resolved
@@ -112,14 +132,30 @@ def runs_law(case: Mapping[str, Any], method: str) -> bool:
 
 def check_law(case: Mapping[str, Any], error: ErrorFactory) -> None:
     """Every method of the case (and of its sweep) can run its contact law (the law's
-    ``method_contact``), and the case sets no field the law conflicts with (``conflicts``)."""
+    ``method_contact``; a law with memory, a method that carries it: the registry's
+    ``Method.memory``), the case sets no field the law conflicts with (``conflicts``), and the
+    law's settings suit the case's materials (``bodies_problem``)."""
     law = law_of(case.get("contact"))
     for field, why in law.conflicts.items():
         if case.get(field) is not None:
             raise error(f"the {law.name} law cannot be combined with {field!r}: {why}", field="contact.law")
+    problem = law.bodies_problem(
+        case.get("contact") or {},
+        MaterialModel.from_mapping(case["impactor"]["material"]),
+        MaterialModel.from_mapping(case["rod"]["material"]),
+    )
+    if problem is not None:
+        raise error(problem[1], field=f"contact.{problem[0]}")
     own = list(case["methods"])
     swept = [m for m in (case.get("sweep") or {}).get("methods", []) if m not in own]
     for index, name in enumerate(own + swept):
+        if law.memory and not METHODS[name].memory:
+            can = [other for other, declared in METHODS.items() if declared.memory]
+            raise error(
+                f"method {name!r} cannot carry the memory of the {law.name} law (its largest approach and the "
+                f"dent it leaves); methods that can: {', '.join(can)}",
+                field=f"methods[{index}]" if index < len(own) else "sweep.methods",
+            )
         if not runs_law(case, name):
             kind = METHODS[name].contact
             can = [other for other, other_law in LAWS.items() if kind in other_law.method_contact]

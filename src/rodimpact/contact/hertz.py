@@ -17,12 +17,12 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any, Protocol
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from rodimpact.contact.law import ContactLaw, RigidImpact, StepNotConverged
+from rodimpact.contact.law import ContactLaw, ElasticMaterial, RigidImpact, StepNotConverged
 
 __all__ = [
     "HERTZ_TIME_FACTOR",
@@ -39,13 +39,6 @@ __all__ = [
 #: 2 * integral_0^1 dx / sqrt(1 - x^(5/2)) = (4/5) B(2/5, 1/2) = 2.943275..., with
 #: B(a, b) = Gamma(a) Gamma(b) / Gamma(a + b) (equal to the last bit to scipy.special.beta).
 HERTZ_TIME_FACTOR: float = 0.8 * math.gamma(0.4) * math.gamma(0.5) / math.gamma(0.9)
-
-
-class ElasticMaterial(Protocol):
-    """What a contact law reads of a material (``rodimpact.model.materials.Material``)."""
-
-    youngs_modulus_pa: float
-    poisson_ratio: float
 
 
 def effective_modulus(first: ElasticMaterial, second: ElasticMaterial | None = None) -> float:

@@ -19,6 +19,21 @@ equation has exactly one root for b > 0. :meth:`solve_step` and :meth:`rigid_imp
 generic implementations (safeguarded Newton; quadrature of the energy integral) that a law
 may replace with closed forms.
 
+**Laws with memory.** A law that loads on one curve and unloads on another
+(:class:`MemoryLaw`, ``memory = True``) has a state: the largest approach reached,
+alpha_max. Its methods above describe the virgin loading curve; :meth:`ContactLaw.branch`
+gives the curve the contact follows while alpha_max is fixed: the unloading curve below
+alpha_max (no force below the residual approach alpha_p, the dent), the loading curve above.
+That curve is itself a monotone law, so every step above applies to it unchanged, and the step
+is exact across alpha_max (the loading part of the curve is the virgin law's). A method carries
+the state: it solves each step on ``law.branch(alpha_max)``, and after a node whose approach
+exceeds alpha_max it takes the new branch. Contact holds while alpha > alpha_p: a ball that
+separates and strikes again meets its dent. The energy the contact dissipated depends on
+alpha_max alone (:meth:`MemoryLaw.dissipated_energy`); :func:`contact_energies` gives, at
+every node of a run, the energy the contact stores and the energy it has dissipated, which
+every method's energy balance counts. An elastic law is its own branch, stores
+int_0^alpha P and dissipates nothing.
+
 Each law also declares, once and next to its physics, what the rest of the project reads of
 it (the configuration's schema and checks, the rules, the runner, the tables):
 
@@ -44,6 +59,7 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
+from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -53,15 +69,34 @@ from rodimpact.settings.declare import Settings
 __all__ = [
     "MAX_STEP_ITERATIONS",
     "ContactLaw",
+    "ElasticMaterial",
     "LawSettings",
+    "LawState",
+    "MemoryLaw",
     "Needs",
     "RigidImpact",
     "StepNotConverged",
+    "YieldingMaterial",
     "check_positive",
+    "contact_energies",
+    "contact_radii",
 ]
 
 #: Newton iterations :meth:`ContactLaw.solve_step` takes at most.
 MAX_STEP_ITERATIONS = 60
+
+
+class ElasticMaterial(Protocol):
+    """What a law reads of a material (``rodimpact.model.materials.Material``): its elastic constants."""
+
+    youngs_modulus_pa: float
+    poisson_ratio: float
+
+
+class YieldingMaterial(ElasticMaterial, Protocol):
+    """A material as a law with plasticity reads it: also its yield stress (None: elastic)."""
+
+    yield_stress_pa: float | None
 
 
 class StepNotConverged(ArithmeticError):
@@ -80,11 +115,40 @@ class RigidImpact:
         Duration of the contact, s: 2 int_0^alpha_max d alpha / sqrt(v0^2 - 2 E(alpha) / m).
     peak_force_N : float
         P(alpha_max), N.
+    restitution : float
+        Rebound over impact velocity, 1 for an elastic law; below 1 for a law with memory, which
+        unloads on another curve.
+    residual_approach_m : float
+        The approach at which the force falls to zero on unloading (the dent), m; 0 for an
+        elastic law.
     """
 
     max_approach_m: float
     contact_time_s: float
     peak_force_N: float
+    restitution: float = 1.0
+    residual_approach_m: float = 0.0
+
+
+@dataclass(frozen=True)
+class LawState:
+    """Where a contact law stands after a largest approach: its memory.
+
+    Attributes
+    ----------
+    max_approach_m : float
+        The largest approach reached, alpha_max, m.
+    residual_approach_m : float
+        alpha_p, where the unloading curve from alpha_max carries no force (the dent), m; 0 for
+        an elastic law.
+    dissipated_energy_J : float
+        The energy the contact dissipated in reaching alpha_max: the work of the loading curve
+        less what the unloading curve returns, J; 0 for an elastic law.
+    """
+
+    max_approach_m: float
+    residual_approach_m: float = 0.0
+    dissipated_energy_J: float = 0.0
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -156,6 +220,18 @@ class ContactLaw(abc.ABC):
     #: The law approximates what it describes beyond its range of validity (a thin layer at
     #: contact sizes comparable to its thickness): its numbers are no bound on a measurement.
     approximation: bool = False
+    #: The law has memory: it unloads on another curve than it loads (:class:`MemoryLaw`);
+    #: only a method that carries its state can run it (the registry's ``Method.memory``).
+    memory: bool = False
+
+    @classmethod
+    def bodies_problem(
+        cls, spec: Mapping[str, Any], impactor: YieldingMaterial, rod: YieldingMaterial
+    ) -> tuple[str, str] | None:
+        """What is wrong with a case's ``contact`` block ``spec`` for its bodies' materials, as
+        (setting, reason), or None (the configuration's check, before any job): a setting a law
+        can take from the materials when they give it, a setting that contradicts them."""
+        return None
 
     @abc.abstractmethod
     def force(self, approach_m: float) -> float:
@@ -181,6 +257,16 @@ class ContactLaw(abc.ABC):
     def summary(self) -> dict[str, float | str]:
         """The law's name and parameters, stored with every run (``contact_law``, ...)."""
         return {"contact_law": self.name}
+
+    def branch(self, max_approach_m: float) -> ContactLaw:
+        """The monotone law the contact follows while its largest approach is
+        ``max_approach_m`` (m): an elastic law is its own (see the module docstring)."""
+        return self
+
+    def state(self, max_approach_m: float) -> LawState:
+        """The law's state after reaching ``max_approach_m`` (m): for an elastic law no dent
+        and no dissipation."""
+        return LawState(max_approach_m=float(max_approach_m))
 
     def run_summary(self, max_approach_m: float) -> dict[str, float]:
         """Entries a run through this law adds to its summary, given the run's largest
@@ -296,6 +382,117 @@ class ContactLaw(abc.ABC):
 
         half = quad(integrand, 0.0, math.sqrt(alpha_max), epsabs=0.0, epsrel=1e-12, limit=200)[0]
         return RigidImpact(max_approach_m=alpha_max, contact_time_s=2.0 * half, peak_force_N=self.force(alpha_max))
+
+
+class MemoryLaw(ContactLaw):
+    """A contact law with memory: it loads on the virgin curve (:meth:`force`,
+    :meth:`energy`, ...) and unloads from its largest approach alpha_max on another
+    (:meth:`branch`), leaving a residual approach and dissipating energy.
+
+    A subclass gives the branch and three functions of alpha_max (and of the approach), each
+    taking arrays of any shape: :meth:`residual_approach`, :meth:`dissipated_energy`,
+    :meth:`stored_energy`; and :meth:`contact_radius_after` where it has a geometry.
+    """
+
+    memory = True
+
+    @abc.abstractmethod
+    def branch(self, max_approach_m: float) -> ContactLaw:
+        """The monotone law that holds while the largest approach is ``max_approach_m`` (m):
+        the unloading curve from there below it (zero force up to the residual approach), the
+        virgin loading curve above it."""
+
+    @abc.abstractmethod
+    def residual_approach(self, max_approach_m: ArrayLike) -> NDArray[np.float64] | float:
+        """alpha_p, where the unloading curve from alpha_max carries no force, m (shape as
+        ``max_approach_m``)."""
+
+    @abc.abstractmethod
+    def dissipated_energy(self, max_approach_m: ArrayLike) -> NDArray[np.float64] | float:
+        """Energy dissipated by loading to alpha_max and unloading: int_0^alpha_max P_load less
+        int_alpha_p^alpha_max P_unload, J (shape as ``max_approach_m``)."""
+
+    @abc.abstractmethod
+    def stored_energy(self, approach_m: ArrayLike, max_approach_m: ArrayLike) -> NDArray[np.float64] | float:
+        """Energy the contact stores at ``approach_m`` on the unloading curve from
+        ``max_approach_m`` (approach <= max), what unloading would return: int_alpha_p^alpha
+        P_unload, J (shapes broadcast)."""
+
+    def contact_radius_after(
+        self, approach_m: ArrayLike, max_approach_m: ArrayLike
+    ) -> NDArray[np.float64] | float | None:
+        """Radius of the contact patch at ``approach_m`` on the unloading curve from
+        ``max_approach_m``, m; None without a geometry."""
+        return None
+
+    def state(self, max_approach_m: float) -> LawState:
+        peak = max(float(max_approach_m), 0.0)
+        return LawState(
+            max_approach_m=peak,
+            residual_approach_m=float(self.residual_approach(peak)),
+            dissipated_energy_J=float(self.dissipated_energy(peak)),
+        )
+
+    def _rigid_impact(self, mass_kg: float, velocity_m_s: float) -> RigidImpact:
+        """The rigid impact by quadrature: loading on the virgin curve (the elastic law's
+        quadrature of :meth:`ContactLaw._rigid_impact`, half its contact time), unloading on
+        the branch from alpha_max to alpha_p, which returns the stored energy as the rebound's."""
+        loading = super()._rigid_impact(mass_kg, velocity_m_s)
+        peak = loading.max_approach_m
+        branch = self.branch(peak)
+        residual = float(self.residual_approach(peak))
+        stored = float(self.stored_energy(peak, peak))
+        rebound = math.sqrt(2.0 * stored / mass_kg)
+        # the branch is an elastic law with no force below alpha_p: its own rigid impact at the
+        # rebound velocity turns at alpha_max and spends alpha_p / v in free flight each way
+        unloading = 0.5 * branch.rigid_impact(mass_kg, rebound).contact_time_s - residual / rebound
+        return RigidImpact(
+            max_approach_m=peak,
+            contact_time_s=0.5 * loading.contact_time_s + unloading,
+            peak_force_N=loading.peak_force_N,
+            restitution=rebound / velocity_m_s,
+            residual_approach_m=residual,
+        )
+
+
+def contact_energies(law: ContactLaw, approach_m: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The energy a run's contact stores and the energy it has dissipated, at each node.
+
+    Parameters
+    ----------
+    law : ContactLaw
+        The run's law.
+    approach_m : array_like, shape (n,)
+        The approach at the run's nodes, in time order, m.
+
+    Returns
+    -------
+    stored, dissipated : ndarray, shape (n,)
+        J. An elastic law stores :meth:`ContactLaw.energy` and dissipates nothing; a law with
+        memory stores what its unloading curve from the largest approach so far returns and
+        has dissipated :meth:`MemoryLaw.dissipated_energy` of that largest approach.
+    """
+    alpha = np.asarray(approach_m, dtype=float)
+    if not isinstance(law, MemoryLaw):
+        return np.asarray(law.energy(alpha), dtype=float), np.zeros_like(alpha)
+    peak = np.maximum.accumulate(np.maximum(alpha, 0.0)) if alpha.size else alpha
+    return (
+        np.asarray(law.stored_energy(alpha, peak), dtype=float),
+        np.asarray(law.dissipated_energy(peak), dtype=float),
+    )
+
+
+def contact_radii(law: ContactLaw, approach_m: ArrayLike) -> NDArray[np.float64] | None:
+    """The radius of the contact patch at each node of a run (``approach_m`` in time order,
+    shape (n,)), m; None when the law has no geometry. A law with memory gives the radius on
+    its unloading curve from the largest approach so far."""
+    alpha = np.asarray(approach_m, dtype=float)
+    if not isinstance(law, MemoryLaw):
+        radius = law.contact_radius(alpha)
+    else:
+        peak = np.maximum.accumulate(np.maximum(alpha, 0.0)) if alpha.size else alpha
+        radius = law.contact_radius_after(alpha, peak)
+    return None if radius is None else np.asarray(radius, dtype=float)
 
 
 @functools.lru_cache(maxsize=1024)

@@ -23,13 +23,14 @@ from rodimpact.contact.law import ContactLaw
 from rodimpact.contact.spring import SpringLaw
 from rodimpact.contact.stack import HertzStackLaw
 from rodimpact.contact.tabulated import TabulatedLaw
+from rodimpact.contact.thornton import ThorntonLaw
 from rodimpact.settings.declare import Setting
 
 __all__ = ["DEFAULT_LAW", "LAWS", "UnknownLaw", "bodies_contact", "build_law", "contact_schema", "law_of"]
 
 #: Law name -> law class, in the order messages and the schema list them.
 LAWS: dict[str, type[ContactLaw]] = {
-    law.name: law for law in (HertzLaw, HertzFilmLaw, HertzStackLaw, TabulatedLaw, SpringLaw)
+    law.name: law for law in (HertzLaw, HertzFilmLaw, HertzStackLaw, TabulatedLaw, SpringLaw, ThorntonLaw)
 }
 #: The law of a case that names none.
 DEFAULT_LAW = HertzLaw.name

@@ -1,4 +1,6 @@
-"""Linear elastic, isotropic materials (their values come from config/materials.yaml)."""
+"""Isotropic materials: linear elastic, and, where a material declares a yield stress,
+elastic-plastic (von Mises, with linear isotropic hardening where it declares a hardening
+modulus). Their values come from config/materials.yaml."""
 
 from __future__ import annotations
 
@@ -7,12 +9,14 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from rodimpact.settings.declare import Material as MaterialSetting
+
 __all__ = ["Material", "wave_speed"]
 
 
 @dataclass(frozen=True)
 class Material:
-    """A linear elastic isotropic material.
+    """An isotropic material: linear elastic, elastic-plastic where it has a yield stress.
 
     Parameters
     ----------
@@ -24,12 +28,19 @@ class Material:
         Mass density rho, kg/m^3. Must be > 0.
     name : str
         A label, for messages only.
+    yield_stress_pa : float or None
+        Uniaxial yield stress Y, Pa (> 0); None: the material stays elastic.
+    hardening_modulus_pa : float or None
+        Linear isotropic hardening modulus H (the slope of the uniaxial stress against the
+        plastic strain), Pa (>= 0 and below E); None: perfectly plastic. Only with a yield stress.
     """
 
     youngs_modulus_pa: float
     poisson_ratio: float
     density_kg_m3: float
     name: str = ""
+    yield_stress_pa: float | None = None
+    hardening_modulus_pa: float | None = None
 
     def __post_init__(self) -> None:
         label = f"material {self.name!r}: " if self.name else ""
@@ -39,6 +50,17 @@ class Material:
             raise ValueError(f"{label}density_kg_m3 must be > 0, got {self.density_kg_m3!r}")
         if not (-1.0 < self.poisson_ratio < 0.5):
             raise ValueError(f"{label}poisson_ratio must lie in (-1, 0.5), got {self.poisson_ratio!r}")
+        problem = MaterialSetting.plastic_problem(
+            self.youngs_modulus_pa, self.yield_stress_pa, self.hardening_modulus_pa
+        )
+        if problem is not None:
+            field, reason = problem
+            raise ValueError(f"{label}{field} {reason}")
+
+    @property
+    def yields(self) -> bool:
+        """The material has a yield stress (it is elastic-plastic)."""
+        return self.yield_stress_pa is not None
 
     @classmethod
     def from_mapping(cls, data: Mapping[str, Any]) -> Material:
@@ -48,7 +70,13 @@ class Material:
             poisson_ratio=float(data["poisson_ratio"]),
             density_kg_m3=float(data["density_kg_m3"]),
             name=str(data.get("name", "")),
+            yield_stress_pa=_optional(data.get("yield_stress_pa")),
+            hardening_modulus_pa=_optional(data.get("hardening_modulus_pa")),
         )
+
+
+def _optional(value: Any) -> float | None:
+    return None if value is None else float(value)
 
 
 def wave_speed(material: Material) -> float:

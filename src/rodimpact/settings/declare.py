@@ -81,14 +81,18 @@ class MissingSetting(OptionError):
 
 class Material:
     """The kind of a setting whose value is a material: a mapping with ``name``,
-    ``youngs_modulus_pa`` (Pa), ``poisson_ratio`` and ``density_kg_m3`` (kg/m^3), and, where
-    its source gives them, ``ranges`` (constant -> [low, high]).
+    ``youngs_modulus_pa`` (Pa), ``poisson_ratio`` and ``density_kg_m3`` (kg/m^3); where it
+    yields, ``yield_stress_pa`` and ``hardening_modulus_pa`` (Pa); and, where its source gives
+    them, ``ranges`` (constant -> [low, high]).
 
     A case names a material or gives it inline; the configuration resolves it (the
     ``material`` resolver of :meth:`Settings.from_settings`) before the block is built.
     """
 
     CONSTANTS: ClassVar[tuple[str, ...]] = ("youngs_modulus_pa", "poisson_ratio", "density_kg_m3")
+    #: The constants of a material that yields, each optional: without ``yield_stress_pa`` the
+    #: material stays elastic, without ``hardening_modulus_pa`` it is perfectly plastic.
+    PLASTIC: ClassVar[tuple[str, ...]] = ("yield_stress_pa", "hardening_modulus_pa")
 
     @classmethod
     def problem(cls, value: Any) -> str | None:
@@ -105,6 +109,35 @@ class Material:
             return "must have finite numbers as constants"
         if not (modulus > 0 and rho > 0 and -1.0 < nu < 0.5):
             return f"must have E > 0, density > 0 and -1 < nu < 0.5, got {modulus!r}, {rho!r}, {nu!r}"
+        plastic = cls.plastic_problem(modulus, value.get("yield_stress_pa"), value.get("hardening_modulus_pa"))
+        return None if plastic is None else f"{plastic[0]} {plastic[1]}"
+
+    @staticmethod
+    def plastic_problem(
+        youngs_modulus_pa: float, yield_stress_pa: float | None, hardening_modulus_pa: float | None
+    ) -> tuple[str, str] | None:
+        """What is wrong with a material's plastic constants, as (constant, reason), or None.
+
+        The yield stress must be a positive finite number; a hardening modulus needs a yield
+        stress and lies in [0, E): the elastic-plastic tangent E H / (E + H) stays below E.
+        """
+        if yield_stress_pa is not None and not (
+            isinstance(yield_stress_pa, (int, float)) and math.isfinite(yield_stress_pa) and yield_stress_pa > 0
+        ):
+            return "yield_stress_pa", f"must be > 0, got {yield_stress_pa!r}"
+        if hardening_modulus_pa is None:
+            return None
+        if yield_stress_pa is None:
+            return "hardening_modulus_pa", "needs a yield_stress_pa: a material without one stays elastic"
+        if not (
+            isinstance(hardening_modulus_pa, (int, float))
+            and math.isfinite(hardening_modulus_pa)
+            and 0 <= hardening_modulus_pa < youngs_modulus_pa
+        ):
+            return (
+                "hardening_modulus_pa",
+                f"must be >= 0 and below Young's modulus {youngs_modulus_pa:g} Pa, got {hardening_modulus_pa!r}",
+            )
         return None
 
 

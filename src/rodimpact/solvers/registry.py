@@ -89,6 +89,11 @@ class Method:
         contact law P(alpha); ``continuum``, it resolves the contact between the meshed bodies
         itself. A law declares the kinds that can run it
         (:attr:`~rodimpact.contact.law.ContactLaw.method_contact`).
+    memory : bool
+        Its solver carries a contact law's memory from step to step (the largest approach, the
+        residual approach below which the bodies are apart, the energy dissipated;
+        :class:`~rodimpact.contact.law.MemoryLaw`): only such a method can run a law with
+        memory (``ContactLaw.memory``), the configuration check refuses the others.
     records_field : bool
         Its solver records the strain over the whole rod (output ``strain_field``, on the
         case's :class:`~rodimpact.solvers.field.FieldGrid`; the solver's ``field`` argument).
@@ -109,6 +114,7 @@ class Method:
     style: str
     color: str
     contact: str = "law"
+    memory: bool = False
     records_field: bool = False
 
     def options_of(self, settings: Mapping[str, Any]) -> Options:
@@ -134,9 +140,11 @@ class Method:
     def solve(self, case: Mapping[str, Any], settings: Mapping[str, Any]) -> ImpactResult:
         """Solve ``case`` with the resolved settings ``settings``.
 
-        A method that takes the contact law adds the law's parameters and its run summary
+        A method that takes the contact law adds the law's parameters, its run summary
         (:meth:`~rodimpact.contact.law.ContactLaw.run_summary`, at the run's largest
-        approach) to the result's summary. The driver gets ``gauges`` and
+        approach) and its state there (:meth:`~rodimpact.contact.law.ContactLaw.state`: the
+        dissipated energy and the residual approach, 0 for an elastic law) to the result's
+        summary; a continuum method reports its own. The driver gets ``gauges`` and
         ``far_end_velocity`` only when the case's outputs list ``gauge_strain`` and
         ``far_end_velocity`` (:mod:`~rodimpact.solvers.gauge_series`): a run pays only for
         what it is asked.
@@ -160,7 +168,12 @@ class Method:
             law = problem.law
             result.extra.update({key: value for key, value in law.summary().items() if key not in result.extra})
             if result.approach.size:
-                result.extra.update(law.run_summary(float(np.max(result.approach))))
+                largest = float(np.max(result.approach))
+                result.extra.update(law.run_summary(largest))
+                state = law.state(largest)
+                result.extra.update(
+                    dissipated_energy_J=state.dissipated_energy_J, residual_approach_m=state.residual_approach_m
+                )
         return result
 
     def field_grid(self, case: Mapping[str, Any]) -> FieldGrid | None:
@@ -196,6 +209,7 @@ METHODS: dict[str, Method] = {
             family="sem",
             style="-",
             color="C0",
+            memory=True,
             records_field=True,
         ),
         Method(
@@ -210,6 +224,7 @@ METHODS: dict[str, Method] = {
             family="sem",
             style="--",
             color="C1",
+            memory=True,
         ),
         Method(
             name="fem1d",
@@ -223,6 +238,7 @@ METHODS: dict[str, Method] = {
             family="fem",
             style="-.",
             color="C2",
+            memory=True,
             records_field=True,
         ),
         Method(

@@ -37,7 +37,7 @@ OUTPUT_DATASETS: dict[str, tuple[tuple[str, ...], tuple[str, ...]]] = {
     "far_end_velocity": (("far_end_velocity",), ()),
     "energy": (
         ("impactor_kinetic_energy", "contact_energy", "rod_energy"),
-        ("rod_kinetic_energy", "rod_strain_energy"),
+        ("rod_kinetic_energy", "rod_strain_energy", "contact_dissipated_energy"),
     ),
     # not a history: the field over the rod on its own grid (ImpactResult.field, :mod:`.field`)
     "strain_field": ((), ()),
@@ -79,7 +79,9 @@ class ImpactResult:
     wall_time_s : float
         Wall time of the solve, s.
     extra : dict
-        More summary entries (scalars, strings, 1-D arrays), e.g. ``station_x_m``.
+        More summary entries (scalars, strings, 1-D arrays), e.g. ``station_x_m``; for every
+        method, ``dissipated_energy_J`` (the energy the contact dissipated, J) and
+        ``residual_approach_m`` (the dent the contact left, m).
     extra_series : dict
         More histories: name -> (array of first dimension n, units, description), e.g.
         ``station_displacement`` or the energies.
@@ -123,6 +125,14 @@ class ImpactResult:
         return float(self.contact_end_s[0] - self.contact_start_s[0])
 
     @property
+    def restitution(self) -> float:
+        """Coefficient of restitution: the rebound speed over the impact speed, -w_end / w_0
+        (the impactor's velocity at the run's last node over its first); NaN without nodes."""
+        if self.impactor_velocity.size == 0 or self.impactor_velocity[0] == 0.0:
+            return math.nan
+        return float(-self.rebound_velocity_m_s / self.impactor_velocity[0])
+
+    @property
     def n_contacts(self) -> int:
         """Number of complete contact intervals."""
         return int(len(self.contact_end_s))
@@ -134,6 +144,7 @@ class ImpactResult:
             "peak_force_N": np.asarray(self.peak_force_N, dtype=float),
             "peak_time_s": np.asarray(self.peak_time_s, dtype=float),
             "rebound_velocity_m_s": float(self.rebound_velocity_m_s),
+            "restitution": self.restitution,
             "energy_error": float(self.energy_error),
             "rod_energy_J": float(self.rod_energy_J),
             "contact_start_s": np.asarray(self.contact_start_s, dtype=float),

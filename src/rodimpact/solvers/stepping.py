@@ -14,6 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from rodimpact.analysis.signals import local_maxima
+from rodimpact.contact.law import ContactLaw, contact_energies, contact_radii
 from rodimpact.solvers.options import Options, setting
 from rodimpact.solvers.result import ImpactResult
 
@@ -24,6 +25,7 @@ __all__ = [
     "SEPARATION_ROUND_TRIPS",
     "StepHistory",
     "SteppingOptions",
+    "contact_series",
     "energy_error",
     "limit_reached",
 ]
@@ -106,6 +108,25 @@ def limit_reached(
             + ("" if ends else " before the first contact ended")
         )
     return None
+
+
+def contact_series(law: ContactLaw, approach_m: NDArray[np.float64]) -> dict[str, tuple[NDArray[np.float64], str, str]]:
+    """The contact's histories at a run's nodes, as extra series: the energy it stores, the
+    energy it has dissipated (a law with memory only) and the radius of its patch (a law with a
+    geometry), from the approach at the nodes in time order (m, shape (n,))."""
+    stored, dissipated = contact_energies(law, approach_m)
+    series = {"contact_energy": (stored, "J", "energy stored in the contact, int_0^alpha P (the contact law)")}
+    if law.memory:
+        series["contact_energy"] = (stored, "J", "energy the contact would return on unloading (the contact law)")
+        series["contact_dissipated_energy"] = (
+            dissipated,
+            "J",
+            "energy the contact has dissipated: the loading work less what unloading returns (largest approach so far)",
+        )
+    radius = contact_radii(law, approach_m)
+    if radius is not None:
+        series["contact_radius"] = (radius, "m", "radius of the contact patch (the contact law; Hertz: sqrt(R alpha))")
+    return series
 
 
 def energy_error(*parts: NDArray[np.float64]) -> float:

@@ -39,7 +39,14 @@ from rodimpact.solvers.gauge_series import (
     recorded_reach_m,
 )
 from rodimpact.solvers.result import ImpactResult
-from rodimpact.solvers.stepping import SEPARATION_ROUND_TRIPS, Outcome, StepHistory, energy_error, limit_reached
+from rodimpact.solvers.stepping import (
+    SEPARATION_ROUND_TRIPS,
+    Outcome,
+    StepHistory,
+    contact_series,
+    energy_error,
+    limit_reached,
+)
 
 __all__ = ["solve_fem1d"]
 
@@ -219,6 +226,9 @@ def solve_fem1d(
     recorder = None if field is None else _FieldRecorder(field, rod, bar.field_probes, u)
     starts, ends, AL = hist.starts, hist.ends, hist.alpha
     in_contact = True
+    # a law with memory: the curve of the largest approach so far and its residual approach (the
+    # dent), below which the bodies are apart; an elastic law is its own curve, with none
+    branch, peak, residual = law.branch(0.0), 0.0, 0.0
     t_max = options.max_time_factor * problem.contact_time_estimate()
     reach = recorded_reach_m(setup.gauges, far_end_velocity, rod.length_m)
     # the node at which no further contact was proven (where a run that records nothing ends)
@@ -229,11 +239,11 @@ def solve_fem1d(
         u_pred = _free_displacement(solve, M, u, v, a, h)
         big_a = x + h * w - h * h * p / (4.0 * m) - u_pred[bar.end]
         big_b = h * h / (4.0 * m) + b_rod
-        if big_a > 0.0:
+        if big_a > residual:
             guess = 2.0 * AL[-1] - AL[-2] if len(AL) > 1 else big_a
-            alpha_new, iterations = law.solve_step(big_a, big_b, guess)
+            alpha_new, iterations = branch.solve_step(big_a, big_b, guess)
             hist.n_newton += iterations
-            p_new = law.force(alpha_new)
+            p_new = branch.force(alpha_new)
         else:
             alpha_new, p_new = big_a, 0.0
         u_new = u_pred + p_new * g
@@ -241,10 +251,15 @@ def solve_fem1d(
         x_new = x + h * w - h * h * (p + p_new) / (4.0 * m)
         w_new = w - h * (p + p_new) / (2.0 * m)
         if (p_new > 0.0) != in_contact:  # a contact ends or begins inside this step
-            crossing = t + _hermite_root(AL[-1], alpha_new, w - v[bar.end], w_new - v_new[bar.end], h)
+            crossing = t + _hermite_root(
+                AL[-1] - residual, alpha_new - residual, w - v[bar.end], w_new - v_new[bar.end], h
+            )
             (starts if p_new > 0.0 else ends).append(crossing)
             in_contact = p_new > 0.0
         u, v, a, x, w, p, alpha = u_new, v_new, a_new, x_new, w_new, p_new, alpha_new
+        if law.memory and alpha > peak:
+            branch, peak = law.branch(alpha), alpha
+            residual = float(law.residual_approach(alpha))
         t += h
         hist.t.append(t)
         hist.force.append(p)
@@ -269,7 +284,7 @@ def solve_fem1d(
             ends
             and _no_further_contact(
                 rod,
-                x,
+                x - residual,
                 w,
                 hist.rod_kinetic[-1] + hist.rod_strain[-1],
                 setup.static_end,
@@ -386,18 +401,19 @@ def _result(
     nodes = hist.nodes()
     end = len(nodes.time) if finished is None else finished + 1
     kinetic = 0.5 * problem.mass_kg * nodes.w**2
-    contact = problem.contact.energy(nodes.alpha)
+    contact_histories = contact_series(problem.contact, nodes.alpha)
+    # the contact's energy: what it stores and, a law with memory, what it has dissipated
+    contact = contact_histories["contact_energy"][0]
+    if "contact_dissipated_energy" in contact_histories:
+        contact = contact + contact_histories["contact_dissipated_energy"][0]
     rod_kin, rod_str = np.asarray(hist.rod_kinetic), np.asarray(hist.rod_strain)
     series = {
         "impactor_kinetic_energy": (kinetic, "J", "kinetic energy of the impactor"),
-        "contact_energy": (contact, "J", "energy stored in the contact, int_0^alpha P (the contact law)"),
+        **contact_histories,
         "rod_energy": (rod_kin + rod_str, "J", "energy in the rod (kinetic + strain)"),
         "rod_kinetic_energy": (rod_kin, "J", "kinetic energy of the rod, v^T M v / 2"),
         "rod_strain_energy": (rod_str, "J", "strain energy of the rod, u^T K u / 2"),
     }
-    radius = problem.contact.contact_radius(nodes.alpha)
-    if radius is not None:
-        series["contact_radius"] = (radius, "m", "radius of the contact patch (the contact law; Hertz: sqrt(R alpha))")
     extra: dict[str, Any] = {
         "n_elements": int(setup.n_elements),
         "element": options.element,

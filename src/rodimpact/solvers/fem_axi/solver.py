@@ -329,6 +329,9 @@ def _result(
         "impactor_mass_kg": float(imp.total_mass_kg),
         "continuum_length_m": float(rod.bar.start_m if rod.bar else problem.rod_length_m),
         "bar_elements": int(rod.bar.elements if rod.bar else 0),
+        # every region is linear elastic: the contact dissipates nothing and leaves no dent
+        "dissipated_energy_J": 0.0,
+        "residual_approach_m": 0.0,
     }
     if model.film is not None:
         film = model.film

@@ -14,7 +14,7 @@ import numpy as np
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.result import ImpactResult
 from rodimpact.solvers.sem.history import ForceHistory
-from rodimpact.solvers.stepping import Nodes
+from rodimpact.solvers.stepping import Nodes, contact_series
 
 __all__ = ["extended_record", "run_histories"]
 
@@ -34,13 +34,10 @@ def run_histories(
     t, alpha = nodes.time, nodes.alpha
     series = {
         "impactor_kinetic_energy": (0.5 * mass * nodes.w**2, "J", "kinetic energy of the impactor"),
-        "contact_energy": (law.energy(alpha), "J", "energy stored in the contact, int_0^alpha P (the contact law)"),
+        **contact_series(law, alpha),
         "rod_energy": (rod_energy, "J", "energy in the rod: work done on it by the contact force"),
     }
     extra = {}
-    radius = law.contact_radius(alpha)
-    if radius is not None:
-        series["contact_radius"] = (radius, "m", "radius of the contact patch (the contact law; Hertz: sqrt(R alpha))")
     if stations:
         xs = [s * length for s in stations]
         series["station_displacement"] = (

@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from rodimpact.analysis.signals import ZIGZAG_UNSTABLE, sawtooth_amplitude, zigzag_steps
+from rodimpact.contact.law import contact_energies
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.solvers.result import ImpactResult
 from rodimpact.solvers.sem.grid import CommensurateGrid
@@ -36,6 +37,11 @@ class _Stepper(StepHistory):
         self.options = options
         self.m = problem.mass_kg
         self.law = problem.contact
+        # a law with memory: the curve of the largest approach so far, and its residual approach
+        # (the dent) below which the bodies are apart; an elastic law is its own curve, with none
+        self.branch = self.law.branch(0.0)
+        self.peak = 0.0
+        self.residual = 0.0
         self.h = h
         self.implicit = options.scheme == "implicit"
         rod = problem.rod
@@ -53,10 +59,18 @@ class _Stepper(StepHistory):
         return x + v * h - 0.5 * h * h * p / self.m, v - h * p / self.m
 
     def _free_approach(self, h: float) -> float:
-        """Approach at t_last + h if the force reached zero there (implicit scheme)."""
+        """Approach at t_last + h if the force reached zero there, less the residual approach
+        (zero where the bodies touch; implicit scheme)."""
         x_new, _ = self._impactor(h, 0.0)
         known, _ = self.hist.rod_step_terms(h)
-        return x_new - known
+        return x_new - known - self.residual
+
+    def _reached(self, alpha: float) -> None:
+        """A node reached the approach ``alpha`` (m), beyond the largest so far: a law with
+        memory goes on along the curve of the new largest approach."""
+        self.peak = alpha
+        self.branch = self.law.branch(alpha)
+        self.residual = float(self.law.residual_approach(alpha))
 
     def _accept(self, t_new: float, p_new: float, u_new: float, x_new: float, v_new: float) -> None:
         self.hist.append(t_new, p_new, u_new)
@@ -97,14 +111,17 @@ class _Stepper(StepHistory):
            constant-cost sum of :class:`~rodimpact.solvers.sem.grid.CommensurateGrid`,
            otherwise :meth:`ForceHistory.rod_step_terms`), and the approach ``a`` the
            bodies would reach with the force falling to zero over the step, m.
-        3. Where the force starts or stops over the step (``a > 0`` before a contact with a
-           gap at the last node, ``a <= 0`` in a contact with an approach at the last node),
-           the time where the approach crosses zero (:meth:`_event_step`) becomes the node,
-           with no force.
-        4. Otherwise, with ``a > 0``, the new force from the contact law, ``alpha + b P(alpha)
-           = a`` with ``b = h^2 / (6 m) + coef`` (``law.solve_step_force``; Newton's first
-           guess the approach extrapolated from the last three nodes, quadratic); with
-           ``a <= 0`` no force.
+        3. Where the force starts or stops over the step (``a > alpha_p`` before a contact with
+           a gap at the last node, ``a <= alpha_p`` in a contact with an approach beyond
+           alpha_p at the last node; alpha_p the residual approach of a law with memory, 0 for
+           an elastic law), the time where the approach crosses alpha_p (:meth:`_event_step`)
+           becomes the node, with no force.
+        4. Otherwise, with ``a > alpha_p``, the new force from the contact law's curve,
+           ``alpha + b P(alpha) = a`` with ``b = h^2 / (6 m) + coef`` (``solve_step_force`` of
+           the law's branch, the law itself when it is elastic; Newton's first guess the
+           approach extrapolated from the last three nodes, quadratic); with ``a <= alpha_p`` no
+           force. A node whose approach passes the largest so far takes the new branch
+           (:meth:`_reached`).
         5. The impactor's exact motion under the force linear over the step, and the node
            accepted: time, force, impulse Q, W on a grid node, the motions and the approach.
 
@@ -120,12 +137,7 @@ class _Stepper(StepHistory):
         Notes
         -----
         This is the one place where an implicit run solves its contact law and accepts a
-        node. A law with a state (the largest approach reached, a residual approach after
-        unloading) would take it with ``solve_step_force`` and the node would carry the new
-        one: a local beside ``alpha_n`` here, and a history beside ``alpha``; whether a step
-        has force (``touching``: ``a > 0`` for an elastic law) would be the law's to say here.
-
-        Steps 2 and 5 do inline the operations of :meth:`ForceHistory.rod_step_terms` (on the
+        node. Steps 2 and 5 do inline the operations of :meth:`ForceHistory.rod_step_terms` (on the
         grid) and :meth:`ForceHistory.append`, and of :meth:`_impactor` (which the event
         search and the paper scheme use), in the same order: ``tests/test_sem_grid.py``
         replays runs through the first two to the last bit. Through those two methods a node
@@ -136,7 +148,9 @@ class _Stepper(StepHistory):
         --tool=cachegrind --cache-sim=no, the process without the solves subtracted); the
         former tight loop beside a general step took 5.54e9.
         """
-        m, law, hist = self.m, self.law, self.hist
+        m, hist = self.m, self.hist
+        memory = self.law.memory
+        branch, peak, residual = self.branch, self.peak, self.residual
         grid = hist.grid
         T, P, Q, W = hist.t, hist.P, hist.Q, hist.W
         X, V, U, A = self.x, self.w, self.u_end, self.alpha
@@ -165,13 +179,13 @@ class _Stepper(StepHistory):
                     known, coef = hist.rod_step_terms(h)
                     b = h * h / (6.0 * m) + coef
                 a = x + v * h - h * h * (p_n / 3.0 + 0.0 / 6.0) / m - known
-                touching = a > 0.0  # False for a NaN too
+                touching = a > residual  # False for a NaN too
                 event = None
-                if touching != in_contact and (alpha_n < 0.0 if touching else alpha_n > 0.0):
+                if touching != in_contact and (alpha_n < residual if touching else alpha_n > residual):
                     event = self._event_step(h)
                 if touching and event is None:
                     guess = a if alpha_2 is None else 3.0 * (alpha_n - alpha_1) + alpha_2
-                    _, p_new, iterations = law.solve_step_force(a, b, guess)
+                    _, p_new, iterations = branch.solve_step_force(a, b, guess)
                     newton += iterations
                     u_new = known + coef * p_new
                 else:
@@ -198,6 +212,9 @@ class _Stepper(StepHistory):
                 alpha_2, alpha_1, alpha_n = alpha_1, alpha_n, x_new - u_new
                 A.append(alpha_n)
                 nodes += 1
+                if memory and alpha_n > peak:
+                    self._reached(alpha_n)
+                    branch, peak, residual = self.branch, self.peak, self.residual
                 if not touching:  # no force: a contact ends (at its event node or at this node)
                     if in_contact:
                         self.in_contact = False
@@ -226,17 +243,20 @@ class _Stepper(StepHistory):
         x_new, v_new = self._impactor(h, self.hist.P[-1])
         known, _ = self.hist.rod_step_terms(h)
         alpha_new = x_new - known
-        p_new = self.law.force(alpha_new)
+        p_new = self.branch.force(alpha_new)
         alpha_n, t_n = self.alpha[-1], self.hist.t[-1]
         self._accept(t_new, p_new, known, x_new, v_new)
-        if self.in_contact and alpha_new <= 0.0:
+        residual = self.residual  # the contact starts and ends where the approach crosses it
+        if self.in_contact and alpha_new <= residual:
             self.in_contact = False
-            frac = alpha_n / (alpha_n - alpha_new) if alpha_n > alpha_new else 1.0
+            frac = (alpha_n - residual) / (alpha_n - alpha_new) if alpha_n > alpha_new else 1.0
             self.ends.append(t_n + frac * h)
-        elif not self.in_contact and alpha_new > 0.0:
+        elif not self.in_contact and alpha_new > residual:
             self.in_contact = True
-            frac = -alpha_n / (alpha_new - alpha_n) if alpha_new > alpha_n else 0.0
+            frac = (residual - alpha_n) / (alpha_new - alpha_n) if alpha_new > alpha_n else 0.0
             self.starts.append(t_n + frac * h)
+        if self.law.memory and alpha_new > self.peak:
+            self._reached(alpha_new)
 
     # -- termination -----------------------------------------------------------------------
     def rod_mean_velocity(self) -> float:
@@ -264,7 +284,7 @@ class _Stepper(StepHistory):
         t0 = self.hist.t[-1]
         times = self._window_samples(t0, window, period)
         x = self.x[-1] + self.w[-1] * (times - t0)
-        return bool(np.all(x - self.hist.rod_displacement(times) < 0.0))
+        return bool(np.all(x - self.hist.rod_displacement(times) < self.residual))
 
     def _window_samples(self, t0: float, window: float, period: float) -> np.ndarray:
         """Times in (t0, t0 + window] at which to compare the impactor with the rod end.
@@ -408,7 +428,9 @@ def _result(
     series, extra = run_histories(st.m, st.law, st.hist, problem.rod.length_m, nodes, stations, rod_work)
     ke_in = problem.kinetic_energy_J
     ke_out = 0.5 * problem.mass_kg * st.w[-1] ** 2
-    contact_left = float(problem.contact.energy(nodes.alpha[-1]))
+    # what the contact still stores and what it dissipated (a law with memory) at the last node
+    stored, dissipated = contact_energies(problem.contact, nodes.alpha)
+    contact_left = float(stored[-1] + dissipated[-1])
     energy_error = (ke_in - ke_out - rod_energy - contact_left) / ke_in
     sawtooth = sawtooth_amplitude(p)
     zigzag = zigzag_steps(p)
