@@ -88,12 +88,19 @@ def test_the_table_sets_each_measured_value_against_each_method(example) -> None
         "contact_time_us",
         "peak_force_n",
         "rebound_velocity_m_s",
+        "restitution",
         "signal_contact_time_us",
         "history_l2_pct",
         "history_max_pct",
     }
     for (case_id, method), rows in frame.groupby(["case_id", "method"]):
         assert set(rows["quantity"]) == per_case, (case_id, method)
+        # the restitution is the rebound over the impact velocity, measured and computed alike
+        rebound, restitution = (rows[rows["quantity"] == q].iloc[0] for q in ("rebound_velocity_m_s", "restitution"))
+        impact = next(r.config for r in example["records"] if r.case_id == case_id)["impactor"]["velocity_m_s"]
+        assert restitution["measured"] == pytest.approx(rebound["measured"] / impact, rel=1e-15)
+        assert restitution["computed"] == pytest.approx(rebound["computed"] / impact, rel=1e-12)
+        assert restitution["error_pct"] == pytest.approx(rebound["error_pct"], rel=1e-9)
     # the measured scalars are fem1d's, rounded as written: its errors are the rounding's
     fem1d = frame[(frame["method"] == "fem1d") & frame["quantity"].isin(["contact_time_us", "peak_force_n"])]
     assert (fem1d["error_pct"].abs() < 0.2).all()

@@ -6,7 +6,8 @@ comparison tables list and a calibration fits (:func:`observed`). A run is given
 mappings, so a stored run (:class:`~rodimpact.storage.runs.RunRecord`) and a result still in
 memory (:class:`~rodimpact.solvers.result.ImpactResult`) are read alike:
 
-* the scalars (:data:`SCALARS`): the contact time, the peak force, the rebound velocity;
+* the scalars (:data:`SCALARS`): the contact time, the peak force, the rebound velocity, and
+  with the rebound, the coefficient of restitution (the run's ``restitution``);
 * a force history (:mod:`.history_compare`): the contact time read from both signals at the
   record's threshold, and the L2 and max-norm errors after alignment;
 * a strain history at a gauge and the far end's velocity (:mod:`.wave_compare`): the first
@@ -80,6 +81,7 @@ QUANTITIES: dict[str, Quantity] = {
     "contact_time_us": Quantity("contact time", "µs", "contact_time_us"),
     "peak_force_n": Quantity("peak force", "N", "peak_force_n"),
     "rebound_velocity_m_s": Quantity("rebound velocity", "m/s", "rebound_velocity_m_s"),
+    "restitution": Quantity("coefficient of restitution, rebound over impact velocity", "1", "rebound_velocity_m_s"),
     "signal_contact_time_us": Quantity(
         "contact time read from the signal at {threshold:g} of its peak", "µs", "force_history"
     ),
@@ -273,6 +275,13 @@ def observed(
         for key, computed_of in SCALARS.items()
         if measured.get(key) is not None
     ]
+    if measured.get("rebound_velocity_m_s") is not None:  # and the restitution it gives
+        impact = float(config["impactor"]["velocity_m_s"])
+        rows.append(
+            _value(
+                config, "restitution", float(measured["rebound_velocity_m_s"]) / impact, float(summary["restitution"])
+            )
+        )
     if "force_history" in records:
         threshold = float(measured["force_history"].get("threshold", DEFAULT_THRESHOLD))
         result = force_comparison(series, records["force_history"], threshold)

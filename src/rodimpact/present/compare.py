@@ -3,7 +3,7 @@
 Any case set whose cases carry ``measured`` values is compared the same way, whatever its
 name. For each case (and variant) and each method that ran it, every measured quantity is set
 against the computed one: the contact time, the peak force, the rebound velocity (positive away
-from the rod; its ratio to the impact velocity is the coefficient of restitution), and what
+from the rod) and with it the coefficient of restitution (its ratio to the impact velocity), and what
 each record gives (:mod:`rodimpact.analysis.observations`): for a force history, the contact
 time read from both signals and the errors of the force after alignment; for a strain at a
 gauge, or the far end's velocity, the first pulse's arrival, peak and integral and the errors

@@ -56,6 +56,7 @@ _DRAWN = (
     "signal_contact_time_us",
     "peak_force_n",
     "rebound_velocity_m_s",
+    "restitution",
     "strain_peak_microstrain",
     "strain_integral_microstrain_us",
     "far_end_peak_velocity_m_s",

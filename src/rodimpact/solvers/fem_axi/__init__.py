@@ -7,7 +7,8 @@ meshers share: areas, longest edges, orientation, named boundaries, the graded t
 the refinement loop), :mod:`.film_mesh` (the rod with a bonded film disc on its struck end),
 :mod:`.layers` (how a film or stack is divided through its thickness, and the check of a positive
 argument, without the mesher's imports), :mod:`.film_model` (the film's region and its contact
-nodes), :mod:`.axisym` (the r-weighted elasticity forms), :mod:`.axibody` (one body's Newmark
+nodes), :mod:`.axisym` (the r-weighted elasticity forms), :mod:`.plasticity` (J2 plasticity's
+return mapping and consistent tangent at a body's points), :mod:`.axibody` (one body's Newmark
 operators), :mod:`.farbar` (the rod beyond a few diameters as a 1-D bar joined to the continuum),
 :mod:`.gauges` (where the stations' and gauges' strain is read, and how far the continuum
 must reach for the gauges),
