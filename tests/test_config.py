@@ -88,6 +88,8 @@ STRESS = [
     "rubber_on_steel",
     "steel_on_rubber",
     "seconds_contact",
+    "thornton_far_below",
+    "thornton_far_above",
 ]
 
 

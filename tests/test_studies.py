@@ -13,6 +13,7 @@ from rodimpact.analysis.stability_study import map_frame, stability_frame, viola
 from rodimpact.analysis.studies import level_case, map_point_case, map_point_names, reference_case
 from rodimpact.analysis.work_precision import observed_orders, work_precision_frame
 from rodimpact.jobs.runner import SolverFailed, Timing, run_to_file
+from rodimpact.model.problem import ImpactProblem
 from rodimpact.storage.runs import read_run
 
 
@@ -106,7 +107,15 @@ def test_observed_orders_match_the_theory(sweep):
 
 # ----------------------------------------------------------------- stress cases (fast subset)
 
-FAST_STRESS = ["short_rod", "rubber_on_steel", "steel_on_rubber", "long_rod_heavy", "heavy_slow"]
+FAST_STRESS = [
+    "short_rod",
+    "rubber_on_steel",
+    "steel_on_rubber",
+    "long_rod_heavy",
+    "heavy_slow",
+    "thornton_far_below",
+    "thornton_far_above",
+]
 
 
 @pytest.fixture(scope="module")
@@ -142,6 +151,24 @@ def test_every_contact_interval_is_reported(stress):
         values = [float(x) for pair in intervals.split("; ") for x in pair.split("-")]
         expected = 1e6 * np.ravel(np.column_stack([ref["contact_start_s"], ref["contact_end_s"]]))
         assert values == pytest.approx(expected, rel=1e-3)
+
+
+def test_thorntons_law_dissipates_far_below_its_hertz_pressure_and_not_far_above(stress, project):
+    """Far below: most of the impact energy is dissipated in the contact and a dent is left,
+    the restitution under the rigid flat's closed form (the rod takes some energy too); far above:
+    the law is Hertz's, with no dissipation and no dent."""
+    _, runs, _ = stress
+    by_case: dict[str, list] = {}
+    for run in runs:
+        by_case.setdefault(run.case_id, []).append(run)
+    for run in by_case["thornton_far_above"]:
+        assert run.summary["dissipated_energy_J"] == 0.0 and run.summary["residual_approach_m"] == 0.0
+    problem = ImpactProblem.from_case(project.cases["thornton_far_below"])
+    rigid = problem.rigid_contact
+    for run in by_case["thornton_far_below"]:
+        assert 0.9 * problem.kinetic_energy_J < run.summary["dissipated_energy_J"] < problem.kinetic_energy_J
+        assert run.summary["residual_approach_m"] > 0.0
+        assert 0.9 * rigid.restitution < run.summary["restitution"] < rigid.restitution
 
 
 def test_a_wrong_answer_is_a_violation_and_a_failure_is_not(stress, config):
