@@ -13,6 +13,9 @@
 #   make convergence   only the error-against-run-time study -> results/tables/work_precision.csv
 #   make convergence-separate   the study's separate cases (levels over a minute each, not in
 #                make paper) -> results/tables/work_precision_separate*.{csv,md,html}
+#   make sphere-flat   the continuum's elastic-plastic sphere on a rigid flat against the published
+#                finite-element fits, on three meshes (not in make paper: about 11 minutes) ->
+#                results/verification/sphere_flat.{csv,pdf,png}
 #   make stability     only the stress cases and the stability map -> results/tables/stability.csv
 #   make sensor-axes   each constant of the sensor stack along its range by the continuum (not in
 #                make paper: the check that the band's corners bound the time) ->
@@ -39,7 +42,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-from-lock
 CORES  ?= 2
 
-.PHONY: paper test test-cluster test-tools browser latex bench convergence convergence-separate stability sensor-axes film-axes report report-check readme-images provenance env clean distclean
+.PHONY: paper test test-cluster test-tools browser latex bench sphere-flat convergence convergence-separate stability sensor-axes film-axes report report-check readme-images provenance env clean distclean
 
 $(STAMP): environment.lock pyproject.toml
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info[:2] == (3, 11) else "rodimpact needs Python 3.11 (environment.lock is for 3.11), found " + sys.version.split()[0])'
@@ -72,6 +75,9 @@ bench: $(STAMP)
 	$(BIN)/python -m rodimpact.tools.bench results/benchmarks/fem.csv
 	$(BIN)/python -m rodimpact.tools.build_stats --csv results/benchmarks/build.csv
 	$(BIN)/python -m rodimpact.tools.bench_planning --csv results/benchmarks/planning.csv
+
+sphere-flat: $(STAMP)
+	$(BIN)/python -m rodimpact.tools.sphere_flat --out results/verification
 
 convergence: $(STAMP)
 	$(BIN)/snakemake -j$(CORES) results/tables/work_precision.csv results/tables/work_precision_orders.md

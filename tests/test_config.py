@@ -189,6 +189,7 @@ def test_defaults_are_filled(shipped: Project) -> None:
             "continuum_diameters": 5.0,
             "film_layers": 4,
             "cap_height": 1.0,
+            "plastic_extent": 2.0,
         },
     }
     assert shipped.cases["model"]["numerics"]["sem_paper"]["steps_per_contact"] == 20000

@@ -170,6 +170,9 @@ class FilmLayer:
         meshes it as a disc of the same area, centred on the axis.
     name : str
         The material's name, for messages.
+    yield_stress_pa, hardening_modulus_pa : float or None
+        The material's yield stress and hardening modulus, Pa, where it yields (read by the
+        continuum, whose layers may yield; the thin-layer law is elastic).
     """
 
     thickness_m: float
@@ -178,6 +181,8 @@ class FilmLayer:
     density_kg_m3: float
     area_m2: float | None = None
     name: str = ""
+    yield_stress_pa: float | None = None
+    hardening_modulus_pa: float | None = None
 
     def __post_init__(self) -> None:
         for field in ("thickness_m", "youngs_modulus_pa", "density_kg_m3"):
@@ -201,6 +206,10 @@ class FilmLayer:
             density_kg_m3=float(material["density_kg_m3"]),
             area_m2=None if area is None else float(area),
             name=str(material.get("name") or ""),
+            yield_stress_pa=None if material.get("yield_stress_pa") is None else float(material["yield_stress_pa"]),
+            hardening_modulus_pa=(
+                None if material.get("hardening_modulus_pa") is None else float(material["hardening_modulus_pa"])
+            ),
         )
 
     @property

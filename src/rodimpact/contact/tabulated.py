@@ -14,6 +14,27 @@ has one root and the implicit scheme keeps its order. Outside the table the end 
 extend the curve as power laws (a run that reaches beyond the table's largest approach is
 reported in its summary). The interpolation error is measured by the indentation rule
 (every other point left out) and shown in ``results/tables/film_indentation.csv``.
+
+With memory (:class:`TabulatedMemoryLaw`: a case whose material yields, whose curve the
+``indentation`` rule gives with unloading curves; :mod:`rodimpact.jobs.indentation`). The path
+goes up to a first largest approach, down until the force vanishes, up again past it to the
+next, and so on: the loading curve is the force each time the path goes beyond its largest
+approach (a :class:`TabulatedLaw`), and each unloading curve k, from its largest approach
+m_k, falls to zero at its dent r_k. An unloading curve is stored as its shape,
+
+    P_unload(alpha; m) = P_load(m) f(xi)^(3/2),   xi = (alpha - r(m)) / (m - r(m)) in [0, 1],
+
+f = (P / P(m))^(2/3) tabulated against xi and interpolated by the monotone cubic Hermite
+interpolant: an unloading curve that is Hertz's with another radius (Thornton's, and the
+continuum's near its dent) is a straight line in these coordinates. For a largest approach m
+between two maxima the dent r(m) is the monotone cubic Hermite interpolant of the dents against
+the maxima, and the shape f is the linear
+mix of the two neighbours' shapes (both increase from 0 to 1, so their mix does, and the
+branch is monotone). Below the first maximum the law mixes with the elastic unloading at the
+largest approach where nothing has yielded (the loading curve itself, no dent); above the
+last, the last shape is kept and the dent extrapolated on its end slope (a run's summary reports its
+``unloading_reach``). The interpolation error of the unloading curves is measured as the
+loading curve's: the law rebuilt from every other unloading curve, compared on those left out.
 """
 
 from __future__ import annotations
@@ -21,20 +42,31 @@ from __future__ import annotations
 import logging
 import math
 from bisect import bisect_right
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from rodimpact.contact.film import FilmSettings
 from rodimpact.contact.hertz import ElasticMaterial
-from rodimpact.contact.law import ContactLaw, LawSettings, Needs
+from rodimpact.contact.law import ContactLaw, LawSettings, MemoryLaw, Needs, StepNotConverged
 from rodimpact.contact.stack import StackSettings
 from rodimpact.settings.declare import REQUIRED, OptionError, setting
 
-__all__ = ["CURVE_NUMERICS", "CURVE_SOURCES", "CurveMissing", "TabulatedLaw", "TabulatedSettings", "pchip_slopes"]
+__all__ = [
+    "CURVE_NUMERICS",
+    "CURVE_SOURCES",
+    "CurveMissing",
+    "TabulatedLaw",
+    "TabulatedMemoryLaw",
+    "TabulatedSettings",
+    "UnloadingBranch",
+    "UnloadingShape",
+    "pchip_slopes",
+    "unloading_shape",
+]
 
 log = logging.getLogger(__name__)
 
@@ -197,9 +229,11 @@ class TabulatedLaw(ContactLaw):
     @classmethod
     def from_bodies(
         cls, spec: Mapping[str, Any], sphere_radius_m: float, impactor: ElasticMaterial, rod: ElasticMaterial
-    ) -> TabulatedLaw:
+    ) -> TabulatedLaw | TabulatedMemoryLaw:
         """The law of a case: ``spec["curve"]`` holds ``approach_m``, ``force_N`` and
-        optionally ``contact_radius_m`` (put there by the runner from the indentation file).
+        optionally ``contact_radius_m`` (put there by the runner from the indentation file);
+        with ``unloading`` and ``elastic_limit_m`` (a case whose material yields), the law with
+        memory (:class:`TabulatedMemoryLaw`).
 
         Raises
         ------
@@ -213,12 +247,15 @@ class TabulatedLaw(ContactLaw):
                 "the workflow's indentation rule computes it"
             )
         radius = curve.get("contact_radius_m")
-        return cls(
+        loading = cls(
             tuple(map(float, curve["approach_m"])),
             tuple(map(float, curve["force_N"])),
             None if radius is None else tuple(map(float, radius)),
             str(spec.get("from", "")),
         )
+        if curve.get("unloading") is None:
+            return loading
+        return TabulatedMemoryLaw.from_curve(loading, curve)
 
     # -- interpolation in (ln alpha, ln P) --------------------------------------------------
     def _log_force(self, x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -333,3 +370,357 @@ class TabulatedLaw(ContactLaw):
                 reach,
             )
         return {"table_reach": float(reach)}
+
+
+@dataclass(frozen=True)
+class UnloadingShape:
+    """One unloading curve's shape: f = (P / P(m))^(2/3) against xi = (alpha - r) / (m - r).
+
+    Parameters
+    ----------
+    xi : tuple of float
+        Strictly increasing, from 0 to 1.
+    f : tuple of float
+        Strictly increasing, from 0 to 1.
+    """
+
+    xi: tuple[float, ...]
+    f: tuple[float, ...]
+    _d: NDArray[np.float64] = field(init=False, repr=False, compare=False)
+    _integral: NDArray[np.float64] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        x, y = np.asarray(self.xi, float), np.asarray(self.f, float)
+        if x.ndim != 1 or x.shape != y.shape or len(x) < 3:
+            raise ValueError("xi and f must be 1-D of the same length >= 3")
+        if x[0] != 0.0 or x[-1] != 1.0 or y[0] != 0.0 or y[-1] != 1.0:
+            raise ValueError("xi and f must run from 0 to 1")
+        if np.any(np.diff(x) <= 0) or np.any(np.diff(y) <= 0):
+            raise ValueError("xi and f must be strictly increasing (a monotone unloading curve)")
+        object.__setattr__(self, "_d", pchip_slopes(x, y))
+        # the nodes as Python floats, for the scalar path the steppers call per iteration
+        object.__setattr__(self, "_nodes", (x.tolist(), y.tolist(), self._d.tolist()))
+        # int_0^xi_j f^(3/2): Gauss on each piece (smooth on each)
+        integral = np.zeros(len(x))
+        for j in range(len(x) - 1):
+            nodes = x[j] + (x[j + 1] - x[j]) * _GX
+            integral[j + 1] = integral[j] + (x[j + 1] - x[j]) * float(_GW @ self.power(nodes))
+        object.__setattr__(self, "_integral", integral)
+
+    def value(self, xi: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """f and df/dxi at ``xi`` (clipped into [0, 1])."""
+        x = np.clip(np.asarray(xi, dtype=float), 0.0, 1.0)
+        xs, ys = np.asarray(self.xi), np.asarray(self.f)
+        i = np.clip(np.searchsorted(xs, x, side="right") - 1, 0, len(xs) - 2)
+        return _hermite(x, xs[i], xs[i + 1], ys[i], ys[i + 1], self._d[i], self._d[i + 1])
+
+    def value_scalar(self, xi: float) -> tuple[float, float]:
+        """:meth:`value` at one ``xi``, in Python floats (the same operations)."""
+        xs, ys, ds = self._nodes
+        x = min(max(xi, 0.0), 1.0)
+        i = min(max(bisect_right(xs, x) - 1, 0), len(xs) - 2)
+        return _hermite(x, xs[i], xs[i + 1], ys[i], ys[i + 1], ds[i], ds[i + 1])
+
+    def power(self, xi: ArrayLike) -> NDArray[np.float64]:
+        """f^(3/2) at ``xi``: the force over P(m)."""
+        f, _ = self.value(xi)
+        return np.maximum(f, 0.0) ** 1.5
+
+    def integral(self, xi: ArrayLike) -> NDArray[np.float64]:
+        """int_0^xi f^(3/2), dimensionless (xi clipped into [0, 1])."""
+        x = np.clip(np.asarray(xi, dtype=float), 0.0, 1.0)
+        xs = np.asarray(self.xi)
+        i = np.clip(np.searchsorted(xs, x, side="right") - 1, 0, len(xs) - 2)
+        start = xs[i]
+        width = x - start
+        inside = width * (self.power(start[..., None] + width[..., None] * _GX) @ _GW)
+        return self._integral[i] + inside
+
+
+def unloading_shape(approach_m: Sequence[float], force_N: Sequence[float]) -> tuple[float, UnloadingShape]:
+    """The dent and the shape of one unloading curve from its points.
+
+    Parameters
+    ----------
+    approach_m, force_N : sequence of float
+        The unloading curve from its largest approach down (approach decreasing), m and N; the
+        force positive at the first point, falling to zero at the end or not.
+
+    Returns
+    -------
+    residual_m : float
+        The dent r: where the curve's last two positive points, straight in (alpha, P^(2/3)),
+        reach zero force, m.
+    shape : UnloadingShape
+    """
+    alpha = np.asarray(approach_m, float)
+    force = np.asarray(force_N, float)
+    positive = force > 0
+    if positive.sum() < 3 or not positive[0]:
+        raise ValueError("an unloading curve needs its largest approach and at least two more points with force")
+    alpha, force = alpha[positive], force[positive]
+    if np.any(np.diff(alpha) >= 0) or np.any(np.diff(force) >= 0):
+        raise ValueError("an unloading curve must fall: approach and force decreasing")
+    g = force ** (2.0 / 3.0)
+    slope = (g[-2] - g[-1]) / (alpha[-2] - alpha[-1])
+    residual = float(alpha[-1] - g[-1] / slope)
+    top = alpha[0]
+    xi = np.concatenate([[0.0], (alpha[::-1] - residual) / (top - residual)])
+    f = np.concatenate([[0.0], g[::-1] / g[0]])
+    xi[-1], f[-1] = 1.0, 1.0
+    return residual, UnloadingShape(tuple(xi.tolist()), tuple(f.tolist()))
+
+
+@dataclass(frozen=True)
+class TabulatedMemoryLaw(MemoryLaw):
+    """The ``tabulated`` law with memory: the continuum's loading curve and unloading curves.
+
+    Parameters
+    ----------
+    loading : TabulatedLaw
+        The virgin curve.
+    elastic_limit_m : float
+        The largest approach at which the continuum dissipated nothing: below it the law
+        unloads on its loading curve and leaves no dent, m (> 0).
+    max_approach_m : tuple of float
+        The largest approaches m_k of the unloading curves, m (strictly increasing, above
+        ``elastic_limit_m``).
+    residual_approach_m : tuple of float
+        Their dents r_k, m (0 <= r_k < m_k).
+    shapes : tuple of UnloadingShape
+        Their shapes.
+    """
+
+    loading: TabulatedLaw
+    elastic_limit_m: float
+    max_approach_m: tuple[float, ...]
+    residual_approach_m: tuple[float, ...]
+    shapes: tuple[UnloadingShape, ...]
+    name: ClassVar[str] = "tabulated"
+    label: ClassVar[str] = "tabulated with memory (continuum-calibrated, elastic-plastic)"
+    reading: ClassVar[str] = "contact law with memory calibrated by the continuum"
+    settings = TabulatedSettings
+    needs = Needs(curve_rule=CURVE_SOURCES["fem_axi_indentation"])
+    method_contact = frozenset({"law"})
+
+    @classmethod
+    def from_curve(cls, loading: TabulatedLaw, curve: Mapping[str, Any]) -> TabulatedMemoryLaw:
+        """The law of a curve with unloading curves (``curve["unloading"]``: ``curve`` (the index
+        of each point's curve), ``approach_m``, ``force_N``; ``curve["elastic_limit_m"]``)."""
+        unloading = curve["unloading"]
+        index = np.asarray(unloading["curve"], dtype=float).astype(int)
+        alpha = np.asarray(unloading["approach_m"], dtype=float)
+        force = np.asarray(unloading["force_N"], dtype=float)
+        tops, dents, shapes = [], [], []
+        for k in np.unique(index):
+            dent, shape = unloading_shape(alpha[index == k], force[index == k])
+            tops.append(float(alpha[index == k][0]))
+            dents.append(max(dent, 0.0))
+            shapes.append(shape)
+        return cls(loading, float(curve["elastic_limit_m"]), tuple(tops), tuple(dents), tuple(shapes))
+
+    def __post_init__(self) -> None:
+        m = np.asarray(self.max_approach_m, float)
+        r = np.asarray(self.residual_approach_m, float)
+        if m.ndim != 1 or len(m) < 1 or m.shape != r.shape or len(self.shapes) != len(m):
+            raise ValueError("max_approach_m, residual_approach_m and shapes must have one entry per unloading curve")
+        if not (self.elastic_limit_m > 0 and m[0] > self.elastic_limit_m) or np.any(np.diff(m) <= 0):
+            raise ValueError("max_approach_m must increase from above elastic_limit_m")
+        if np.any(r < 0) or np.any(r >= m):
+            raise ValueError("each residual approach must lie in [0, its largest approach)")
+
+    # -- the virgin curve ---------------------------------------------------------------------
+    def force(self, approach_m: float) -> float:
+        return self.loading.force(approach_m)
+
+    def stiffness(self, approach_m: float) -> float:
+        return self.loading.stiffness(approach_m)
+
+    def energy(self, approach_m: ArrayLike) -> NDArray[np.float64] | float:
+        return self.loading.energy(approach_m)
+
+    def energy_between(self, lower_m: float, upper_m: float) -> float:
+        return self.loading.energy_between(lower_m, upper_m)
+
+    def approach(self, force_N: float) -> float:
+        return self.loading.approach(force_N)
+
+    def contact_radius(self, approach_m: ArrayLike) -> NDArray[np.float64] | float | None:
+        return self.loading.contact_radius(approach_m)
+
+    # -- the memory -----------------------------------------------------------------------------
+    def residual_approach(self, max_approach_m: ArrayLike) -> NDArray[np.float64] | float:
+        """The dent r(m): the monotone cubic Hermite interpolant of the dents against the largest
+        approaches (from no dent at the elastic limit), its end slope beyond the last, m."""
+        peak = np.asarray(max_approach_m, dtype=float)
+        tops = np.concatenate([[self.elastic_limit_m], self.max_approach_m])
+        dents = np.concatenate([[0.0], self.residual_approach_m])
+        slopes = pchip_slopes(tops, dents)
+        i = np.clip(np.searchsorted(tops, peak, side="right") - 1, 0, len(tops) - 2)
+        inside, _ = _hermite(peak, tops[i], tops[i + 1], dents[i], dents[i + 1], slopes[i], slopes[i + 1])
+        out = np.where(peak > tops[-1], dents[-1] + slopes[-1] * (peak - tops[-1]), inside)
+        out = np.where(peak <= self.elastic_limit_m, 0.0, np.clip(out, 0.0, None))
+        return out if peak.ndim else float(out)
+
+    def mix(self, peak: float) -> tuple[int, float]:
+        """The unloading curve at or below the largest approach ``peak`` (-1: the elastic limit)
+        and the weight of the next one in the shape's mix."""
+        tops = self.max_approach_m
+        if peak >= tops[-1]:
+            return len(tops) - 1, 0.0
+        k = int(np.searchsorted(tops, peak, side="right")) - 1
+        low = self.elastic_limit_m if k < 0 else tops[k]
+        return k, (peak - low) / (tops[k + 1] - low)
+
+    def shape_value(self, k: int, xi: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """f and df/dxi of unloading curve ``k`` at ``xi`` (k = -1: the elastic limit's, the
+        loading curve up to it)."""
+        if k >= 0:
+            return self.shapes[k].value(xi)
+        top = self.elastic_limit_m
+        x = np.clip(np.asarray(xi, dtype=float), 0.0, 1.0)
+        load_top = self.loading.force(top)
+        p = np.asarray([self.loading.force(float(a)) for a in np.ravel(x * top)]).reshape(x.shape)
+        dp = np.asarray([self.loading.stiffness(float(a)) for a in np.ravel(x * top)]).reshape(x.shape) * top
+        f = (p / load_top) ** (2.0 / 3.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            df = np.where(p > 0, (2.0 / 3.0) * f * dp / np.where(p > 0, p, 1.0), 0.0)
+        return f, df
+
+    def shape_value_scalar(self, k: int, xi: float) -> tuple[float, float]:
+        """:meth:`shape_value` at one ``xi``, in Python floats."""
+        if k >= 0:
+            return self.shapes[k].value_scalar(xi)
+        top = self.elastic_limit_m
+        x = min(max(xi, 0.0), 1.0)
+        p = self.loading.force(x * top)
+        if p <= 0.0:
+            return 0.0, 0.0
+        f = (p / self.loading.force(top)) ** (2.0 / 3.0)
+        return f, (2.0 / 3.0) * f * self.loading.stiffness(x * top) * top / p
+
+    def shape_power(self, peak: float, xi: ArrayLike) -> NDArray[np.float64]:
+        """P / P_load(peak) on the unloading curve from ``peak``: f^(3/2) of the mixed f, at ``xi``."""
+        k, w = self.mix(peak)
+        f, _ = self.shape_value(k, xi)
+        if w > 0.0:
+            f = (1.0 - w) * f + w * self.shape_value(k + 1, xi)[0]
+        return np.maximum(f, 0.0) ** 1.5
+
+    def branch(self, max_approach_m: float) -> ContactLaw:
+        peak = float(max_approach_m)
+        if peak <= self.elastic_limit_m:
+            return self.loading
+        return UnloadingBranch(self, peak, float(self.residual_approach(peak)))
+
+    def stored_energy(self, approach_m: ArrayLike, max_approach_m: ArrayLike) -> NDArray[np.float64] | float:
+        alpha, peak = np.broadcast_arrays(np.asarray(approach_m, float), np.asarray(max_approach_m, float))
+        out = np.array(
+            [float(self.branch(float(p)).energy(float(a))) for a, p in zip(alpha.ravel(), peak.ravel())], dtype=float
+        ).reshape(alpha.shape)
+        return out if alpha.ndim else float(out)
+
+    def dissipated_energy(self, max_approach_m: ArrayLike) -> NDArray[np.float64] | float:
+        peak = np.asarray(max_approach_m, dtype=float)
+        loaded = np.asarray(self.loading.energy(np.maximum(peak, 0.0)), dtype=float)
+        out = np.maximum(loaded - np.asarray(self.stored_energy(peak, peak), dtype=float), 0.0)
+        return out if peak.ndim else float(out)
+
+    def summary(self) -> dict[str, float | str]:
+        return {
+            **self.loading.summary(),
+            "unloading_curves": len(self.max_approach_m),
+            "elastic_limit_m": float(self.elastic_limit_m),
+            "unloading_max_approach_m": float(self.max_approach_m[-1]),
+        }
+
+    def run_summary(self, max_approach_m: float) -> dict[str, float]:
+        return {
+            **self.loading.run_summary(max_approach_m),
+            "unloading_reach": float(max_approach_m / self.max_approach_m[-1]),
+        }
+
+
+@dataclass(frozen=True)
+class UnloadingBranch(ContactLaw):
+    """The curve a :class:`TabulatedMemoryLaw` contact follows while its largest approach is
+    ``peak`` (m): no force up to the dent ``dent`` (m), the unloading curve up to ``peak``, the
+    loading curve beyond."""
+
+    law: TabulatedMemoryLaw
+    peak: float
+    dent: float
+    name: ClassVar[str] = "tabulated"
+    top_force: float = field(init=False, repr=False, compare=False)
+    _mix: tuple[int, float] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        #: the loading curve's force at the largest approach, N
+        object.__setattr__(self, "top_force", self.law.loading.force(self.peak))
+        object.__setattr__(self, "_mix", self.law.mix(self.peak))
+
+    def _shape(self, xi: float) -> tuple[float, float]:
+        """The mixed f and df/dxi at one ``xi``."""
+        k, w = self._mix
+        f, df = self.law.shape_value_scalar(k, xi)
+        if w > 0.0:
+            f1, df1 = self.law.shape_value_scalar(k + 1, xi)
+            f, df = (1.0 - w) * f + w * f1, (1.0 - w) * df + w * df1
+        return f, df
+
+    def force(self, approach_m: float) -> float:
+        if approach_m <= self.dent:
+            return 0.0
+        if approach_m >= self.peak:
+            return self.law.loading.force(approach_m)
+        f, _ = self._shape((approach_m - self.dent) / (self.peak - self.dent))
+        return self.top_force * max(f, 0.0) ** 1.5
+
+    def stiffness(self, approach_m: float) -> float:
+        if approach_m <= self.dent:
+            return 0.0
+        if approach_m >= self.peak:
+            return self.law.loading.stiffness(approach_m)
+        span = self.peak - self.dent
+        f, df = self._shape((approach_m - self.dent) / span)
+        return self.top_force * 1.5 * math.sqrt(max(f, 0.0)) * df / span
+
+    def energy(self, approach_m: ArrayLike) -> NDArray[np.float64] | float:
+        alpha = np.asarray(approach_m, dtype=float)
+        out = np.array([self._energy(float(a)) for a in alpha.ravel()]).reshape(alpha.shape)
+        return out if alpha.ndim else float(out)
+
+    def _energy(self, alpha: float) -> float:
+        if alpha <= self.dent:
+            return 0.0
+        span = self.peak - self.dent
+        xi = min((alpha - self.dent) / span, 1.0)
+        k, w = self._mix
+        if k >= 0 and w == 0.0:
+            stored = self.top_force * span * float(self.law.shapes[k].integral(xi))
+        else:  # a mix of f (not of f^(3/2)): Gauss on 16 pieces
+            cuts = np.linspace(0.0, xi, 17)
+            points = cuts[:-1, None] + np.diff(cuts)[:, None] * _GX[None, :]
+            stored = self.top_force * span * float(np.diff(cuts) @ (self.law.shape_power(self.peak, points) @ _GW))
+        if alpha > self.peak:
+            stored += self.law.loading.energy_between(self.peak, alpha)
+        return stored
+
+    def approach(self, force_N: float) -> float:
+        if force_N <= 0.0:
+            return self.dent
+        if force_N >= self.top_force:
+            return self.law.loading.approach(force_N)
+        lo, hi = self.dent, self.peak
+        for _ in range(200):
+            mid = 0.5 * (lo + hi)
+            if self.force(mid) < force_N:
+                lo = mid
+            else:
+                hi = mid
+            if hi - lo <= 1e-15 * hi:
+                return 0.5 * (lo + hi)
+        raise StepNotConverged(f"the tabulated unloading curve did not give the force {force_N!r}")
+
+    def contact_radius(self, approach_m: ArrayLike) -> NDArray[np.float64] | float | None:
+        return None

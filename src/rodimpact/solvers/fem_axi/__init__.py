@@ -8,7 +8,9 @@ the refinement loop), :mod:`.film_mesh` (the rod with a bonded film disc on its 
 :mod:`.layers` (how a film or stack is divided through its thickness, and the check of a positive
 argument, without the mesher's imports), :mod:`.film_model` (the film's region and its contact
 nodes), :mod:`.axisym` (the r-weighted elasticity forms), :mod:`.plasticity` (J2 plasticity's
-return mapping and consistent tangent at a body's points), :mod:`.axibody` (one body's Newmark
+return mapping and consistent tangent at a body's points), :mod:`.plastic_region` (the elements near
+the contact where a yielding material may yield, their strain operator and response, and the
+check that the elastic rest stays below yield), :mod:`.axibody` (one body's Newmark
 operators), :mod:`.farbar` (the rod beyond a few diameters as a 1-D bar joined to the continuum),
 :mod:`.gauges` (where the stations' and gauges' strain is read, and how far the continuum
 must reach for the gauges),
@@ -16,7 +18,7 @@ must reach for the gauges),
 (the end test: the energy bound that no contact can follow), :mod:`.aximodel` (the model
 assembled: both bodies and the contact's candidates), :mod:`.solver`
 (:func:`~rodimpact.solvers.fem_axi.solver.solve_fem_axi`), :mod:`.cost` (its cost model) and
-:mod:`.indentation` (the static indentation check).
+:mod:`.indentation` (the static indentation, elastic-plastic where a material yields).
 
 What it may import: :mod:`rodimpact.contact` (for the scales and the film's description
 only: the continuum resolves the contact, and the film, itself), :mod:`rodimpact.model`,

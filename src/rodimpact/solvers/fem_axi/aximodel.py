@@ -20,6 +20,7 @@ import scipy.sparse as sp
 from numpy.typing import NDArray
 from skfem import Basis, ElementTriP1, ElementTriP2, ElementVector
 
+from rodimpact.model.materials import Material
 from rodimpact.solvers.fem_axi.axibody import AxiBody, dofs_of
 from rodimpact.solvers.fem_axi.axisym import axis_dofs, axisym_mass, axisym_stiffness
 from rodimpact.solvers.fem_axi.farbar import FarBar, continuum_length
@@ -30,7 +31,7 @@ from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact, AxiScales
 from rodimpact.solvers.options import OptionError
 
-__all__ = ["AxiModel", "build_model"]
+__all__ = ["AxiModel", "build_model", "material_groups"]
 
 log = logging.getLogger(__name__)
 
@@ -224,3 +225,30 @@ def build_model(
         scales=scales,
         fine_size_m=fine,
     )
+
+
+def material_groups(
+    problem: AxiImpact, model: AxiModel
+) -> tuple[list[tuple[NDArray[np.int64], Material]], list[tuple[NDArray[np.int64], Material]]]:
+    """The elements of the rod and of the impactor by material: (elements, Material) pairs.
+
+    The rod's are its own and, with a film or stack, each layer's (a layer's material from its
+    constants, its yield stress and hardening modulus included); the impactor's are all its own.
+    """
+    rod_elements = np.arange(model.rod.basis.mesh.t.shape[1], dtype=np.int64)
+    imp_elements = np.arange(model.impactor.basis.mesh.t.shape[1], dtype=np.int64)
+    imp = [(imp_elements, problem.impactor_material)]
+    if model.film is None or problem.stack is None:
+        return [(rod_elements, problem.rod_material)], imp
+    rod = [(np.asarray(model.film.rod_elements, dtype=np.int64), problem.rod_material)]
+    for layer, elements in zip(problem.stack.layers, model.film.layer_elements):
+        material = Material(
+            layer.youngs_modulus_pa,
+            layer.poisson_ratio,
+            layer.density_kg_m3,
+            name=layer.name,
+            yield_stress_pa=layer.yield_stress_pa,
+            hardening_modulus_pa=layer.hardening_modulus_pa,
+        )
+        rod.append((np.asarray(elements, dtype=np.int64), material))
+    return rod, imp

@@ -53,6 +53,13 @@ class FEMAxiOptions(SteppingOptions):
         kind=int,
         minimum=1,
     )
+    plastic_extent: float = setting(
+        2.0,
+        "Radius about the contact point within which a yielding material may yield, in estimated contact "
+        "radii; beyond it the body stays elastic and keeps its factorisation (a solve fails when the elastic "
+        "stress beyond reaches the yield stress). Read only where a material declares a yield stress.",
+        exclusive_minimum=0,
+    )
     cap_height: float = setting(
         1.0, "Impactor body 'cap' only: height of the elastic cap, in sphere radii.", exclusive_minimum=0, maximum=1
     )
