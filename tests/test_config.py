@@ -95,9 +95,9 @@ STRESS = [
 
 def test_shipped_config_loads_all_cases(shipped: Project) -> None:
     expected = ["model"] + [f"{row}-{variant}" for row in ROWS for variant in VARIANTS]
-    # 1 + 6 rows x 14 variants, in file order (files sorted by name: gauge_example, model, smooth,
-    # stress, table2, worked_example)
-    others = ("smooth", "stress", "example", "gauge_example")
+    # 1 + 6 rows x 14 variants, in file order (files sorted by name: model, plastic, smooth,
+    # stress, table2, worked_example, worked_example_gauge)
+    others = ("plastic", "smooth", "stress", "example", "gauge_example")
     assert [c for c in shipped.cases if shipped.cases[c]["set"] not in others] == expected
     assert shipped.sets == {
         "gauge_example": ["gauge_8mm", "gauge_12mm", "gauge_16mm", "gauge_20mm"],
@@ -106,6 +106,7 @@ def test_shipped_config_loads_all_cases(shipped: Project) -> None:
         "table2": expected[1:],
         "stress": STRESS,
         "smooth": ["linear_spring"],
+        "plastic": ["thornton_past_yield"],
     }
     assert list(shipped.variants["table2"]) == list(VARIANTS)
     assert shipped.variants["model"] == {}
@@ -687,8 +688,8 @@ MALFORMED = {
     ),
     "unknown target set": (
         _set("config/config.yaml", "targets", "sets", ["model", "tabel2"]),
-        "config/config.yaml: field 'targets.sets[1]': unknown case set 'tabel2'; known: model, smooth, stress, "
-        "table2, example, gauge_example",
+        "config/config.yaml: field 'targets.sets[1]': unknown case set 'tabel2'; known: model, plastic, smooth, "
+        "stress, table2, example, gauge_example",
     ),
     "sensor band of a reading without a calibrated stack": (
         _set("config/config.yaml", "sensor", "band", ["r10_l30_sensor_cal", "r10_l30_film_cal"]),
@@ -773,8 +774,8 @@ MALFORMED = {
     ),
     "stability on an unknown set": (
         _set("config/config.yaml", "stability", "sets", ["stres"]),
-        "config/config.yaml: field 'stability.sets[0]': unknown case set 'stres'; known: model, smooth, stress, "
-        "table2, example, gauge_example",
+        "config/config.yaml: field 'stability.sets[0]': unknown case set 'stres'; known: model, plastic, smooth, "
+        "stress, table2, example, gauge_example",
     ),
     "stability without a method's tolerances": (
         _set("config/config.yaml", "stability", "tolerances", "fem1d", None),

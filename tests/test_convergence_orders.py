@@ -10,6 +10,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from rodimpact.analysis.signals import first_contact_maxima
 from rodimpact.analysis.studies import level_case
 from rodimpact.analysis.work_precision import (
     ORDER_TOLERANCE,
@@ -20,7 +21,7 @@ from rodimpact.analysis.work_precision import (
     work_precision_frame,
 )
 from rodimpact.contact.spring import semi_infinite_rod_contact
-from rodimpact.jobs.runner import run_to_file
+from rodimpact.jobs.runner import run_case, run_to_file
 from rodimpact.model.materials import Material, wave_speed
 from rodimpact.storage.runs import read_run
 
@@ -132,6 +133,110 @@ def test_the_smooth_case_shows_the_formal_order_in_every_stated_norm(smooth_orde
         assert row["fitted_levels"], (method, quantity)
         assert abs(row["observed_order"] - 2) <= ORDER_TOLERANCE, (method, quantity, row["observed_order"])
         assert row["monotone"], (method, quantity)
+
+
+#: fem1d's levels run on the Thornton case: levels 1 to 5 (the table fits its contact time and
+#: its max norm on 1-4, its L2 norm on 2-5; level 6 alone takes 6 s).
+THORNTON_FEM1D_LEVELS = slice(1, 6)
+
+
+@pytest.fixture(scope="module")
+def thornton_orders(shipped_project, shipped_config, tmp_path_factory):
+    """sem at every shipped level and fem1d at five on Thornton's law past yield
+    (config/cases/plastic.yaml), fitted as the table fits them, with the case's own orders."""
+    study = shipped_config["work_precision"]
+    records = _level_runs(
+        shipped_project,
+        shipped_config,
+        "thornton_past_yield",
+        THORNTON_FEM1D_LEVELS,
+        tmp_path_factory.mktemp("thornton"),
+    )
+    frame = work_precision_frame(records, study["methods"])
+    orders = observed_orders(
+        frame, study["methods"], study["fit_levels"], arrival_window=study["arrival_window"], per_case=study["per_case"]
+    )
+    return SimpleNamespace(records=records, frame=frame, orders=orders)
+
+
+def test_the_thornton_case_yields_and_turns_inside_one_contact(thornton_orders) -> None:
+    """Both points where the law is not smooth lie inside the first contact, and no wave returns
+    during it: the approach passes the yield approach, rises and falls once, and the contact ends
+    before 2L/c."""
+    finest = [r for r in thornton_orders.records if r.method == "sem"][-1]
+    assert finest.summary["approach_over_yield"] > 2.0  # 2.5 at the finest level
+    time, approach = np.asarray(finest.series["time"]), np.asarray(finest.series["approach"])
+    end = float(np.atleast_1d(finest.summary["contact_end_s"])[0])
+    rise = np.diff(approach[time <= end])
+    turn = int(np.argmax(approach[time <= end]))
+    assert (rise[:turn] > 0).all() and (rise[turn:] < 0).all()
+    rod = finest.config["rod"]
+    assert end < 2.0 * rod["length_m"] / wave_speed(Material.from_mapping(rod["material"]))
+
+
+@pytest.mark.parametrize("method", ["sem", "fem1d"])
+def test_thorntons_law_keeps_the_elastic_orders_off_its_maximum(thornton_orders, method) -> None:
+    """A jump of d2P/dt2 at the yield point and at the unloading turn leaves the second-order
+    schemes at 2, and the Hertz start at 3/2 in the max norm; the maximum has no order stated."""
+    rows = thornton_orders.orders[thornton_orders.orders["method"] == method].set_index("quantity")
+    stated = rows[rows["expected_order"].notna()]
+    assert set(stated.index) == {"contact_time", "history_l2", "history_max"}
+    assert rows.loc["max_1", "within_expected"] is None
+    for quantity, row in stated.iterrows():
+        assert row["fitted_levels"], (method, quantity)
+        assert abs(row["observed_order"] - row["expected_order"]) <= ORDER_TOLERANCE, (
+            method,
+            quantity,
+            row["observed_order"],
+            row["expected_order"],
+        )
+        assert row["monotone"], (method, quantity)
+
+
+#: Resolutions (steps per Hertz time) between the study's levels, 8 apart: the unloading turn
+#: falls at every phase of its step.
+PHASE_SCAN = {"sem": range(800, 961, 8), "fem1d": range(400, 465, 8)}
+
+
+@pytest.mark.parametrize("method", ["sem", "fem1d"])
+def test_the_error_at_thorntons_unloading_turn_depends_on_where_it_falls_in_its_step(
+    thornton_orders, shipped_project, shipped_config, method
+) -> None:
+    """The force's maximum lies at the unloading turn, where d2P/dt2 jumps: its error is
+    c h^2 with a c set by where the turn falls inside its step. Over resolutions 8 apart, c of
+    the maximum varies more than fourfold (sem: 0.10 to 0.97 in n^2 x the relative error) or
+    changes sign (fem1d: -0.09 to 0.74), so a doubling of n can leave the error larger and no
+    order can be fitted; c of the contact time keeps one sign and varies less than fourfold
+    (sem: -0.30 to -0.46; fem1d: -0.18 to -0.35), so its error falls at every doubling."""
+    coarse, fine = (r.summary for r in [r for r in thornton_orders.records if r.method == "sem"][-2:])
+
+    def scalars(summary) -> tuple[float, float]:
+        maxima = first_contact_maxima(summary["peak_time_s"], summary["peak_force_N"], summary["contact_end_s"])
+        return float(summary["contact_time_s"]), float(maxima[0])
+
+    reference = [q1 + (q1 - q2) / 3.0 for q2, q1 in zip(scalars(coarse), scalars(fine), strict=True)]
+    case = shipped_project.cases["thornton_past_yield"]
+    coefficients = []
+    for n in PHASE_SCAN[method]:
+        overrides = {"steps_per_contact": n} | ({"points_per_wavelength": float(n)} if method == "fem1d" else {})
+        result = run_case(level_case(case, method, shipped_config["numerics"], overrides), method)
+        summary = {
+            "contact_time_s": result.contact_time_s,
+            "peak_time_s": result.peak_time_s,
+            "peak_force_N": result.peak_force_N,
+            "contact_end_s": result.contact_end_s,
+        }
+        coefficients.append([n * n * (q / ref - 1.0) for q, ref in zip(scalars(summary), reference, strict=True)])
+    contact_time, maximum = np.asarray(coefficients).T
+    # the ranges docs/studies.md quotes (pytest -rP prints them)
+    print(
+        f"{method}: n^2 x relative error, maximum {maximum.min():+.2f} to {maximum.max():+.2f}, "
+        f"contact time {contact_time.min():+.2f} to {contact_time.max():+.2f}"
+    )
+    assert np.abs(coefficients).max() < 1.2  # O(h^2) in both: c bounded
+    assert maximum.min() <= 0.0 or maximum.max() > 4.0 * maximum.min(), maximum
+    # one sign (negative), and its largest |c| under four times its smallest
+    assert (contact_time < 0).all() and contact_time.min() > 4.0 * contact_time.max(), contact_time
 
 
 def test_a_history_is_linear_between_its_nodes_and_its_located_contact_end() -> None:

@@ -56,6 +56,8 @@ SMALLER = {
     ("sensor", "film_table", "no_film_calibrated"),
     # the study's separate cases take minutes (fem_axi on the slowest Table 2 row): none in .test
     ("work_precision", "separate"),
+    # a case's own methods and orders, for the cases .test sweeps only (checked below)
+    ("work_precision", "per_case"),
 }
 
 
@@ -73,3 +75,7 @@ def test_its_settings_are_the_shipped_settings_but_smaller() -> None:
     assert all(
         spec["levels"] == _config(ROOT)["work_precision"]["methods"][m]["levels"][:3] for m, spec in levels.items()
     )
+    # per_case: the shipped entries of exactly the cases .test sweeps, unchanged
+    shipped_study, small_study = _config(ROOT)["work_precision"], _config(TEST)["work_precision"]
+    swept = set(small_study["cases"]) & set(shipped_study.get("per_case", {}))
+    assert small_study.get("per_case", {}) == {case: shipped_study["per_case"][case] for case in swept}

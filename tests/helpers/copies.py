@@ -93,7 +93,7 @@ def _small_studies(project: Path) -> None:
         m: {**spec, "levels": spec["levels"][:3]} for m, spec in study["methods"].items() if m != "fem_axi"
     }
     study.pop("separate", None)  # fem_axi on the slowest Table 2 row: not swept here
-    study.pop("per_case", None)  # the smooth case is not among the cases here
+    study.pop("per_case", None)  # the smooth and elastic-plastic cases are not among the cases here
     document["stability"]["map"].update(mass_kg=[1.0e-3, 1.0e-2], impedance_kg_s=[3.0, 1000.0])
     config.write_text(yaml.safe_dump(document, sort_keys=False), encoding="utf-8")
     stress = project / "config" / "cases" / "stress.yaml"
