@@ -4,6 +4,7 @@ unloading (a dent and dissipated work)."""
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import math
 
@@ -18,12 +19,14 @@ from rodimpact.contact.sphere_flat import (
     kogut_etsion_critical_interference,
     kogut_etsion_force,
 )
+from rodimpact.contact.tabulated import TabulatedLaw, TabulatedMemoryLaw
 from rodimpact.solvers.fem_axi.aximodel import build_model, material_groups
 from rodimpact.solvers.fem_axi.axisym import axisym_stiffness
 from rodimpact.solvers.fem_axi.indentation import static_indentation
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.plastic_region import plastic_region
 from rodimpact.solvers.fem_axi.plasticity import J2Material
+from rodimpact.storage.curves import read_contact_curve, write_contact_curve
 from rodimpact.tools.sphere_flat import (
     RADIUS_M,
     SPHERE,
@@ -138,3 +141,58 @@ def test_a_plastic_region_too_small_is_reported():
     assert result.status == "plastic_region"
     assert "plastic_extent" in result.message
     assert len(result.force_N) < len(d)
+
+
+@pytest.fixture(scope="module")
+def yielding_curve(shipped_project):
+    """The indentation rule's curve of the lightest Table 2 ball on the 10 mm rod, ball and rod of
+    yielding materials (the ball maker's 2.03 GPa, 6061-T6's 276 MPa), on a coarse mesh."""
+    from rodimpact.jobs.indentation import indentation_curve
+
+    case = copy.deepcopy(shipped_project.cases["ball_3.16mm-r10_l30_cal"])
+    case["impactor"]["material"]["yield_stress_pa"] = 2.03e9
+    case["rod"]["material"]["yield_stress_pa"] = 2.76e8
+    settings = {"elements_across": 5, "contact_extent": 2.5, "plastic_extent": 4.0}
+    return case, indentation_curve(case, settings)
+
+
+def test_the_indentation_rule_gives_unloading_curves_where_a_material_yields(yielding_curve, tmp_path):
+    """A yielding case's curve holds unloading curves, the elastic limit and their interpolation
+    error; it is stored and read back whole; the law it makes has memory, and its rigid impact
+    leaves a dent and dissipates what loading did not give back."""
+    case, curve = yielding_curve
+    summary = curve.summary
+    assert summary["unloading_curves"] >= 3
+    assert 0.0 < summary["elastic_limit_m"] < curve.data["approach_m"][-1]
+    assert 0.0 < summary["unloading_interpolation_error_half"] < 0.05
+    index = curve.data["unloading_curve"]
+    assert np.all(np.diff(index) >= 0) and len(np.unique(index)) == summary["unloading_curves"]
+    # every unloading curve starts at a point of the loading curve and falls
+    for k in np.unique(index):
+        alpha = curve.data["unloading_approach_m"][index == k]
+        force = curve.data["unloading_force_N"][index == k]
+        assert alpha[0] in curve.data["approach_m"]
+        assert np.all(np.diff(force) <= 0) and force[-1] == 0.0
+    path = write_contact_curve(tmp_path / "curve.h5", curve)
+    back = read_contact_curve(path)
+    for name, values in curve.data.items():
+        np.testing.assert_array_equal(back.data[name], values)
+    law = TabulatedLaw.from_bodies({"from": "fem_axi_indentation", "curve": back.law_curve()}, 0.00158, SPHERE, SPHERE)
+    assert isinstance(law, TabulatedMemoryLaw)
+    mass, velocity = case["impactor"]["mass_kg"], case["impactor"]["velocity_m_s"]
+    impact = law.rigid_impact(mass, velocity)
+    assert 0.5 < impact.restitution < 0.95 and impact.residual_approach_m > 0.0
+    kinetic = 0.5 * mass * velocity**2
+    dissipated = float(law.dissipated_energy(impact.max_approach_m))
+    assert dissipated == pytest.approx(kinetic * (1.0 - impact.restitution**2), rel=1e-9)
+
+
+def test_unloading_curves_without_their_elastic_limit_are_refused(yielding_curve, tmp_path):
+    """A curve file with unloading curves must say where the contact stops being elastic."""
+    _, curve = yielding_curve
+    bare = dataclasses.replace(curve, summary={k: v for k, v in curve.summary.items() if k != "elastic_limit_m"})
+    with pytest.raises(ValueError, match="elastic limit"):
+        write_contact_curve(tmp_path / "bare.h5", bare)
+    partial = dataclasses.replace(curve, data={k: v for k, v in curve.data.items() if k != "unloading_force_N"})
+    with pytest.raises(ValueError, match="unloading datasets"):
+        write_contact_curve(tmp_path / "partial.h5", partial)

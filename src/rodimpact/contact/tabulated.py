@@ -450,7 +450,7 @@ def unloading_shape(approach_m: Sequence[float], force_N: Sequence[float]) -> tu
     -------
     residual_m : float
         The dent r: where the curve's last two positive points, straight in (alpha, P^(2/3)),
-        reach zero force, m.
+        reach zero force, m (0 where that falls below zero).
     shape : UnloadingShape
     """
     alpha = np.asarray(approach_m, float)
@@ -463,7 +463,8 @@ def unloading_shape(approach_m: Sequence[float], force_N: Sequence[float]) -> tu
         raise ValueError("an unloading curve must fall: approach and force decreasing")
     g = force ** (2.0 / 3.0)
     slope = (g[-2] - g[-1]) / (alpha[-2] - alpha[-1])
-    residual = float(alpha[-1] - g[-1] / slope)
+    # no dent below zero (a curve just past first yield, straight to rounding)
+    residual = max(float(alpha[-1] - g[-1] / slope), 0.0)
     top = alpha[0]
     xi = np.concatenate([[0.0], (alpha[::-1] - residual) / (top - residual)])
     f = np.concatenate([[0.0], g[::-1] / g[0]])
@@ -515,7 +516,7 @@ class TabulatedMemoryLaw(MemoryLaw):
         for k in np.unique(index):
             dent, shape = unloading_shape(alpha[index == k], force[index == k])
             tops.append(float(alpha[index == k][0]))
-            dents.append(max(dent, 0.0))
+            dents.append(dent)
             shapes.append(shape)
         return cls(loading, float(curve["elastic_limit_m"]), tuple(tops), tuple(dents), tuple(shapes))
 
@@ -691,20 +692,34 @@ class UnloadingBranch(ContactLaw):
         return out if alpha.ndim else float(out)
 
     def _energy(self, alpha: float) -> float:
-        if alpha <= self.dent:
-            return 0.0
-        span = self.peak - self.dent
-        xi = min((alpha - self.dent) / span, 1.0)
+        return self.energy_between(self.dent, alpha) if alpha > self.dent else 0.0
+
+    def _shape_integral(self, lower: float, upper: float) -> float:
+        """int_lower^upper of the mixed f^(3/2) d xi (0 <= lower <= upper <= 1): Gauss on every
+        piece between the mixed shapes' nodes (each smooth there)."""
         k, w = self._mix
         if k >= 0 and w == 0.0:
-            stored = self.top_force * span * float(self.law.shapes[k].integral(xi))
-        else:  # a mix of f (not of f^(3/2)): Gauss on 16 pieces
-            cuts = np.linspace(0.0, xi, 17)
-            points = cuts[:-1, None] + np.diff(cuts)[:, None] * _GX[None, :]
-            stored = self.top_force * span * float(np.diff(cuts) @ (self.law.shape_power(self.peak, points) @ _GW))
-        if alpha > self.peak:
-            stored += self.law.loading.energy_between(self.peak, alpha)
-        return stored
+            shape = self.law.shapes[k]
+            return float(shape.integral(upper) - shape.integral(lower))
+        nodes = [np.asarray(self.law.shapes[j].xi) for j in (k, k + 1) if j >= 0]
+        inner = np.concatenate(nodes) if nodes else np.empty(0)
+        if k < 0:  # the elastic limit's shape: the loading curve's nodes, scaled
+            inner = np.concatenate([inner, np.asarray(self.law.loading.approach_m) / self.law.elastic_limit_m])
+        cuts = np.unique(np.concatenate([[lower, upper], inner[(inner > lower) & (inner < upper)]]))
+        points = cuts[:-1, None] + np.diff(cuts)[:, None] * _GX[None, :]
+        return float(np.diff(cuts) @ (self.law.shape_power(self.peak, points) @ _GW))
+
+    def energy_between(self, lower_m: float, upper_m: float) -> float:
+        """int_lower^upper P d alpha, J: the unloading curve's part by Gauss on its shape's pieces,
+        the loading curve's beyond the largest approach by its own."""
+        span = self.peak - self.dent
+        total = 0.0
+        low, high = max(lower_m, self.dent), min(upper_m, self.peak)
+        if high > low:
+            total += self.top_force * span * self._shape_integral((low - self.dent) / span, (high - self.dent) / span)
+        if upper_m > self.peak:
+            total += self.law.loading.energy_between(max(lower_m, self.peak), upper_m)
+        return total
 
     def approach(self, force_N: float) -> float:
         if force_N <= 0.0:

@@ -14,6 +14,15 @@ load into the rod, all from the continuum. The load range runs up to
 analytic law (the largest force the impact can reach), at displacements spaced in ratio.
 The interpolation error of the ``tabulated`` law is measured by rebuilding it from every
 other point and comparing at the points left out.
+
+Where a material of the case yields, the indentation is elastic-plastic and a path
+(:func:`~rodimpact.solvers.fem_axi.indentation.static_indentation` with an
+:class:`~rodimpact.solvers.fem_axi.indentation.UnloadingPlan`): the loading displacements
+(:data:`PLASTIC_POINTS`), and from the first that dissipates, from every fourth after it and
+from the last, an unloading curve down to no force and back. The curve file then holds the
+unloading curves too, and the law is the ``tabulated`` law with memory
+(:class:`~rodimpact.contact.tabulated.TabulatedMemoryLaw`); the interpolation error of its
+unloading curves is measured as the loading curve's, with every other curve left out.
 """
 
 from __future__ import annotations
@@ -28,15 +37,15 @@ from typing import Any
 import numpy as np
 
 from rodimpact.contact.laws import bodies_contact, build_law
-from rodimpact.contact.tabulated import TabulatedLaw
+from rodimpact.contact.tabulated import TabulatedLaw, TabulatedMemoryLaw
 from rodimpact.model.materials import Material
-from rodimpact.solvers.fem_axi.indentation import static_indentation
+from rodimpact.solvers.fem_axi.indentation import UnloadingPlan, static_indentation
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact
 from rodimpact.storage.atomic import atomic_directory
 from rodimpact.storage.curves import ContactCurve, write_contact_curve
 
-__all__ = ["LOAD_MARGIN", "POINTS", "indentation_curve", "indentation_to_file", "indentations_into"]
+__all__ = ["LOAD_MARGIN", "PLASTIC_POINTS", "POINTS", "indentation_curve", "indentation_to_file", "indentations_into"]
 
 log = logging.getLogger(__name__)
 
@@ -45,6 +54,11 @@ LOAD_MARGIN = 1.5
 #: Displacements of the rigid back, spaced in ratio from SMALLEST * d_max to d_max.
 POINTS = 17
 SMALLEST = 0.03
+#: Where a material yields: the loading path's displacements (each about 7.6 % above the last: the
+#: elastic-plastic solve is incremental), and how much deeper the first try indents than an
+#: elastic contact would for the same force.
+PLASTIC_POINTS = 49
+PLASTIC_REACH = 1.5
 
 
 def _bodies_case(case: Mapping[str, Any]) -> dict[str, Any]:
@@ -89,15 +103,21 @@ def indentation_curve(case: Mapping[str, Any], settings: Mapping[str, Any] | Non
     rod = case["rod"]
     compliance = float(rod["length_m"]) / (float(rod["material"]["youngs_modulus_pa"]) * float(rod["area_m2"]))
     d_max = 1.2 * (law.approach(peak) + compliance * peak)
+    plan = UnloadingPlan() if problem.yields else None
+    if plan is not None:
+        d_max *= PLASTIC_REACH  # a yielding contact needs a deeper indentation for the same force
     for _ in range(6):
-        displacements = d_max * np.geomspace(SMALLEST, 1.0, POINTS)
-        result = static_indentation(problem, displacements, options)
+        displacements = d_max * np.geomspace(SMALLEST, 1.0, POINTS if plan is None else PLASTIC_POINTS)
+        result = static_indentation(problem, displacements, options, unloading=plan, until_force_N=peak)
+        if not result.success:
+            raise RuntimeError(f"case {case['id']!r}: the indentation failed: {result.message}")
         if result.force_N[-1] >= peak:
             break
         d_max *= 1.5 * (peak / max(result.force_N[-1], 1e-300)) ** (2.0 / 3.0)
     else:
         raise RuntimeError(f"case {case['id']!r}: the indentation did not reach {peak:.4g} N")
     force = np.asarray(result.force_N, float)
+    displacements = displacements[: len(force)]
     approach = displacements - compliance * force
     keep = force > 0
     if keep.sum() < 4 or np.any(np.diff(approach[keep]) <= 0) or np.any(np.diff(force[keep]) <= 0):
@@ -141,7 +161,77 @@ def indentation_curve(case: Mapping[str, Any], settings: Mapping[str, Any] | Non
         "displacement_m": displacements,
         "law_approach_m": law_approach,
     }
+    if plan is not None:
+        memory = _memory_curves(case, result, approach, force, compliance, keep)
+        data.update(memory.pop("data"))
+        summary.update(memory)
     return ContactCurve(case_id=str(case["id"]), data=data, summary=summary, config=dict(case))
+
+
+def _memory_curves(
+    case: Mapping[str, Any],
+    result: Any,
+    approach: np.ndarray,
+    force: np.ndarray,
+    compliance: float,
+    keep: np.ndarray,
+) -> dict[str, Any]:
+    """The unloading curves of an elastic-plastic indentation as the law with memory reads them,
+    the elastic limit, and the interpolation error of the unloading curves (the law rebuilt from
+    every other curve, at the points of those left out, relative to each curve's largest force)."""
+    work = np.asarray(result.plastic_work_J, float)[keep]
+    loading_index = np.flatnonzero(keep)  # loading displacement -> its point on the kept curve
+    if not np.any(work > 0):
+        raise RuntimeError(f"case {case['id']!r}: a material yields but the indentation dissipated nothing")
+    first = int(np.argmax(work > 0))
+    elastic_limit = float(approach[first - 1]) if first > 0 else 0.5 * float(approach[0])
+    curve, alpha, load = [], [], []
+    tops = np.unique(result.unloading_curve)
+    for k, top in enumerate(tops):
+        at = int(np.searchsorted(loading_index, top))
+        on = result.unloading_curve == top
+        down_force = np.asarray(result.unloading_force_N, float)[on]
+        down_alpha = np.asarray(result.unloading_displacement_m, float)[on] - compliance * down_force
+        curve += [k] * (1 + int(on.sum()))
+        alpha += [float(approach[at]), *down_alpha.tolist()]
+        load += [float(force[at]), *down_force.tolist()]
+    unloading = {"curve": curve, "approach_m": alpha, "force_N": load}
+    error = math.nan
+    if len(tops) >= 3:
+        loading = TabulatedLaw(tuple(approach), tuple(force))
+        index = np.asarray(curve)
+        kept = np.isin(index, np.arange(0, len(tops), 2))
+        half = TabulatedMemoryLaw.from_curve(
+            loading,
+            {
+                "unloading": {key: np.asarray(value)[kept].tolist() for key, value in unloading.items()},
+                "elastic_limit_m": elastic_limit,
+            },
+        )
+        errors = []
+        for k in range(1, len(tops) - 1, 2):
+            on = index == k
+            a, p = np.asarray(alpha)[on], np.asarray(load)[on]
+            branch = half.branch(float(a[0]))
+            errors += [abs(branch.force(float(x)) - y) / p[0] for x, y in zip(a[1:], p[1:])]
+        error = float(max(errors))
+    log.info(
+        "case %s: %d unloading curves; elastic up to %.4g m; their interpolation error (every other curve) %.2e",
+        case["id"],
+        len(tops),
+        elastic_limit,
+        error,
+    )
+    return {
+        "data": {
+            "unloading_curve": np.asarray(curve, float),
+            "unloading_approach_m": np.asarray(alpha, float),
+            "unloading_force_N": np.asarray(load, float),
+        },
+        "elastic_limit_m": elastic_limit,
+        "unloading_curves": len(tops),
+        "unloading_interpolation_error_half": error,
+    }
 
 
 def indentation_to_file(case: Mapping[str, Any], path: str, settings: Mapping[str, Any] | None = None) -> None:

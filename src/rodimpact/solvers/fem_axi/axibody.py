@@ -94,9 +94,18 @@ def spd_inverse_rows(
         ``rows matrix^-1 rows^T`` (symmetric).
     solve : callable
         The factor's solver, as :func:`spd_solver` returns it.
+
+    Raises
+    ------
+    numpy.linalg.LinAlgError
+        A pivot of the factor is not positive: the matrix is not positive definite.
     """
     factor = qdldl.Solver(sp.triu(matrix, format="csc"))
     lower, diagonal, order = factor.factors()
+    if not np.all(diagonal > 0.0):
+        raise np.linalg.LinAlgError(
+            f"the matrix is not positive definite: {int(np.sum(~(diagonal > 0.0)))} pivots of its LDL^T not positive"
+        )
     lower = sp.csc_matrix(lower)
     lower.sort_indices()
     n = lower.shape[0]

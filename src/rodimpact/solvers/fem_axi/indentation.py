@@ -44,7 +44,7 @@ from rodimpact.solvers.fem_axi.plasticity import J2State
 from rodimpact.solvers.fem_axi.problem import AxiImpact
 from rodimpact.solvers.fem_axi.solver import build_model
 
-__all__ = ["NEWTON_RTOL", "Indentation", "static_indentation"]
+__all__ = ["NEWTON_RTOL", "Indentation", "UnloadingPlan", "static_indentation"]
 
 log = logging.getLogger(__name__)
 
@@ -54,6 +54,33 @@ regions is below this fraction of the larger of the contact force and the plasti
 (the residual stresses' scale, which stays when the contact force vanishes), both per radian."""
 MAX_NEWTON = 60
 """Newton iterations allowed per displacement."""
+
+
+@dataclass(frozen=True)
+class UnloadingPlan:
+    """Unloading curves taken along an elastic-plastic indentation's loading path.
+
+    Parameters
+    ----------
+    every : int
+        An unloading curve from the first loading displacement that dissipates, from every
+        ``every``-th after it, and from the last (>= 1).
+    points : int
+        Displacements of each unloading curve, evenly spaced from its maximum down to zero (it
+        stops at the first with no force) (>= 3).
+    reload : int
+        Displacements back up to the maximum before the path goes on (>= 1).
+    """
+
+    every: int = 4
+    points: int = 12
+    reload: int = 3
+
+    def __post_init__(self) -> None:
+        for name, least in (("every", 1), ("points", 3), ("reload", 1)):
+            value = getattr(self, name)
+            if not isinstance(value, int) or value < least:
+                raise ValueError(f"{name} must be an integer >= {least}, got {value!r}")
 
 
 @dataclass(frozen=True)
@@ -84,12 +111,23 @@ class Indentation:
         Quadrature points that yielded at each displacement.
     newton_iterations : int
         Newton iterations over the path (0: elastic, one solve per displacement).
-    status : {"ok", "not_converged", "plastic_region"}
+    elastic_tangent_iterations : int
+        Of them, those whose consistent tangent was singular (a perfectly plastic zone) and that
+        took the elastic tangent instead.
+    status : {"ok", "not_converged", "plastic_region", "contact_extent"}
         "not_converged": a displacement's Newton iteration did not converge within
         ``MAX_NEWTON``; "plastic_region": the elastic stress beyond a plastic region reached the
-        yield stress (raise ``plastic_extent``). The arrays hold the displacements solved before.
+        yield stress (raise ``plastic_extent``); "contact_extent": the contact reached the
+        outermost candidate (raise ``contact_extent``; checked where a material yields, whose
+        contact outgrows Hertz's). The arrays hold the displacements solved before.
     message : str
         Why, when ``status`` is not "ok".
+    unloading_curve : ndarray of int or None
+        With an :class:`UnloadingPlan`, for each point of the unloading curves, the index of the
+        loading displacement its curve starts from (the curve's maximum), shape (u,).
+    unloading_displacement_m, unloading_force_N : ndarray or None
+        The unloading curves' displacements and forces, in path order (each curve from just below
+        its maximum down to its first point with no force), m and N, shape (u,).
     """
 
     displacement_m: NDArray[np.float64]
@@ -101,8 +139,12 @@ class Indentation:
     plastic_work_J: NDArray[np.float64] | None = None
     yielded_points: NDArray[np.int64] | None = None
     newton_iterations: int = 0
+    elastic_tangent_iterations: int = 0
     status: str = "ok"
     message: str = ""
+    unloading_curve: NDArray[np.int64] | None = None
+    unloading_displacement_m: NDArray[np.float64] | None = None
+    unloading_force_N: NDArray[np.float64] | None = None
 
     @property
     def success(self) -> bool:
@@ -111,7 +153,11 @@ class Indentation:
 
 
 def static_indentation(
-    problem: AxiImpact, displacements_m: Sequence[float], options: FEMAxiOptions | None = None
+    problem: AxiImpact,
+    displacements_m: Sequence[float],
+    options: FEMAxiOptions | None = None,
+    unloading: UnloadingPlan | None = None,
+    until_force_N: float | None = None,
 ) -> Indentation:
     """Push the rigid back of a ``cap`` impactor by each displacement and solve the contact.
 
@@ -124,6 +170,13 @@ def static_indentation(
         path in this order (a displacement below the last unloads).
     options : FEMAxiOptions, optional
         The mesh's settings (``elements_across``, ``contact_extent``, ``cap_height``, ``element``).
+    unloading : UnloadingPlan, optional
+        Where a material yields, the unloading curves to take along the path (the continuum's
+        law with memory); None: none. Ignored where nothing yields (the loading curve is the
+        unloading curve).
+    until_force_N : float, optional
+        Where a material yields, the path ends at the first loading displacement whose force
+        reaches this, N (its unloading curve taken, with a plan); None: every displacement.
 
     Returns
     -------
@@ -133,8 +186,8 @@ def static_indentation(
         raise ValueError("problem: static indentation needs body='cap' and a fixed far end")
     options = FEMAxiOptions() if options is None else options
     model = build_model(problem, options, dynamic=False)  # statics: no mass matrices
-    if _yields(problem):
-        return _plastic_path(problem, model, displacements_m, options)
+    if problem.yields:
+        return _plastic_path(problem, model, displacements_m, options, unloading, until_force_N)
     rod, imp, B_rod, B_imp, gap0, r_c, fine = (
         model.rod,
         model.impactor,
@@ -179,16 +232,6 @@ def static_indentation(
     )
 
 
-def _yields(problem: AxiImpact) -> bool:
-    """A material of either body yields (the impactor, the rod or a layer)."""
-    layers = problem.stack.layers if problem.stack is not None else ()
-    return (
-        problem.impactor_material.yields
-        or problem.rod_material.yields
-        or any(layer.yield_stress_pa is not None for layer in layers)
-    )
-
-
 @dataclass
 class _CondensedBody:
     """A body that yields, condensed on the coordinates its plastic region and its contact
@@ -212,6 +255,7 @@ class _CondensedBody:
     n: int
     state: J2State
     q: NDArray[np.float64]
+    _elastic: object = None
 
     @classmethod
     def of(cls, K: sp.spmatrix, B: sp.spmatrix, region: PlasticRegion, extra: sp.spmatrix | None) -> _CondensedBody:
@@ -250,6 +294,12 @@ class _CondensedBody:
             q=np.zeros(len(kept)),
         )
 
+    def elastic_delassus(self):
+        """B K_c^-1 B^T and K_c's solver: the elastic tangent's, factorised once."""
+        if self._elastic is None:
+            self._elastic = spd_inverse_rows(self.K_c, self.B)
+        return self._elastic
+
     def respond(self, q: NDArray[np.float64]):
         """The region's response at the kept coordinates ``q``."""
         return self.region.respond(q[self.region_at], self.state)
@@ -271,7 +321,12 @@ def _elastic_delassus(K: sp.spmatrix, B: sp.spmatrix, extra: sp.spmatrix | None)
 
 
 def _plastic_path(
-    problem: AxiImpact, model: AxiModel, displacements_m: Sequence[float], options: FEMAxiOptions
+    problem: AxiImpact,
+    model: AxiModel,
+    displacements_m: Sequence[float],
+    options: FEMAxiOptions,
+    unloading: UnloadingPlan | None,
+    until_force_N: float | None,
 ) -> Indentation:
     """:func:`static_indentation` where a material yields: the displacements as a path."""
     radius = options.plastic_extent * model.scales.contact_radius_m
@@ -303,24 +358,28 @@ def _plastic_path(
         else:
             yielding.append((_CondensedBody.of(K, B, region, extra), axi, YieldGuard.beyond(axi.basis, groups, region)))
     gap0, r_c = model.gap0, model.r_c
-    forces, radii, moved, work, yielded = [], [], [], [], []
-    iterations, status, message = 0, "ok", ""
-    done_work = 0.0
-    lam = np.zeros(len(gap0))
-    for d in displacements_m:
+    counters = {"iterations": 0, "work": 0.0, "elastic_tangent": 0}
+
+    def solve(d: float) -> tuple[dict[str, object] | None, str, str]:
+        """One displacement from the history the last left: its record, or None and why."""
         trials = [body.respond(body.q) for body, _, _ in yielding]
-        converged = False
         for _ in range(MAX_NEWTON):
-            iterations += 1
+            counters["iterations"] += 1
             delassus = fixed_delassus.copy()
             gap = gap0 - d
             steps = []
             for (body, _, _), trial in zip(yielding, trials):
-                K_t = body.K_c
+                A_t, solve_t = None, None
                 if trial.tangent_change.nnz:
-                    change = _embed(trial.tangent_change, body.region_at, len(body.kept))
-                    K_t = sp.csc_matrix(K_t + change)
-                A_t, solve_t = spd_inverse_rows(K_t, body.B)
+                    K_t = sp.csc_matrix(body.K_c + _embed(trial.tangent_change, body.region_at, len(body.kept)))
+                    try:
+                        A_t, solve_t = spd_inverse_rows(K_t, body.B)
+                    except np.linalg.LinAlgError:
+                        # a perfectly plastic zone can make the consistent tangent singular: this
+                        # iterate takes the elastic one (a modified Newton step, converging linearly)
+                        counters["elastic_tangent"] += 1
+                if A_t is None:
+                    A_t, solve_t = body.elastic_delassus()
                 load = np.zeros(len(body.kept))
                 load[body.region_at] = trial.load
                 dq0 = solve_t(load - body.K_c @ body.q)
@@ -338,50 +397,103 @@ def _plastic_path(
                 scale = max(scale, float(np.linalg.norm(trials[i].load)))
             log.debug("d = %.6g m: residual %.3e of the force scale", d, math.sqrt(residual) / max(scale, 1e-300))
             if math.sqrt(residual) <= NEWTON_RTOL * max(scale, 1e-300) or residual == 0.0:
-                converged = True
                 break
-        if not converged:
-            status = "not_converged"
-            message = f"the Newton iteration at d = {d:.6g} m did not converge in {MAX_NEWTON} iterations"
-            break
-        escaped = None
+        else:
+            return (
+                None,
+                "not_converged",
+                f"the Newton iteration at d = {d:.6g} m did not converge in {MAX_NEWTON} iterations",
+            )
+        escaped = 0.0
         for (body, axi, guard), trial in zip(yielding, trials):
             body.state = trial.state
-            done_work += trial.plastic_work_J
+            counters["work"] += trial.plastic_work_J
             ratio = guard.ratio(axi.T @ _padded(body.full(body.q), axi.n))
             log.debug("d = %.6g m: beyond the plastic region %.3g of the yield stress", d, ratio)
-            if ratio >= 1.0:
-                escaped = ratio
-        forces.append(2 * math.pi * lam.sum())
-        radii.append(float(r_c[lam > 0].max()) if (lam > 0).any() else 0.0)
+            escaped = max(escaped, ratio)
+        if escaped >= 1.0:
+            return (
+                None,
+                "plastic_region",
+                (
+                    f"at d = {d:.6g} m the elastic stress beyond the plastic region (radius {radius:.4g} m) reaches "
+                    f"{escaped:.3g} of the yield stress: raise plastic_extent"
+                ),
+            )
+        if lam[np.argmax(r_c)] > 0.0:
+            return (
+                None,
+                "contact_extent",
+                (
+                    f"at d = {d:.6g} m the contact reaches the outermost candidate (r = {r_c.max():.4g} m): "
+                    "raise contact_extent"
+                ),
+            )
         means = fixed_means @ lam
         for body, _, _ in yielding:
             if len(body.extra):
                 means = means + body.extra @ body.q
-        moved.append(means)
-        work.append(done_work)
-        yielded.append(sum(int((t.state.equivalent_plastic_strain > 0).sum()) for t in trials))
-        if escaped is not None:
-            status = "plastic_region"
-            message = (
-                f"at d = {d:.6g} m the elastic stress beyond the plastic region (radius {radius:.4g} m) reaches "
-                f"{escaped:.3g} of the yield stress: raise plastic_extent"
-            )
+        record = {
+            "force": 2 * math.pi * lam.sum(),
+            "radius": float(r_c[lam > 0].max()) if (lam > 0).any() else 0.0,
+            "means": means,
+            "work": counters["work"],
+            "yielded": sum(int((t.state.equivalent_plastic_strain > 0).sum()) for t in trials),
+        }
+        return record, "ok", ""
+
+    loading: list[dict[str, object]] = []
+    curves: list[tuple[int, float, dict[str, object]]] = []
+    status, message = "ok", ""
+    since_yield = None  # loading points since the first that dissipated
+    for index, d in enumerate(displacements_m):
+        record, status, message = solve(float(d))
+        if record is None:
+            break
+        loading.append(record)
+        last = index == len(displacements_m) - 1 or (until_force_N is not None and record["force"] >= until_force_N)
+        if unloading is None or record["work"] <= 0.0:
+            if last:
+                break
+            continue
+        since_yield = 0 if since_yield is None else since_yield + 1
+        if since_yield % unloading.every and not last:
+            continue
+        # an unloading curve from here, down to no force, and back up to here
+        for fraction in np.linspace(1.0, 0.0, unloading.points + 1)[1:]:
+            down, status, message = solve(float(d) * fraction)
+            if down is None:
+                break
+            curves.append((index, float(d) * fraction, down))
+            if down["force"] == 0.0:
+                break
+        if status != "ok" or last:
+            break
+        bottom = curves[-1][1]
+        for fraction in np.linspace(0.0, 1.0, unloading.reload + 1)[1:]:
+            back, status, message = solve(bottom + (float(d) - bottom) * fraction)
+            if back is None:
+                break
+        if status != "ok":
             break
     spacing = float(np.min(np.diff(np.unique(r_c)))) if len(r_c) > 1 else model.fine_size_m
-    moved_a = np.asarray(moved, dtype=float).reshape(-1, 2)
+    moved_a = np.asarray([r["means"] for r in loading], dtype=float).reshape(-1, 2)
     return Indentation(
-        np.asarray(displacements_m, float)[: len(forces)],
-        np.asarray(forces),
-        np.asarray(radii),
+        np.asarray(displacements_m, float)[: len(loading)],
+        np.asarray([r["force"] for r in loading]),
+        np.asarray([r["radius"] for r in loading]),
         spacing,
         face_displacement_m=moved_a[:, 0],
         surface_displacement_m=moved_a[:, 1],
-        plastic_work_J=np.asarray(work),
-        yielded_points=np.asarray(yielded, dtype=np.int64),
-        newton_iterations=iterations,
+        plastic_work_J=np.asarray([r["work"] for r in loading]),
+        yielded_points=np.asarray([r["yielded"] for r in loading], dtype=np.int64),
+        newton_iterations=counters["iterations"],
+        elastic_tangent_iterations=counters["elastic_tangent"],
         status=status,
         message=message,
+        unloading_curve=np.asarray([c[0] for c in curves], dtype=np.int64) if unloading is not None else None,
+        unloading_displacement_m=np.asarray([c[1] for c in curves]) if unloading is not None else None,
+        unloading_force_N=np.asarray([c[2]["force"] for c in curves]) if unloading is not None else None,
     )
 
 

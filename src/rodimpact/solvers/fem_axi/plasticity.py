@@ -40,7 +40,12 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["J2Material", "J2State", "J2Update", "return_map"]
+__all__ = ["YIELD_TOLERANCE", "J2Material", "J2State", "J2Update", "return_map"]
+
+YIELD_TOLERANCE = 1e-10
+"""A step is plastic at a point where the trial yield function exceeds this fraction of the
+current yield stress: a point left on the yield surface by the last step (to rounding) starts
+the next one elastic, as an unloading point must."""
 
 #: m, the unit tensor in Voigt form.
 _M = np.array([1.0, 1.0, 1.0, 0.0])
@@ -175,7 +180,8 @@ def return_map(material: J2Material, strain: ArrayLike, state: J2State) -> J2Upd
     norm = np.sqrt(np.einsum("ij,ij,j->i", deviatoric, deviatoric, _DOUBLE_SHEAR))
     q_trial = math.sqrt(1.5) * norm
     f_trial = q_trial - (material.yield_stress_pa + hardening * state.equivalent_plastic_strain)
-    yielded = f_trial > 0.0
+    # a point on the yield surface to rounding (the history a converged step left) stays elastic
+    yielded = f_trial > YIELD_TOLERANCE * (material.yield_stress_pa + hardening * state.equivalent_plastic_strain)
     dgamma = np.where(yielded, f_trial / (3.0 * mu + hardening), 0.0)
     with np.errstate(divide="ignore", invalid="ignore"):
         direction = np.where(yielded[:, None], deviatoric / norm[:, None], 0.0)  # unit n, tensor components

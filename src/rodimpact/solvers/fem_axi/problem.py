@@ -106,6 +106,16 @@ class AxiImpact:
         return build_law(None, self.sphere_radius_m, self.impactor_material, self.rod_material)
 
     @property
+    def yields(self) -> bool:
+        """A material of either body yields: the impactor's, the rod's or a layer's."""
+        layers = self.stack.layers if self.stack is not None else ()
+        return (
+            self.impactor_material.yields
+            or self.rod_material.yields
+            or any(layer.yield_stress_pa is not None for layer in layers)
+        )
+
+    @property
     def film_radius_m(self) -> float:
         """Radius of the stack's disc, m (0 without one)."""
         return 0.0 if self.stack is None else self.stack.disc_radius(self.rod_radius_m)
