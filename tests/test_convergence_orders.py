@@ -46,6 +46,20 @@ def _level_runs(project, config, case_id: str, fem1d_levels: slice, folder) -> l
     return records
 
 
+def assert_stated_orders(stated, method: str) -> None:
+    """Every stated order of ``stated`` (rows by quantity) fitted on at least three levels above the
+    reference's floor, observed within ORDER_TOLERANCE of it, on monotone errors."""
+    for quantity, row in stated.iterrows():
+        assert row["fitted_levels"], (method, quantity)
+        assert abs(row["observed_order"] - row["expected_order"]) <= ORDER_TOLERANCE, (
+            method,
+            quantity,
+            row["observed_order"],
+            row["expected_order"],
+        )
+        assert row["monotone"], (method, quantity)
+
+
 @pytest.fixture(scope="module")
 def model_orders(shipped_project, shipped_config, tmp_path_factory):
     """sem at every shipped level and fem1d at four, on model, fitted as the table fits them."""
@@ -62,15 +76,7 @@ def test_every_stated_order_is_observed_within_its_tolerance(model_orders, metho
     stated = rows[rows["expected_order"].notna()]
     # on model no maximum lies at a wave arrival: every quantity has its order, none is left out
     assert set(stated.index) == {"contact_time", "max_1", "max_2", "max_3", "history_l2", "history_max"}
-    for quantity, row in stated.iterrows():
-        assert row["fitted_levels"], (method, quantity)  # at least three levels above the reference's floor
-        assert abs(row["observed_order"] - row["expected_order"]) <= ORDER_TOLERANCE, (
-            method,
-            quantity,
-            row["observed_order"],
-            row["expected_order"],
-        )
-        assert row["monotone"], (method, quantity)
+    assert_stated_orders(stated, method)
 
 
 def test_fem1d_errors_keep_one_sign_at_the_shipped_levels(model_orders) -> None:
@@ -182,15 +188,7 @@ def test_thorntons_law_keeps_the_elastic_orders_off_its_maximum(thornton_orders,
     stated = rows[rows["expected_order"].notna()]
     assert set(stated.index) == {"contact_time", "history_l2", "history_max"}
     assert rows.loc["max_1", "within_expected"] is None
-    for quantity, row in stated.iterrows():
-        assert row["fitted_levels"], (method, quantity)
-        assert abs(row["observed_order"] - row["expected_order"]) <= ORDER_TOLERANCE, (
-            method,
-            quantity,
-            row["observed_order"],
-            row["expected_order"],
-        )
-        assert row["monotone"], (method, quantity)
+    assert_stated_orders(stated, method)
 
 
 #: Resolutions (steps per Hertz time) between the study's levels, 8 apart: the unloading turn

@@ -7,8 +7,10 @@ positive arguments (:mod:`.law`), each law in its own module with its settings (
 :mod:`.film` (its rigid impact in :mod:`.film_impact`), :mod:`.stack` (a stack of bonded
 layers, and the geometry every method reads of a film or stack), :mod:`.tabulated`,
 :mod:`.spring` (a reference spring with closed forms), :mod:`.thornton` (Thornton's
-elastic-perfectly-plastic sphere, a law with memory)), and the table of laws by name with the functions that read the
-declarations for the rest of the project (:mod:`.laws`).
+elastic-perfectly-plastic sphere, a law with memory)), the table of laws by name with the
+functions that read the declarations for the rest of the project (:mod:`.laws`), and the
+published finite-element fits of an elastic-plastic sphere on a rigid flat that the continuum
+is checked against (:mod:`.sphere_flat`).
 
 What it may import: numpy, scipy and :mod:`rodimpact.settings` (how a setting is declared).
 The model, the solvers and everything above them use it; it uses none of them.

@@ -6,9 +6,10 @@ report-check``: the HTML report's first screen in headless Chromium), :mod:`.ben
 :mod:`.bench_plan`, :mod:`.bench_scaling` and :mod:`.bench_planning` (``make bench``: the benchmarks
 and what they run; the last, how long snakemake takes to plan the workflow),
 :mod:`.build_stats` (``make bench``: the build's own timing), :mod:`.compare_tables` (are two
-builds' tables the same?), :mod:`.accuracy_cost` (what an accuracy costs each method) and
-:mod:`.synthetic_history` (a synthetic force history, labelled as one, for the worked example
-of a comparison).
+builds' tables the same?), :mod:`.accuracy_cost` (what an accuracy costs each method),
+:mod:`.sphere_flat` (``make sphere-flat``: the continuum's elastic-plastic sphere on a rigid flat
+against the published finite-element fits) and :mod:`.synthetic_history` (a synthetic force
+history, labelled as one, for the worked example of a comparison).
 
 What it may import: everything below it (:mod:`rodimpact.plumbing`, :mod:`rodimpact.jobs` and
 the layers under them). Nothing imports it but the workflow's scripts and .smk files, and the tests.

@@ -204,13 +204,7 @@ def static_indentation(
     delassus_imp, _ = spd_inverse_rows(imp.K[free][:, free], B_imp[:, free])
     chol = cholesky(delassus_rod + delassus_imp, lower=True)
     # the rod's displacement is K^-1 B^T lam: the mean displacements are (K^-1 rows^T)^T B^T lam
-    face = rod.reduce_rows(cross_section_mean_uz(rod.basis, 0.0, problem.rod_radius_m))
-    if model.film is None:
-        surface = face
-    else:
-        surface = rod.reduce_rows(
-            cross_section_mean_uz(rod.basis, -model.film.film_thickness_m, model.film.film_radius_m)
-        )
+    face, surface = _mean_rows(problem, model)
     means = np.asarray(B_rod @ solve_rod(np.column_stack([face.toarray().ravel(), surface.toarray().ravel()]))).T
     # a rigid translation of the whole cap by d closes every gap by d
     forces, radii, moved = [], [], []
@@ -333,14 +327,7 @@ def _plastic_path(
     rod_groups, imp_groups = material_groups(problem, model)
     rod, imp = model.rod, model.impactor
     free = np.arange(imp.n - 1)  # the rigid back's W is held: a translation by d closes the gaps by d
-    face = rod.reduce_rows(cross_section_mean_uz(rod.basis, 0.0, problem.rod_radius_m))
-    if model.film is None:
-        surface = face
-    else:
-        surface = rod.reduce_rows(
-            cross_section_mean_uz(rod.basis, -model.film.film_thickness_m, model.film.film_radius_m)
-        )
-    means_rows = sp.vstack([face, surface]).tocsr()
+    means_rows = sp.vstack(_mean_rows(problem, model)).tocsr()
     specs = [
         (rod, rod.K, sp.csr_matrix(model.B_rod), rod_groups, means_rows, ()),
         (imp, imp.K[free][:, free], sp.csr_matrix(model.B_imp)[:, free], imp_groups, None, (imp.n - 1,)),
@@ -495,6 +482,18 @@ def _plastic_path(
         unloading_displacement_m=np.asarray([c[1] for c in curves]) if unloading is not None else None,
         unloading_force_N=np.asarray([c[2]["force"] for c in curves]) if unloading is not None else None,
     )
+
+
+def _mean_rows(problem: AxiImpact, model: AxiModel) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """The rows of the mean axial displacement of the rod's end face z = 0 and of the struck
+    surface (the film's disc z = -h with a film, the end face without), on the rod's free
+    coordinates, shape (1, n) each."""
+    rod = model.rod
+    face = rod.reduce_rows(cross_section_mean_uz(rod.basis, 0.0, problem.rod_radius_m))
+    if model.film is None:
+        return face, face
+    surface = rod.reduce_rows(cross_section_mean_uz(rod.basis, -model.film.film_thickness_m, model.film.film_radius_m))
+    return face, surface
 
 
 def _embed(matrix: sp.spmatrix, at: NDArray[np.int64], size: int) -> sp.csr_matrix:
