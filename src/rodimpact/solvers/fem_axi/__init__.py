@@ -10,7 +10,8 @@ argument, without the mesher's imports), :mod:`.film_model` (the film's region a
 nodes), :mod:`.axisym` (the r-weighted elasticity forms), :mod:`.plasticity` (J2 plasticity's
 return mapping and consistent tangent at a body's points), :mod:`.plastic_region` (the elements near
 the contact where a yielding material may yield, their strain operator and response, and the
-check that the elastic rest stays below yield), :mod:`.axibody` (one body's Newmark
+check that the elastic rest stays below yield), :mod:`.plastic_step` (a dynamic step with the
+plastic regions: the plastic load iterated with the elastic factorisation), :mod:`.axibody` (one body's Newmark
 operators), :mod:`.farbar` (the rod beyond a few diameters as a 1-D bar joined to the continuum),
 :mod:`.gauges` (where the stations' and gauges' strain is read, and how far the continuum
 must reach for the gauges),

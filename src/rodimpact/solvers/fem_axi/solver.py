@@ -12,7 +12,9 @@ factorised once and G = K_eff^-1 B^T precomputed for the candidate contact nodes
 a small LCP solved exactly; then q = q_free + G lambda. A step costs one back-substitution
 and one product K q per body (:mod:`.axibody`). After a step without contact force the run
 ends as soon as the bodies' conserved energies prove that no gap can close again
-(:mod:`.separation`). The model it steps (:class:`~.aximodel.AxiModel`, from
+(:mod:`.separation`). Where a material yields, each step iterates on the plastic regions' load
+(:mod:`.plastic_step`) and the run goes on to its horizon (the energy bound holds for an elastic
+flight, not about a residual stress state). The model it steps (:class:`~.aximodel.AxiModel`, from
 :func:`~.aximodel.build_model`) is built in :mod:`.aximodel`; both names are re-exported here.
 """
 
@@ -36,6 +38,7 @@ from rodimpact.solvers.fem_axi.contact import ContactOperator
 from rodimpact.solvers.fem_axi.film_mesh import layers_within
 from rodimpact.solvers.fem_axi.gauges import STATION_HALF_SPAN, continuum_cover_m, gauge_spans
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
+from rodimpact.solvers.fem_axi.plastic_step import PlasticBodies
 from rodimpact.solvers.fem_axi.problem import AxiImpact
 from rodimpact.solvers.fem_axi.separation import Flight, SeparationBound
 from rodimpact.solvers.gauge_series import (
@@ -70,6 +73,7 @@ class _History(StepHistory):
     stations: list[NDArray[np.float64]] = field(default_factory=list)
     gauges: list[NDArray[np.float64]] = field(default_factory=list)
     far_v: list[float] = field(default_factory=list)
+    dissipated: list[float] = field(default_factory=list)
     n_lcp: int = 0
 
 
@@ -144,6 +148,7 @@ def solve_fem_axi(
     contact = ContactOperator.of(rod, imp, B_rod, B_imp, gap0)
     rod.start(0.0)
     imp.start(problem.velocity_m_s)
+    plastic = PlasticBodies.of(problem, model, options)
     length = problem.rod_length_m
     face = rod.section_mean_uz_row(0.0, problem.rod_radius_m)
     delta = STATION_HALF_SPAN * length
@@ -174,9 +179,14 @@ def solve_fem_axi(
         hist.u_end.append(u_face)
         hist.alpha.append(x - u_face)
         hist.kin_i.append(imp.kinetic_energy())
-        hist.str_i.append(imp.strain_energy())
         hist.kin_r.append(rod.kinetic_energy())
-        hist.str_r.append(rod.strain_energy())
+        if plastic is None:
+            hist.str_i.append(imp.strain_energy())
+            hist.str_r.append(rod.strain_energy())
+        else:
+            hist.str_i.append(imp.strain_energy() + plastic.stored_correction(1, imp.q))
+            hist.str_r.append(rod.strain_energy() + plastic.stored_correction(0, rod.q))
+            hist.dissipated.append(plastic.dissipated_J)
         if probes is not None:
             hist.stations.append(probes @ rod.q)
         if gauge_probes is not None:
@@ -195,17 +205,36 @@ def solve_fem_axi(
     flight: Flight | None = None
     while True:
         q_rod, q_imp = rod.predict(), imp.predict()
-        gap = contact.gaps(q_rod, q_imp)
         force, radius, load_rod, load_imp = 0.0, 0.0, 0.0, 0.0
-        if gap.min() < 0.0:
-            lam = contact.multipliers(gap)
-            if lam.any():
-                d_rod, d_imp, load_rod, load_imp = contact.corrections(lam)
-                q_rod, q_imp = q_rod + d_rod, q_imp + d_imp
-                force, radius = 2 * math.pi * float(lam.sum()), float(r_c[lam > 0.0].max())
-            hist.n_lcp += 1
+        if plastic is None:
+            gap = contact.gaps(q_rod, q_imp)
+            if gap.min() < 0.0:
+                lam = contact.multipliers(gap)
+                if lam.any():
+                    d_rod, d_imp, load_rod, load_imp = contact.corrections(lam)
+                    q_rod, q_imp = q_rod + d_rod, q_imp + d_imp
+                    force, radius = 2 * math.pi * float(lam.sum()), float(r_c[lam > 0.0].max())
+                hist.n_lcp += 1
+        else:
+            step = plastic.step(contact, q_rod, q_imp)
+            if step is None:
+                status, message = "failed", f"the plastic load did not converge at t = {t + h:.6g} s"
+                break
+            q_rod, q_imp, load_rod, load_imp = step.q_rod, step.q_imp, step.load_rod, step.load_imp
+            if step.lam.any():
+                force, radius = 2 * math.pi * float(step.lam.sum()), float(r_c[step.lam > 0.0].max())
+                hist.n_lcp += 1
         rod.advance(q_rod, load_rod)
         imp.advance(q_imp, load_imp)
+        if plastic is not None and plastic.accept() >= 1.0:
+            status, message = (
+                "failed",
+                (
+                    f"at t = {t + h:.6g} s the elastic stress beyond a plastic region reaches "
+                    f"{plastic.worst_guard:.3g} of the yield stress: raise plastic_extent"
+                ),
+            )
+            break
         t += h
         record(t, force, radius)
         if in_contact and force == 0.0:
@@ -215,7 +244,7 @@ def solve_fem_axi(
         elif not in_contact and force > 0.0:
             starts.append(t - h)
             in_contact, flight, finished = True, None, None
-        if not in_contact and ends and finished is None:
+        if plastic is None and not in_contact and ends and finished is None:
             # a step without contact force: the free flight's conserved quantities bound the gaps
             if flight is None:
                 bound = bound or SeparationBound.of(rod, imp, contact)
@@ -253,6 +282,7 @@ def solve_fem_axi(
         far_row is not None,
         finished,
         recorded_until,
+        plastic,
     )
 
 
@@ -285,6 +315,7 @@ def _result(
     far_end: bool = False,
     finished: int | None = None,
     recorded_until: float | None = None,
+    plastic: PlasticBodies | None = None,
 ) -> ImpactResult:
     """The run's result. Its energy balance and the rod's energy are those at the node where no
     further contact was proven (``finished``; the last node when None), where a run that records
@@ -329,10 +360,24 @@ def _result(
         "impactor_mass_kg": float(imp.total_mass_kg),
         "continuum_length_m": float(rod.bar.start_m if rod.bar else problem.rod_length_m),
         "bar_elements": int(rod.bar.elements if rod.bar else 0),
-        # every region is linear elastic: the contact dissipates nothing and leaves no dent
+        # with no yielding region the contact dissipates nothing and leaves no dent
         "dissipated_energy_J": 0.0,
         "residual_approach_m": 0.0,
     }
+    parts = (kin_i[:end], str_i[:end], kin_r[:end], str_r[:end])
+    if plastic is not None:
+        dissipated = np.asarray(hist.dissipated)
+        parts = (*parts, dissipated[:end])
+        force = np.asarray(hist.force)
+        first_end = int(np.argmax((force[1:] == 0.0) & (force[:-1] > 0.0))) + 1 if np.any(force > 0) else 0
+        extra.update(
+            dissipated_energy_J=float(dissipated[end - 1]),
+            residual_approach_m=float(np.asarray(hist.alpha)[first_end]) if first_end else 0.0,
+            plastic_iterations=int(plastic.iterations),
+            plastic_region_m=float(next(p for p in (plastic.rod, plastic.impactor) if p is not None).region.radius_m),
+            plastic_guard=float(plastic.worst_guard),
+        )
+        series["contact_dissipated_energy"] = (dissipated, "J", "plastic work done in the bodies so far")
     if model.film is not None:
         film = model.film
         extra.update(
@@ -372,7 +417,7 @@ def _result(
         outcome,
         scheme="fem_axi-newmark-lcp",
         dt_s=h,
-        energy_error=energy_error(kin_i[:end], str_i[:end], kin_r[:end], str_r[:end]),
+        energy_error=energy_error(*parts),
         rod_energy_J=float(kin_r[end - 1] + str_r[end - 1]),
         n_events=len(hist.ends),
         extra=extra,
