@@ -497,6 +497,7 @@ class TabulatedMemoryLaw(MemoryLaw):
     max_approach_m: tuple[float, ...]
     residual_approach_m: tuple[float, ...]
     shapes: tuple[UnloadingShape, ...]
+    _dents: tuple[NDArray[np.float64], ...] = field(init=False, repr=False, compare=False)
     name: ClassVar[str] = "tabulated"
     label: ClassVar[str] = "tabulated with memory (continuum-calibrated, elastic-plastic)"
     reading: ClassVar[str] = "contact law with memory calibrated by the continuum"
@@ -529,6 +530,10 @@ class TabulatedMemoryLaw(MemoryLaw):
             raise ValueError("max_approach_m must increase from above elastic_limit_m")
         if np.any(r < 0) or np.any(r >= m):
             raise ValueError("each residual approach must lie in [0, its largest approach)")
+        # the dents' interpolant, from no dent at the elastic limit (every branch a stepper makes reads it)
+        tops = np.concatenate([[self.elastic_limit_m], m])
+        dents = np.concatenate([[0.0], r])
+        object.__setattr__(self, "_dents", (tops, dents, pchip_slopes(tops, dents)))
 
     # -- the virgin curve ---------------------------------------------------------------------
     def force(self, approach_m: float) -> float:
@@ -554,9 +559,7 @@ class TabulatedMemoryLaw(MemoryLaw):
         """The dent r(m): the monotone cubic Hermite interpolant of the dents against the largest
         approaches (from no dent at the elastic limit), its end slope beyond the last, m."""
         peak = np.asarray(max_approach_m, dtype=float)
-        tops = np.concatenate([[self.elastic_limit_m], self.max_approach_m])
-        dents = np.concatenate([[0.0], self.residual_approach_m])
-        slopes = pchip_slopes(tops, dents)
+        tops, dents, slopes = self._dents
         i = np.clip(np.searchsorted(tops, peak, side="right") - 1, 0, len(tops) - 2)
         inside, _ = _hermite(peak, tops[i], tops[i + 1], dents[i], dents[i + 1], slopes[i], slopes[i + 1])
         out = np.where(peak > tops[-1], dents[-1] + slopes[-1] * (peak - tops[-1]), inside)

@@ -94,7 +94,7 @@ class PlasticRegion:
     def respond(self, q_region: NDArray[np.float64], state: J2State) -> RegionResponse:
         """The return map at the region's coordinates ``q_region`` (m, shape (m,)) from ``state``."""
         eps = (self.strain_operator @ q_region).reshape(-1, 4)
-        stress = np.empty_like(eps)
+        relaxed = np.empty_like(eps)  # D_e eps - sigma = D_e eps_p at each point
         tangent_change = np.zeros((len(eps), 4, 4))
         plastic = np.empty_like(eps)
         alpha = np.empty(len(eps))
@@ -105,17 +105,13 @@ class PlasticRegion:
             update = return_map(
                 material, eps[at], J2State(state.plastic_strain[at], state.equivalent_plastic_strain[at])
             )
-            stress[at] = update.stress
+            relaxed[at] = eps[at] @ material.elastic_tangent.T - update.stress
             plastic[at] = update.state.plastic_strain
             alpha[at] = update.state.equivalent_plastic_strain
             tangent_change[at] = update.tangent - material.elastic_tangent
             yielded[at] = update.yielded
             work[at] = update.plastic_work
-        elastic_stress = np.empty_like(eps)
-        for k, material in enumerate(self.materials):
-            at = self.point_material == k
-            elastic_stress[at] = eps[at] @ material.elastic_tangent.T
-        load = self.strain_operator.T @ (self.weights[:, None] * (elastic_stress - stress)).ravel()
+        load = self.strain_operator.T @ (self.weights[:, None] * relaxed).ravel()
         hit = np.flatnonzero(yielded)
         if hit.size:
             blocks = sp.block_diag([self.weights[i] * tangent_change[i] for i in hit], format="csr")
