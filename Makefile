@@ -16,6 +16,10 @@
 #   make sphere-flat   the continuum's elastic-plastic sphere on a rigid flat against the published
 #                finite-element fits, on three meshes (not in make paper: about 11 minutes) ->
 #                results/verification/sphere_flat.{csv,pdf,png}
+#   make sensor-plastic   Table 2's sensor as built with its layers yielding (J2, the law with
+#                memory), elastic and over the layers' yield ranges, and the law with memory against
+#                the dynamic continuum on two rows (not in make paper: about 31 minutes) ->
+#                results/sensor_plastic/sensor_plastic{,_dynamic}.csv, sensor_plastic.md
 #   make stability     only the stress cases and the stability map -> results/tables/stability.csv
 #   make sensor-axes   each constant of the sensor stack along its range by the continuum (not in
 #                make paper: the check that the band's corners bound the time) ->
@@ -42,7 +46,7 @@ BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-from-lock
 CORES  ?= 2
 
-.PHONY: paper test test-cluster test-tools browser latex bench sphere-flat convergence convergence-separate stability sensor-axes film-axes report report-check readme-images provenance env clean distclean
+.PHONY: paper test test-cluster test-tools browser latex bench sphere-flat sensor-plastic convergence convergence-separate stability sensor-axes film-axes report report-check readme-images provenance env clean distclean
 
 $(STAMP): environment.lock pyproject.toml
 	@$(PYTHON) -c 'import sys; sys.exit(0 if sys.version_info[:2] == (3, 11) else "rodimpact needs Python 3.11 (environment.lock is for 3.11), found " + sys.version.split()[0])'
@@ -78,6 +82,9 @@ bench: $(STAMP)
 
 sphere-flat: $(STAMP)
 	$(BIN)/python -m rodimpact.tools.sphere_flat --out results/verification
+
+sensor-plastic: $(STAMP)
+	$(BIN)/python -m rodimpact.tools.sensor_plastic --out results/sensor_plastic --jobs $(CORES)
 
 convergence: $(STAMP)
 	$(BIN)/snakemake -j$(CORES) results/tables/work_precision.csv results/tables/work_precision_orders.md

@@ -224,3 +224,23 @@ def test_every_band_file_is_audited_as_a_band(tmp_path: Path, monkeypatch, where
     with h5py.File(path, "r+") as h5:  # a hand-edited band no longer matches its hash
         h5["c1/corner_us"][0] = 31.0
     assert not _by_path(audit(tmp_path, workflow=False).findings)[f"results/{where}"].ok
+
+
+def test_a_named_targets_files_resolve_by_their_record_outside_snakemake(tmp_path: Path, monkeypatch) -> None:
+    """make sensor-plastic's files (written outside snakemake, with their provenance record) are
+    not asked of snakemake; a file elsewhere that no rule makes still is."""
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr("rodimpact.storage.sidecar.code_version", lambda: VERSION)
+    monkeypatch.setattr(audit_module, "find_repo_root", lambda start=None: ROOT)
+    monkeypatch.setattr(audit_module, "workflow_status", lambda root, targets=(): {})
+    out = tmp_path / "results" / "sensor_plastic"
+    out.mkdir(parents=True)
+    (out / "sensor_plastic.md").write_text("# table\n")
+    write_provenance(out / "sensor_plastic.provenance.json", [], ["results/sensor_plastic/sensor_plastic.md"])
+    assert audit(tmp_path, workflow=True).success
+    (tmp_path / "results/tables").mkdir(parents=True)
+    (tmp_path / "results/tables/t.md").write_text("# table\n")
+    write_provenance(tmp_path / "results/tables/t.provenance.json", [], ["results/tables/t.md"])
+    found = _by_path(audit(tmp_path, workflow=True).findings)
+    assert found["results/sensor_plastic/sensor_plastic.md"].ok
+    assert "not an output of the current workflow" in found["results/tables/t.md"].problems[-1]

@@ -20,6 +20,7 @@ from rodimpact.contact.sphere_flat import (
     kogut_etsion_force,
 )
 from rodimpact.contact.tabulated import TabulatedLaw, TabulatedMemoryLaw
+from rodimpact.solvers.fem_axi import indentation
 from rodimpact.solvers.fem_axi.aximodel import build_model, material_groups
 from rodimpact.solvers.fem_axi.axisym import axisym_stiffness
 from rodimpact.solvers.fem_axi.indentation import static_indentation
@@ -108,6 +109,27 @@ def test_sphere_on_a_flat_against_the_published_fits(loading, ratio, rtol):
     assert fe == pytest.approx(float(ke), rel=rtol)
     # and clearly below Hertz: the sphere has yielded
     assert fe < 0.96 * ratio**1.5
+
+
+def test_a_failed_increment_is_cut_and_resumed_from_the_last_state(loading, monkeypatch):
+    """With too few Newton iterations allowed for the full increments (omega* 2, 4, 6, 8), each
+    failing increment is retried in halves from the last converged state (the failed attempt rolled
+    back): the path completes, reports its cuts, and lands within 1 % of the 5 % increments' force at
+    8 omega_c (a J2 path's small dependence on its steps); without cuts allowed it fails, naming the
+    displacement."""
+    path, fine = loading
+    omega_c = critical_interference()
+    coarse = np.array([2.0, 4.0, 6.0, 8.0]) * omega_c
+    monkeypatch.setattr(indentation, "MAX_NEWTON", 5)  # the full increments need 6
+    cut = static_indentation(sphere_flat_problem(8.0), coarse, COARSE)
+    assert cut.success, cut.message
+    assert cut.increment_cuts > 0
+    assert cut.force_N[-1] == pytest.approx(fine.force_N[np.argmin(np.abs(path - 8.0))], rel=0.01)
+    assert np.all(np.diff(cut.plastic_work_J) > 0)
+    monkeypatch.setattr(indentation, "MAX_CUTS", 0)
+    failed = static_indentation(sphere_flat_problem(8.0), coarse, COARSE)
+    assert failed.status == "not_converged"
+    assert len(failed.force_N) < len(coarse)
 
 
 def test_unloading_leaves_a_dent_and_the_work_is_dissipated():

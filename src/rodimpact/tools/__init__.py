@@ -9,7 +9,9 @@ and what they run; the last, how long snakemake takes to plan the workflow),
 builds' tables the same?), :mod:`.accuracy_cost` (what an accuracy costs each method),
 :mod:`.sphere_flat` (``make sphere-flat``: the continuum's elastic-plastic sphere on a rigid flat
 against the published finite-element fits), :mod:`.yielding_rod` (Table 2's balls on a yielding
-rod: the continuum's law with memory, and the dynamic continuum against the SEM through it) and
+rod: the continuum's law with memory, and the dynamic continuum against the SEM through it),
+:mod:`.sensor_plastic` (``make sensor-plastic``: Table 2's sensor as built with its layers
+yielding, beside the elastic sensor) and
 :mod:`.synthetic_history` (a synthetic force
 history, labelled as one, for the worked example of a comparison).
 

@@ -49,6 +49,7 @@ logger = logging.getLogger(__name__)
 
 __all__ = [
     "EXEMPT",
+    "TOOL_FOLDERS",
     "AuditResult",
     "Finding",
     "audit",
@@ -64,6 +65,12 @@ EXEMPT: dict[str, str] = {
     "report.html": "the snakemake report: a view of the audited artifacts, rebuilt by `make report`",
     "report_screenshot.png": "the report's first screen in headless Chromium (`make report-check`)",
     "benchmarks/build.csv": "the last build's own timing, from snakemake's job records (`make bench`)",
+}
+#: Folders under results/ that a named target writes outside snakemake (the Makefile's): their
+#: files are audited by their provenance records, and not asked of snakemake's up-to-date check.
+TOOL_FOLDERS: dict[str, str] = {
+    "sensor_plastic/": "make sensor-plastic (rodimpact.tools.sensor_plastic)",
+    "verification/": "make sphere-flat (rodimpact.tools.sphere_flat)",
 }
 _SIDECAR = ".provenance.json"
 #: Where under ``results/studies/`` the band files are: the film's (``film_band_{variant}.h5``, and
@@ -304,7 +311,9 @@ def audit(root: str | Path = ".", *, results: str = "results", workflow: bool = 
                 status[path] = status[holder]
         if ".tmp." in Path(path).name or ".tmp-" in Path(path).name:
             finding = _merged(finding, ("a temporary file left by an interrupted write",))
-        if workflow and path not in status:
+        if path.startswith(tuple(f"{results}/{folder}" for folder in TOOL_FOLDERS)):
+            pass  # a named target's, outside snakemake: its record is what is audited
+        elif workflow and path not in status:
             finding = _merged(finding, ("not an output of the current workflow and config (left from an old one?)",))
         elif workflow and status[path]:
             finding = _merged(finding, (f"snakemake: {status[path]} (stale against the current config or code)",))

@@ -40,6 +40,8 @@ from rodimpact.model.materials import Material
 from rodimpact.solvers.fem_axi.indentation import static_indentation
 from rodimpact.solvers.fem_axi.options import FEMAxiOptions
 from rodimpact.solvers.fem_axi.problem import AxiImpact
+from rodimpact.storage.atomic import atomic_output
+from rodimpact.storage.sidecar import write_provenance
 
 __all__ = ["LEVELS", "RATIOS", "sphere_flat_problem", "sphere_flat_path", "sphere_flat_study", "main"]
 
@@ -233,15 +235,18 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(message)s")
     logging.getLogger("skfem").setLevel(logging.WARNING)
+    written = [args.out / f"sphere_flat.{ext}" for ext in ("csv", "pdf", "png")]
     if args.figure_only:
         sphere_flat_figure(pd.read_csv(args.out / "sphere_flat.csv"), args.out / "sphere_flat", args.levels)
+        write_provenance(args.out / "sphere_flat.provenance.json", [], written)
         return 0
     frame = sphere_flat_study(args.levels)
     args.out.mkdir(parents=True, exist_ok=True)
-    tmp = args.out / "sphere_flat.csv.tmp"
-    frame.to_csv(tmp, index=False, float_format="%.6g")
-    tmp.replace(args.out / "sphere_flat.csv")
+    with atomic_output(args.out / "sphere_flat.csv") as tmp:
+        frame.to_csv(tmp, index=False, float_format="%.6g")
     sphere_flat_figure(frame, args.out / "sphere_flat", args.levels)
+    # what made them: the code version (the study's configuration is this module's constants)
+    write_provenance(args.out / "sphere_flat.provenance.json", [], written)
     sys.stdout.write(frame.to_string(index=False, float_format=lambda x: f"{x:.4g}") + "\n")
     return 0
 

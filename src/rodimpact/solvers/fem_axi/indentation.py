@@ -44,7 +44,7 @@ from rodimpact.solvers.fem_axi.plasticity import J2State
 from rodimpact.solvers.fem_axi.problem import AxiImpact
 from rodimpact.solvers.fem_axi.solver import build_model
 
-__all__ = ["NEWTON_RTOL", "Indentation", "UnloadingPlan", "static_indentation"]
+__all__ = ["NEWTON_FLOOR_RTOL", "NEWTON_RTOL", "Indentation", "UnloadingPlan", "static_indentation"]
 
 log = logging.getLogger(__name__)
 
@@ -52,8 +52,20 @@ NEWTON_RTOL = 1e-10
 """A displacement's Newton iteration has converged when the out-of-balance force on the plastic
 regions is below this fraction of the larger of the contact force and the plastic strain's load
 (the residual stresses' scale, which stays when the contact force vanishes), both per radian."""
+NEWTON_FLOOR_RTOL = 1e-8
+"""A residual below this fraction of the same scale that no longer falls (not halved over the
+last ``NEWTON_STALL`` iterations) is the solves' rounding floor and counts as converged: a
+perfectly plastic layer a few micrometres thick between steel and aluminium makes the consistent
+tangent ill-conditioned enough (the layer's 3 GPa against the bodies' 70-200 GPa, elements 2 um
+thick) that the iteration settles between 1e-10 and 1e-9 of the force scale."""
+NEWTON_STALL = 4
+"""Iterations over which a residual must halve to count as still falling."""
 MAX_NEWTON = 60
 """Newton iterations allowed per displacement."""
+MAX_CUTS = 4
+"""Halvings of a displacement increment that failed (its iteration did not converge, or its
+state left the plastic region) before the path fails: an increment is retried as two halves from
+the last converged state, down to 1/16 of it."""
 
 
 @dataclass(frozen=True)
@@ -114,6 +126,11 @@ class Indentation:
     elastic_tangent_iterations : int
         Of them, those whose consistent tangent was singular (a perfectly plastic zone) and that
         took the elastic tangent instead.
+    floor_converged : int
+        Displacements whose iteration settled at the solves' rounding floor (below
+        ``NEWTON_FLOOR_RTOL``, no longer falling) rather than below ``NEWTON_RTOL``.
+    increment_cuts : int
+        Displacement increments halved because they failed (``MAX_CUTS``).
     status : {"ok", "not_converged", "plastic_region", "contact_extent"}
         "not_converged": a displacement's Newton iteration did not converge within
         ``MAX_NEWTON``; "plastic_region": the elastic stress beyond a plastic region reached the
@@ -140,6 +157,8 @@ class Indentation:
     yielded_points: NDArray[np.int64] | None = None
     newton_iterations: int = 0
     elastic_tangent_iterations: int = 0
+    floor_converged: int = 0
+    increment_cuts: int = 0
     status: str = "ok"
     message: str = ""
     unloading_curve: NDArray[np.int64] | None = None
@@ -345,11 +364,34 @@ def _plastic_path(
         else:
             yielding.append((_CondensedBody.of(K, B, region, extra), axi, YieldGuard.beyond(axi.basis, groups, region)))
     gap0, r_c = model.gap0, model.r_c
-    counters = {"iterations": 0, "work": 0.0, "elastic_tangent": 0}
+    counters = {"iterations": 0, "work": 0.0, "elastic_tangent": 0, "floor": 0, "cuts": 0, "d": 0.0}
 
     def solve(d: float) -> tuple[dict[str, object] | None, str, str]:
-        """One displacement from the history the last left: its record, or None and why."""
+        """One displacement from the history the last converged one left, the increment cut into
+        halves where it fails (:data:`MAX_CUTS`): its record, or None and why."""
+        return advance(counters["d"], d, 0)
+
+    def advance(start: float, d: float, cuts: int) -> tuple[dict[str, object] | None, str, str]:
+        saved = [(body.q.copy(), body.state) for body, _, _ in yielding], counters["work"]
+        record, status, message = attempt(d)
+        if record is not None:
+            counters["d"] = d
+            return record, status, message
+        for (body, _, _), (q, state) in zip(yielding, saved[0]):
+            body.q, body.state = q, state
+        counters["work"] = saved[1]
+        if cuts >= MAX_CUTS:
+            return record, status, f"{message} (the increment from d = {start:.6g} m halved {cuts} times)"
+        counters["cuts"] += 1
+        middle, _, _ = advance(start, 0.5 * (start + d), cuts + 1)
+        if middle is None:
+            return record, status, message
+        return advance(0.5 * (start + d), d, cuts + 1)
+
+    def attempt(d: float) -> tuple[dict[str, object] | None, str, str]:
+        """One displacement from the current state, without cutting."""
         trials = [body.respond(body.q) for body, _, _ in yielding]
+        history: list[float] = []
         for _ in range(MAX_NEWTON):
             counters["iterations"] += 1
             delassus = fixed_delassus.copy()
@@ -382,9 +424,15 @@ def _plastic_path(
                 out[body.region_at] += trials[i].load
                 residual += float(out @ out)
                 scale = max(scale, float(np.linalg.norm(trials[i].load)))
-            log.debug("d = %.6g m: residual %.3e of the force scale", d, math.sqrt(residual) / max(scale, 1e-300))
-            if math.sqrt(residual) <= NEWTON_RTOL * max(scale, 1e-300) or residual == 0.0:
+            relative = math.sqrt(residual) / max(scale, 1e-300)
+            log.debug("d = %.6g m: residual %.3e of the force scale", d, relative)
+            if relative <= NEWTON_RTOL or residual == 0.0:
                 break
+            stalled = len(history) >= NEWTON_STALL and relative > 0.5 * min(history[-NEWTON_STALL:])
+            if relative <= NEWTON_FLOOR_RTOL and stalled:
+                counters["floor"] += 1
+                break
+            history.append(relative)
         else:
             return (
                 None,
@@ -396,7 +444,12 @@ def _plastic_path(
             body.state = trial.state
             counters["work"] += trial.plastic_work_J
             ratio = guard.ratio(axi.T @ _padded(body.full(body.q), axi.n))
-            log.debug("d = %.6g m: beyond the plastic region %.3g of the yield stress", d, ratio)
+            log.debug(
+                "d = %.6g m: force %.6g N, beyond the plastic region %.3g of the yield stress",
+                d,
+                2 * math.pi * lam.sum(),
+                ratio,
+            )
             escaped = max(escaped, ratio)
         if escaped >= 1.0:
             return (
@@ -476,6 +529,8 @@ def _plastic_path(
         yielded_points=np.asarray([r["yielded"] for r in loading], dtype=np.int64),
         newton_iterations=counters["iterations"],
         elastic_tangent_iterations=counters["elastic_tangent"],
+        floor_converged=counters["floor"],
+        increment_cuts=counters["cuts"],
         status=status,
         message=message,
         unloading_curve=np.asarray([c[0] for c in curves], dtype=np.int64) if unloading is not None else None,
