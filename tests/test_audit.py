@@ -226,9 +226,11 @@ def test_every_band_file_is_audited_as_a_band(tmp_path: Path, monkeypatch, where
     assert not _by_path(audit(tmp_path, workflow=False).findings)[f"results/{where}"].ok
 
 
+@pytest.mark.workflow
 def test_a_named_targets_files_resolve_by_their_record_outside_snakemake(tmp_path: Path, monkeypatch) -> None:
     """make sensor-plastic's files (written outside snakemake, with their provenance record) are
-    not asked of snakemake; a file elsewhere that no rule makes still is."""
+    not asked of snakemake; a file elsewhere that no rule makes still is (snakemake's answer
+    stubbed: nothing is an output)."""
     monkeypatch.chdir(tmp_path)
     monkeypatch.setattr("rodimpact.storage.sidecar.code_version", lambda: VERSION)
     monkeypatch.setattr(audit_module, "find_repo_root", lambda start=None: ROOT)
