@@ -9,7 +9,8 @@
 #   make bench   benchmarks -> results/benchmarks/*.csv (one job at a time, for clean timings),
 #                results/benchmarks/build.csv: the last build's time per rule (jobs, solvers, overhead)
 #                from snakemake's job records, and results/benchmarks/planning.csv: the dry run's
-#                time and a one-rule workflow's; run make paper first
+#                time, a one-rule workflow's and a sem sweep's of 100 to 100,000 points planned
+#                alone; run make paper first
 #   make convergence   only the error-against-run-time study -> results/tables/work_precision.csv
 #   make convergence-separate   the study's separate cases (levels over a minute each, not in
 #                make paper) -> results/tables/work_precision_separate*.{csv,md,html}
@@ -78,7 +79,7 @@ bench: $(STAMP)
 		results/benchmarks/sem_scaling.csv results/benchmarks/fem.csv
 	$(BIN)/python -m rodimpact.tools.bench results/benchmarks/fem.csv
 	$(BIN)/python -m rodimpact.tools.build_stats --csv results/benchmarks/build.csv
-	$(BIN)/python -m rodimpact.tools.bench_planning --csv results/benchmarks/planning.csv
+	$(BIN)/python -m rodimpact.tools.bench_planning --csv results/benchmarks/planning.csv --sweep-points 100 1000 10000 100000
 
 sphere-flat: $(STAMP)
 	$(BIN)/python -m rodimpact.tools.sphere_flat --out results/verification

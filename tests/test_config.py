@@ -1192,3 +1192,17 @@ def test_an_absurd_law_setting_is_blamed_on_that_setting(project_dir: Path, stif
     assert message.startswith("config/cases/smooth.yaml: case 'linear_spring': field 'contact.stiffness_n_per_m': "), (
         message
     )
+
+
+def test_a_methods_options_are_built_once_per_settings_and_true_is_not_1(shipped_config) -> None:
+    """The same resolved settings give the same (frozen) options object, built once: a planned
+    sweep estimates every point with them; settings that differ only by a value's type (1 and
+    true, equal in Python) are not taken for each other, so a bad type is still refused."""
+    from rodimpact.solvers.options import OptionError
+
+    settings = dict(shipped_config["numerics"]["sem"])
+    first, again = REGISTRY["sem"].options_of(settings), REGISTRY["sem"].options_of(dict(settings))
+    assert first is again and first == REGISTRY["sem"].options.from_settings(settings)
+    assert REGISTRY["sem"].options_of({**settings, "max_contacts": 1}).max_contacts == 1
+    with pytest.raises(OptionError):  # True == 1 and hash(True) == hash(1): cached apart
+        REGISTRY["sem"].options_of({**settings, "max_contacts": True})

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 import math
 from pathlib import Path
 
@@ -68,6 +69,11 @@ def test_ball_diameter_makes_a_solid_ball_of_the_material(project) -> None:
     assert point["impactor"]["mass_kg"] == pytest.approx(rho * math.pi * 1e-6 / 6, rel=1e-12)
     assert point["methods"] == ["sem"] and "sweep" not in point and point["sweep_point"] == {"ball_diameter_m": 0.01}
     assert point["rod"] == case["rod"]  # only the impactor changes
+    # a copy: changing the point leaves the sweep case as it was, its grid included
+    grid = copy.deepcopy(case["sweep"])
+    point["rod"]["length_m"] *= 2
+    point["methods"].append("fem1d")
+    assert case["rod"]["length_m"] != point["rod"]["length_m"] and case["sweep"] == grid
 
 
 def test_table2_balls_are_solid_balls_of_the_sweeps_steel(project) -> None:

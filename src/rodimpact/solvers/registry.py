@@ -17,6 +17,7 @@ a new calibration of a cost model reruns none.
 
 from __future__ import annotations
 
+import functools
 import importlib
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -50,6 +51,13 @@ class UnknownMethod(KeyError):
 
     def __str__(self) -> str:
         return f"unknown method {self.name!r}; known: {', '.join(METHODS)}"
+
+
+@functools.lru_cache(maxsize=256)
+def _options(options: type, settings: tuple[tuple[str, str, Any], ...]) -> Any:
+    """``options.from_settings`` of flat ``settings`` (name, type name, value), once per distinct
+    settings: a planned sweep estimates every point's cost with the same settings."""
+    return options.from_settings({name: value for name, _, value in settings})
 
 
 @dataclass(frozen=True)
@@ -125,7 +133,13 @@ class Method:
         rodimpact.solvers.options.OptionError
             A setting is out of bounds (its name in ``field``).
         """
-        return self.options.from_settings(settings)
+        try:  # flat settings of hashable values (every method's): built once, shared (frozen);
+            # the key holds each value's type, so that 1 and true, equal in Python, stay apart
+            key = tuple(sorted((name, type(value).__name__, value) for name, value in settings.items()))
+            hash(key)
+        except TypeError:
+            return self.options.from_settings(settings)
+        return _options(self.options, key)
 
     @property
     def solver_module(self) -> str:
