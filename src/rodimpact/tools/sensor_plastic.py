@@ -34,7 +34,6 @@ from __future__ import annotations
 import argparse
 import concurrent.futures
 import copy
-import dataclasses
 import logging
 import math
 import sys
@@ -48,17 +47,11 @@ import pandas as pd
 import yaml
 
 from rodimpact.config.load import load_project
-from rodimpact.contact.laws import DEFAULT_LAW
 from rodimpact.jobs.indentation import indentation_curve
-from rodimpact.model.problem import ImpactProblem
-from rodimpact.solvers.fem_axi.options import FEMAxiOptions
-from rodimpact.solvers.fem_axi.problem import AxiImpact
-from rodimpact.solvers.fem_axi.solver import solve_fem_axi
 from rodimpact.solvers.registry import METHODS
-from rodimpact.solvers.sem.solver import solve_sem
 from rodimpact.storage.atomic import atomic_output
 from rodimpact.storage.sidecar import write_provenance
-from rodimpact.tools.yielding_rod import law_of_curve
+from rodimpact.tools.yielding_rod import dynamic_check
 
 __all__ = [
     "MODES",
@@ -67,7 +60,6 @@ __all__ = [
     "with_layer_yield",
     "sensor_plastic_row",
     "sensor_plastic_study",
-    "dynamic_check",
     "time_exponent",
     "main",
 ]
@@ -210,34 +202,6 @@ def sensor_plastic_study(
     for name in names:
         frame[f"yield_{name}_pa"] = [stresses[m][name] if m != "elastic" else math.nan for m in frame["mode"]]
     return frame
-
-
-def dynamic_check(case: Mapping[str, Any], settings: Mapping[str, Any]) -> dict[str, Any]:
-    """``fem_axi``'s dynamic run of ``case`` (the sensor as built, yielding layers) against the
-    SEM through the law the same mesh's indentation gives: contact time, restitution, energy."""
-    started = time.perf_counter()
-    problem = dataclasses.replace(AxiImpact.from_case(case), body="cap")
-    run = solve_fem_axi(problem, FEMAxiOptions.from_settings(settings))
-    if run.status not in ("completed", "truncated"):
-        raise RuntimeError(f"case {case['id']!r}: fem_axi failed: {run.message}")
-    continuum_s = time.perf_counter() - started
-    law, _, path_s = law_of_curve(case, settings)
-    one_d = {**case, "contact": {"law": DEFAULT_LAW}}  # its law replaced by the table's below
-    sem = solve_sem(dataclasses.replace(ImpactProblem.from_case(one_d), contact=law), METHODS["sem"].options())
-    impact = 0.5 * problem.mass_kg * problem.velocity_m_s**2
-    return {
-        "case": case["id"],
-        "fem_axi_contact_time_us": 1e6 * run.contact_time_s,
-        "sem_contact_time_us": 1e6 * sem.contact_time_s,
-        "contact_time_difference_pct": 100 * (sem.contact_time_s / run.contact_time_s - 1),
-        "fem_axi_restitution": float(run.restitution),
-        "sem_restitution": float(sem.restitution),
-        "restitution_difference_pct": 100 * (sem.restitution / run.restitution - 1),
-        "fem_axi_energy_error": float(run.energy_error),
-        "fem_axi_dissipated_fraction": float(run.summary()["dissipated_energy_J"]) / impact,
-        "fem_axi_s": continuum_s,
-        "indentation_s": path_s,
-    }
 
 
 def _dynamic_job(args: tuple[dict[str, Any], dict[str, Any]]) -> dict[str, Any]:
