@@ -10,7 +10,9 @@
 #                results/benchmarks/build.csv: the last build's time per rule (jobs, solvers, overhead)
 #                from snakemake's job records, and results/benchmarks/planning.csv: the dry run's
 #                time, a one-rule workflow's and a sem sweep's of 100 to 100,000 points planned
-#                alone; run make paper first
+#                alone, cost_share.csv: each method's solve time over its cost model's, and
+#                sweep_scaling.csv / sweep_point.csv: sem sweeps of 100 to 10,000 points built in
+#                parts with -j1 and -j2, and where a point's time goes; run make paper first
 #   make convergence   only the error-against-run-time study -> results/tables/work_precision.csv
 #   make convergence-separate   the study's separate cases (levels over a minute each, not in
 #                make paper) -> results/tables/work_precision_separate*.{csv,md,html}
@@ -80,6 +82,8 @@ bench: $(STAMP)
 	$(BIN)/python -m rodimpact.tools.bench results/benchmarks/fem.csv
 	$(BIN)/python -m rodimpact.tools.build_stats --csv results/benchmarks/build.csv
 	$(BIN)/python -m rodimpact.tools.bench_planning --csv results/benchmarks/planning.csv --sweep-points 100 1000 10000 100000
+	$(BIN)/python -m rodimpact.tools.cost_share --csv results/benchmarks/cost_share.csv
+	$(BIN)/python -m rodimpact.tools.bench_sweeps --csv results/benchmarks/sweep_scaling.csv --point-split 1000
 
 sphere-flat: $(STAMP)
 	$(BIN)/python -m rodimpact.tools.sphere_flat --out results/verification

@@ -13,7 +13,7 @@ import pytest
 from rodimpact.storage.bands import CaseBand, write_band
 from rodimpact.storage.faults import REBUILD_HINT
 from rodimpact.storage.provenance import library_versions
-from rodimpact.storage.runs import read_summary, write_run
+from rodimpact.storage.runs import read_summary, write_run, write_runs
 from rodimpact.storage.sidecar import write_provenance
 from rodimpact.tools import audit as audit_module
 from rodimpact.tools.audit import audit, audit_run, audit_sidecar, code_problems
@@ -84,6 +84,31 @@ def test_a_run_edited_after_writing_is_caught(run: Path, edit) -> None:
         f"its content differs from its data_sha256 (changed after it was written) ({REBUILD_HINT})",
     )
     assert run.stat().st_mtime == 0.0  # marked: snakemake's modification-time check remakes it
+
+
+def test_every_run_of_a_file_of_runs_is_audited_and_a_changed_one_named(tmp_path: Path, run: Path) -> None:
+    """A sweep's part: each of its runs checked as a run file is; a run edited after it was
+    written is named (by its name in the file), and the file, the job's output, is marked."""
+    part = tmp_path / "results" / "sweeps" / "s" / "sem" / "part0.h5"
+    record = read_summary(run)
+    series = {"time": (np.linspace(0.0, 1e-4, 50), "s", "time")}
+    summary = {key: record.summary[key] for key in ("contact_time_s", "peak_force_N", "peak_time_s")}
+    summary.update(rebound_velocity_m_s=-0.9, energy_error=1e-7)
+    with write_runs(part) as writer:
+        for name in ("p~1", "p~2"):
+            config = {"id": f"s.{name}", "run": {"method": "sem"}}
+            writer.add(name, config=config, method="sem", series=series, summary=summary, wall_time_s=0.1,
+                       code_version=VERSION)  # fmt: skip
+    finding = audit_run(part, library_versions(), ROOT)
+    assert finding.ok, finding.problems
+    assert finding.code_versions == (VERSION,) and len(finding.config_sha256) == 2
+    with h5py.File(part, "r+") as h5:
+        h5["p~2/time"][3] = 7.0
+    finding = audit_run(part, library_versions(), ROOT)
+    assert finding.problems == (
+        f"run p~2: its content differs from its data_sha256 (changed after it was written) ({REBUILD_HINT})",
+    )
+    assert part.stat().st_mtime == 0.0
 
 
 def test_an_edited_config_is_caught(run: Path) -> None:

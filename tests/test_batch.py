@@ -8,10 +8,10 @@ from pathlib import Path
 import pytest
 
 from rodimpact.analysis.sweeps import sweep_point_case, sweep_points
-from rodimpact.jobs.batch import run_batch, run_batch_into
+from rodimpact.jobs.batch import run_batch, run_batch_file, run_batch_into
 from rodimpact.jobs.cases import write_case_file
 from rodimpact.jobs.runner import SolverFailed, run_to_file
-from rodimpact.storage.runs import read_run
+from rodimpact.storage.runs import read_run, run_references
 
 
 @pytest.fixture(scope="module")
@@ -92,6 +92,38 @@ def test_a_batch_directory_appears_whole_or_not_at_all(sweep: dict, tmp_path: Pa
     assert not list((tmp_path / "failed").iterdir())
     with pytest.raises(ValueError, match="not a file name"):
         run_batch_into({"../x": runs["p0"]}, tmp_path / "bad")
+
+
+def test_a_part_of_a_sweep_is_one_file_of_runs_each_as_its_own_file_holds_it(sweep: dict, tmp_path: Path) -> None:
+    """run_batch_file: every run of the batch a group of one file, in order, each with the same
+    config, config hash and numbers as the run written to its own file (all but the solver's
+    timing); a batch that fails leaves no file."""
+    case_file = write_case_file(sweep["id"], [sweep], tmp_path / "case.yaml")
+    runs = _runs(sweep, 3)
+    target = tmp_path / "part0.h5"
+    references = run_batch_file(runs, target, case_file=case_file)
+    assert references == run_references(target) == [f"{target}#{name}" for name in runs]
+    alone = run_batch(runs, {name: tmp_path / f"{name}.h5" for name in runs}, case_file=case_file)
+    for reference, path in zip(references, alone):
+        grouped, single = read_run(reference), read_run(path)
+        assert grouped.path == Path(reference) and grouped.config == single.config
+        assert grouped.config_sha256 == single.config_sha256 and grouped.data_sha256
+        timed = {key for key in single.summary if "wall_time" in key}
+        assert timed and grouped.summary.keys() == single.summary.keys()
+        assert {k: str(v) for k, v in grouped.summary.items() if k not in timed} == {
+            k: str(v) for k, v in single.summary.items() if k not in timed
+        }
+        assert grouped.series.keys() == single.series.keys()
+        for name in single.series:
+            assert (grouped.series[name] == single.series[name]).all(), name
+    failing = copy.deepcopy(runs)
+    failing["p2"]["case"]["numerics"]["sem"]["max_steps"] = 10  # the last run fails after two are in
+    with pytest.raises(SolverFailed):
+        run_batch_file(failing, tmp_path / "failed.h5")
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(("failed", ".failed"))]
+    with pytest.raises(ValueError, match="cannot name a run"):
+        run_batch_file({"a#b": runs["p0"]}, tmp_path / "bad.h5")
+    assert not (tmp_path / "bad.h5").exists()
 
 
 def test_a_calibrated_sweep_point_computes_its_own_curve_as_the_indentation_rule_does(

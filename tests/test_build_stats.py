@@ -32,6 +32,18 @@ def _run(root: Path, output: str, wall: float, repeats: int | None = None) -> No
             summary.attrs["wall_time_repeats"] = repeats
 
 
+def _runs(root: Path, output: str, walls: list[float]) -> None:
+    """A file of runs (a sweep's part): one group per run, each with its solver time."""
+    path = root / output
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with h5py.File(path, "w") as h5:
+        h5.attrs["layout"] = "runs"
+        for index, wall in enumerate(walls):
+            group = h5.create_group(f"p{index}")
+            group.attrs["wall_time_s"] = wall
+            group.create_group("summary")
+
+
 def _file(root: Path, output: str) -> None:
     (root / output).parent.mkdir(parents=True, exist_ok=True)
     (root / output).write_text("x")
@@ -39,17 +51,16 @@ def _file(root: Path, output: str) -> None:
 
 @pytest.fixture
 def project(tmp_path: Path) -> Path:
-    """A batch of two runs in its output directory (1.5 s and 0.5 s of solver in a 3 s job, and
-    snakemake's timestamp file), a single run (2 s in a 2.5 s job), a timed run in a batch's
-    directory (median 0.25 s, 4 repeats, in a 2 s job), a table (two outputs, 1 s), a benchmark
-    (left out) and the record of a file that no longer exists (left out)."""
-    _run(tmp_path, "results/sweeps/s/sem/a.h5", 1.5)
-    _run(tmp_path, "results/sweeps/s/sem/b.h5", 0.5)
-    _file(tmp_path, "results/sweeps/s/sem/.snakemake_timestamp")
-    _record(tmp_path, "results/sweeps/s/sem", "solve_sweep", 100.0, 103.0, 7)
+    """A sweep's part: a file of two runs (1.5 s and 0.5 s of solver in a 3 s job), a single run
+    (2 s in a 2.5 s job), a timed run in a batch's directory (median 0.25 s, 4 repeats, in a 2 s
+    job, with snakemake's timestamp file), a table (two outputs, 1 s), a benchmark (left out)
+    and the record of a file that no longer exists (left out)."""
+    _runs(tmp_path, "results/sweeps/s/sem/part0.h5", [1.5, 0.5])
+    _record(tmp_path, "results/sweeps/s/sem/part0.h5", "solve_sweep", 100.0, 103.0, 7)
     _run(tmp_path, "results/runs/c/sem.h5", 2.0)
     _record(tmp_path, "results/runs/c/sem.h5", "solve", 101.0, 103.5, 8)
     _run(tmp_path, "results/convergence/c/sem/level0.h5", 0.25, repeats=4)
+    _file(tmp_path, "results/convergence/c/sem/.snakemake_timestamp")
     _record(tmp_path, "results/convergence/c/sem", "solve_levels", 103.5, 105.5, 9)
     _file(tmp_path, "results/tables/t.csv")
     _file(tmp_path, "results/tables/t.md")

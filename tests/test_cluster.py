@@ -92,12 +92,13 @@ def test_every_job_is_submitted_with_its_estimated_resources(tmp_path: Path) -> 
 def test_every_rule_is_local_or_in_a_group_the_slurm_profile_sizes() -> None:
     """Every rule a cluster runs is either a local rule (the case files, the tables, the figures
     and the force export: written where snakemake runs) or in a declared group (the solvers); only
-    the benchmarks are neither (each wants a node of its own). The profile sizes exactly the
-    declared groups."""
+    the benchmarks (each wants a node of its own) and a sweep's parts (each sized by its cost to be
+    worth a submission: a group would run them one after another) are neither. The profile sizes
+    exactly the declared groups."""
     rules_dir = Path(__file__).resolve().parents[1] / "workflow" / "rules"
     common = (rules_dir / "common.smk").read_text(encoding="utf-8")
     groups = dict(re.findall(r'^(GROUP_\w+) = "(\w+)"$', common, re.M))
-    alone = {"bench_sem", "bench_fem", "bench_sem_scaling"}
+    alone = {"bench_sem", "bench_fem", "bench_sem_scaling", "solve_sweep"}
     local, grouped, neither, both, unknown = set(), set(), [], [], []
     for path in sorted(rules_dir.glob("*.smk")):
         blocks = re.split(r"^\s*rule(?= |:)", path.read_text(encoding="utf-8"), flags=re.M)[1:]

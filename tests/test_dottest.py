@@ -58,6 +58,8 @@ SMALLER = {
     ("work_precision", "separate"),
     # a case's own methods and orders, for the cases .test sweeps only (checked below)
     ("work_precision", "per_case"),
+    # smaller jobs for the sweeps: .test's forty-point sweep cut into several parts
+    ("batch", "target_s"),
 }
 
 

@@ -100,8 +100,12 @@ def built(tmp_path_factory: pytest.TempPathFactory) -> Path:
         ),
         (
             "results/sweeps/ball_sweep-r1_l301/sem/ball_diameter_m~0.5.h5",
-            "rodimpact: no rule makes 'results/sweeps/ball_sweep-r1_l301/sem/ball_diameter_m~0.5.h5' alone: "
-            "it would be a file of results/sweeps/ball_sweep-r1_l301/sem, which rule solve_sweep writes as a whole",
+            "rodimpact: no rule makes 'results/sweeps/ball_sweep-r1_l301/sem/ball_diameter_m~0.5.h5'; "
+            "results/sweeps/ holds: results/sweeps/{case}/{method}/part{part}.h5",
+        ),
+        (
+            "results/sweeps/ball_sweep-r1_l301/sem/part3.h5",
+            "rodimpact: sweep 'ball_sweep-r1_l301' by sem has one part: part0 (batch.target_s = 30 s)",
         ),
         ("tables", "rodimpact: no rule makes 'tables' and no rule has that name; rules: all, "),
     ],
@@ -110,7 +114,8 @@ def built(tmp_path_factory: pytest.TempPathFactory) -> Path:
         "method no case of the group runs",
         "a level of a batch",
         "an unknown method's level",
-        "a sweep point of a batch",
+        "a sweep point (a run in its part's file)",
+        "a part the sweep does not have",
         "unknown rule",
     ],
 )

@@ -22,6 +22,7 @@ from rodimpact.jobs.resources import (
     JobResources,
     estimate_resources,
     estimate_sequence,
+    run_cost,
 )
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.plumbing.sources import module_sources
@@ -249,3 +250,42 @@ def test_bench_margins_table():
     assert list(resource_margins(frame)["case"]) == ["model"]
     with pytest.raises(ValueError, match="^frame"):
         resource_margins(frame.drop(columns=["mem_estimate_MiB"]))
+
+
+def test_each_method_declares_a_typical_share_of_its_upper_side_time(model):
+    """The cost models are upper-side; each declares the share of its time a solve typically
+    takes (below one), and the central estimate is that share of the model's time."""
+    for method in model["methods"]:
+        cost = run_cost(model, method)
+        assert 0.0 < cost.typical_share < 1.0, method
+        assert cost.typical_s == pytest.approx(cost.typical_share * cost.solve_s, rel=1e-15)
+    paper = run_cost(model, "sem_paper").typical_share
+    assert paper != run_cost(model, "sem").typical_share  # the two SEM schemes, measured apart
+
+
+def test_the_cost_share_tool_measures_what_the_stored_runs_took(model, tmp_path):
+    """cost_share: measured over modelled time of every stored run (a run file, and each run of a
+    file of runs), per method, next to the share the method declares."""
+    import numpy as np
+
+    from rodimpact.jobs.runner import run_config
+    from rodimpact.storage.runs import write_run, write_runs
+    from rodimpact.tools.cost_share import cost_shares
+
+    solve_s = run_cost(model, "sem").solve_s
+    run = {
+        "config": run_config(model, "sem"),
+        "method": "sem",
+        "series": {"time": (np.zeros(1), "s", "time")},
+        "summary": {"contact_time_s": 1e-4, "peak_force_N": np.ones(1), "peak_time_s": np.ones(1),
+                    "rebound_velocity_m_s": 0.0, "energy_error": 0.0},
+        "code_version": "0+gabc",
+    }  # fmt: skip
+    write_run(tmp_path / "results/runs/model/sem.h5", **run, wall_time_s=0.1 * solve_s)
+    with write_runs(tmp_path / "results/sweeps/s/sem/part0.h5") as writer:
+        writer.add("a", **run, wall_time_s=0.2 * solve_s)
+        writer.add("b", **run, wall_time_s=0.6 * solve_s)
+    (share,) = cost_shares(tmp_path)
+    assert (share.method, share.runs) == ("sem", 3)
+    assert share.median == pytest.approx(0.2, rel=1e-12) and share.max == pytest.approx(0.6, rel=1e-12)
+    assert share.typical_share == run_cost(model, "sem").typical_share

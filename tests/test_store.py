@@ -304,3 +304,82 @@ def test_series_have_time_as_their_dimension_scale(tmp_path: Path) -> None:
             if dataset.ndim == 2:
                 assert dataset.dims[1].label == "station"
     assert read_run(path).series.keys() == make_series().keys()  # the scales are not series
+
+
+# ---------------------------------------------------------------------------- files of runs
+
+
+def _runs_file(path: Path, names: tuple[str, ...] = ("m~0.001", "m~0.002")) -> list[str]:
+    """A file of runs: each name a run of its own case (ids differ), written as write_run takes it."""
+    with runs.write_runs(path) as writer:
+        return [
+            writer.add(
+                name,
+                config={**make_config(), "id": f"sweep.{name}"},
+                method="sem",
+                series=make_series(),
+                summary=make_summary(),
+                wall_time_s=0.01,
+                code_version="1.0+gabc1234",
+            )
+            for name in names
+        ]
+
+
+def test_a_file_of_runs_holds_each_run_whole_under_its_reference(tmp_path: Path) -> None:
+    """write_runs: one group per run, each read back through ``file#name`` exactly as a run file
+    of its own is (config, hashes, series, summary, dimension scales); run_references lists them
+    in the order written, and a run file of its own as itself."""
+    path = tmp_path / "part0.h5"
+    references = _runs_file(path)
+    assert references == runs.run_references(path) == [f"{path}#m~0.001", f"{path}#m~0.002"]
+    alone = write_good(tmp_path / "alone.h5")
+    assert runs.run_references(alone) == [str(alone)]
+    with h5py.File(path, "r") as h5:
+        assert h5.attrs["layout"] == runs.RUNS_LAYOUT and int(h5.attrs["runs"]) == 2
+        assert h5["m~0.001/contact_force"].dims[0][0] == h5["m~0.001/time"]
+    single = read_run(alone)
+    for name, reference in zip(("m~0.001", "m~0.002"), references):
+        record = read_run(reference)
+        assert record.path == Path(reference) and record.case_id == f"sweep.{name}"
+        assert record.summary.keys() == single.summary.keys() and record.data_sha256
+        for series, values in single.series.items():
+            np.testing.assert_allclose(record.series[series], values, rtol=RTOL, atol=0.0)
+        assert read_summary(reference).series == {}
+
+
+def test_a_file_of_runs_is_written_whole_or_not_at_all(tmp_path: Path) -> None:
+    path = tmp_path / "part1.h5"
+    with pytest.raises(RuntimeError, match="killed"):
+        with runs.write_runs(path) as writer:
+            writer.add("a", config=make_config(), method="sem", series=make_series(), summary=make_summary(),
+                       wall_time_s=0.0)  # fmt: skip
+            raise RuntimeError("killed after the first run")
+    assert not path.exists() and leftovers(tmp_path) == []
+
+
+@pytest.mark.parametrize("name", ["", "a/b", "a#b", ".", ".."])
+def test_a_run_needs_a_name_that_can_name_it(tmp_path: Path, name: str) -> None:
+    with pytest.raises(ValueError, match="cannot name a run"):
+        _runs_file(tmp_path / "bad.h5", (name,))
+    assert not (tmp_path / "bad.h5").exists()
+
+
+def test_a_run_named_twice_is_refused(tmp_path: Path) -> None:
+    with pytest.raises(ValueError, match="already holds a run 'a'"):
+        _runs_file(tmp_path / "twice.h5", ("a", "a"))
+
+
+def test_a_changed_run_in_a_file_of_runs_is_named_and_its_file_marked(tmp_path: Path) -> None:
+    """A run edited after it was written, or asked for by a name the file does not hold, is
+    refused as the run (file#name); the file (the job's output) is marked out of date."""
+    path = tmp_path / "part2.h5"
+    references = _runs_file(path)
+    with h5py.File(path, "r+") as h5:
+        h5["m~0.002/contact_force"][0] += 1.0
+    read_run(references[0])  # the other run is untouched
+    with pytest.raises(runs.CorruptRun, match=re.escape(f"{path}#m~0.002: its content differs")) as raised:
+        read_run(references[1])
+    assert raised.value.marked and path.stat().st_mtime == 0
+    with pytest.raises(runs.CorruptRun, match="no run 'm~0.003' in the file of runs"):
+        read_run(f"{path}#m~0.003")

@@ -30,7 +30,8 @@ import pytest
 from PIL import Image
 
 from rodimpact.storage.casefile import case_record, read_case_file
-from rodimpact.storage.runs import REQUIRED_SUMMARY, read_run, read_summary
+from rodimpact.storage.references import split_reference
+from rodimpact.storage.runs import REQUIRED_SUMMARY, read_run, read_summary, run_references
 from rodimpact.tools.audit import audit
 
 from helpers.copies import DOTTEST, SMALL_STRESS, DotTestBuild, case_run, clone_build, project_cases, run_path
@@ -423,17 +424,31 @@ def test_a_strain_gauged_set_is_compared_and_calibrated(built: Path, expected: d
     assert (built / "results/figures/calibration_gauge_example.png").stat().st_size > 10_000
 
 
-def test_sweep_points_are_runs_and_a_table(built: Path, expected: dict) -> None:
-    """The Table 2 ball sweep: one HDF5 run per point and variant, named by its Paramspace
-    instance, and a table whose contact times grow with the ball's mass along each curve."""
+def test_sweep_points_are_runs_in_parts_and_a_table(built: Path, expected: dict) -> None:
+    """The Table 2 ball sweeps: each point one run, named by its Paramspace instance, in the file
+    of its part (consecutive points, one job each; the forty-point sweep cut into several at the
+    small configuration's target); and a table whose contact times grow with the ball's mass
+    along each curve."""
     project = expected["project"]
     files = sorted(p.relative_to(built).as_posix() for p in (built / "results/sweeps").rglob("*.h5"))
-    assert len(files) == sum(expected["sweep_points"].values())
+    assert all(re.fullmatch(r"results/sweeps/ball_sweep(_film|_sensor)?-\w+/sem/part\d+\.h5", f) for f in files), files
+    references = [reference for f in files for reference in run_references(built / f)]
+    assert len(references) == sum(expected["sweep_points"].values())
     point = r"ball_diameter_m~[0-9.e-]+(_film_modulus_pa~[0-9.e+]+)?"
-    assert all(re.fullmatch(rf"results/sweeps/ball_sweep(_film|_sensor)?-\w+/sem/{point}\.h5", f) for f in files), files
+    assert all(re.fullmatch(point, split_reference(r)[1]) for r in references), references
+    parts = Counter(Path(f).parent.parent.name for f in files)
+    assert parts["ball_sweep-r10_l30"] >= 3 and expected["sweep_points"]["ball_sweep-r10_l30"] >= 40, parts
+    # each part holds consecutive points of the grid, in order
+    for sweep, count in parts.items():
+        names = [
+            split_reference(r)[1]
+            for k in range(count)
+            for r in run_references(built / f"results/sweeps/{sweep}/sem/part{k}.h5")
+        ]
+        assert len(names) == expected["sweep_points"][sweep] and len(set(names)) == len(names)
     table = pd.read_csv(built / "results/tables/sweep_table2.csv")
     swept = {sweep["id"].rpartition("-")[2] for sweep in project.sweeps.values()}
-    assert len(table) == len(files) and set(table["variant"]) == swept
+    assert len(table) == len(references) and set(table["variant"]) == swept
     film_sweep = f"ball_sweep_film-{FILM_VARIANT}"
     film = table[table["sweep"] == film_sweep]
     assert len(film) == expected["sweep_points"][film_sweep] and sorted(set(film["film_modulus_pa"])) == [2e9, 3e9, 4e9]
@@ -450,10 +465,11 @@ def test_sweep_points_are_runs_and_a_table(built: Path, expected: dict) -> None:
         rho = project.sweeps[sweep]["impactor"]["material"]["density_kg_m3"]
         mass = rho * math.pi * curve["ball_diameter_m"] ** 3 / 6 * 1000
         np.testing.assert_allclose(curve["mass_g"], mass, rtol=1e-9)  # the CSV keeps 10 digits
-    record = read_run(built / files[0])
+    record = read_run(references[0])
     assert record.config["run"]["study"]["name"] == "sweep" and "sweep_point" in record.config
+    assert record.config["run"]["study"]["point"] == split_reference(references[0])[1]
     # a point of the calibrated law's sweep: its batch indented the point's own ball
-    sensor = [read_run(built / f) for f in files if "/ball_sweep_sensor-" in f]
+    sensor = [read_run(r) for r in references if "/ball_sweep_sensor-" in r]
     assert sensor and all(r.config["run"]["contact_curve"]["computed_in_job"] for r in sensor)
     assert len({r.config["run"]["contact_curve"]["summary"]["max_force_N"] for r in sensor}) == len(sensor)
 

@@ -20,7 +20,8 @@ What it does, in order:
      whose batch script (``workflow/scripts/solve_batch.py``) raises;
 
 5. checks the build: exit status 0, the sbatch submissions (the scheduler's own list, which
-   keeps every job of the run: ``MinJobAge`` is long), the same files as the local build,
+   keeps every job of the run: ``MinJobAge`` is long), the sweep the small configuration cuts
+   into parts submitted one part each, two of them side by side, the same files as the local build,
    every HDF5 dataset and attribute and every table equal but for the timings (:mod:`compare`),
    and the provenance audit (``python -m rodimpact.tools.audit --root .test``); writes its jobs,
    submissions and wall time against the local build's to ``results/benchmarks/cluster.csv``
@@ -42,6 +43,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import itertools
 import os
 import re
 import shutil
@@ -51,6 +53,7 @@ import sys
 import tempfile
 import time
 from dataclasses import dataclass, field
+from datetime import datetime
 from pathlib import Path
 from types import FrameType
 
@@ -80,6 +83,8 @@ BUILD_TIMEOUT_S = 1500
 FAILURE_TIMEOUT_S = 900
 #: A single target, planned through the profile and locally.
 SINGLE_TARGET = "results/tables/fig2_comparison.csv"
+#: The sweep the small configuration cuts into several parts (batch.target_s of .test/config).
+CUT_SWEEP = "ball_sweep-r10_l30"
 #: The run the failure check asks for, and the rule's log it must name.
 FAILING_TARGET = "results/runs/model/sem"
 FAILING_RULE_LOG = "logs/runs/model/sem.log"
@@ -254,9 +259,10 @@ def run_snakemake(project: Path, args: tuple[str, ...], env: dict[str, str], tim
 def scheduler_jobs(cluster: LocalSlurm) -> list[dict[str, str]]:
     """Every job the scheduler knows (pending, running, or finished less than MinJobAge ago):
     id, name (snakemake's run id), state, comment (``rule_<rule>_wildcards_...`` for a job,
-    ``rule_<group>_<its rules>`` for a group), memory, time limit and CPUs as submitted."""
-    fields = ("id", "name", "state", "comment", "memory", "time_limit", "cpus")
-    listed = cluster.command("squeue", "--states=all", "--noheader", "--format=%i|%j|%T|%k|%m|%l|%C")
+    ``rule_<group>_<its rules>`` for a group), memory, time limit and CPUs as submitted, and its
+    start and end (ISO 8601, to the second; ``N/A`` before it starts)."""
+    fields = ("id", "name", "state", "comment", "memory", "time_limit", "cpus", "start", "end")
+    listed = cluster.command("squeue", "--states=all", "--noheader", "--format=%i|%j|%T|%k|%m|%l|%C|%S|%e")
     return [dict(zip(fields, line.split("|"))) for line in listed.stdout.splitlines() if line.strip()]
 
 
@@ -319,6 +325,7 @@ def check_build(run: SnakemakeRun, jobs: list[dict[str, str]], project: Path, re
     )
     kinds = submission_kinds(jobs, set(profile_settings().get("group-components", {})))
     say(f"     {len(jobs)} submissions: " + ", ".join(f"{kind} {n}" for kind, n in sorted(kinds.items())))
+    check_sweep_parts(jobs, project, report)
     counts, problems = compare_builds(reference, project / DOTTEST)
     report.check(
         not problems,
@@ -337,6 +344,29 @@ def check_build(run: SnakemakeRun, jobs: list[dict[str, str]], project: Path, re
     last = (audit.stdout.strip().splitlines() or [""])[-1]
     report.check(
         audit.returncode == 0, f"provenance audit of the SLURM build: {last}", (audit.stdout + audit.stderr)[-3000:]
+    )
+
+
+def side_by_side(jobs: list[dict[str, str]]) -> bool:
+    """Whether two of ``jobs`` ran at the same time (each started before the other ended)."""
+    spans = []
+    for job in jobs:
+        try:
+            spans.append((datetime.fromisoformat(job["start"]), datetime.fromisoformat(job["end"])))
+        except ValueError:  # N/A: never started
+            continue
+    return any(a[0] < b[1] and b[0] < a[1] for a, b in itertools.combinations(spans, 2))
+
+
+def check_sweep_parts(jobs: list[dict[str, str]], project: Path, report: Report) -> None:
+    """The sweep the small configuration cuts into several parts (:data:`CUT_SWEEP`): one
+    submission per part, in no group, and two of them running side by side."""
+    files = sorted((project / DOTTEST / "results" / "sweeps" / CUT_SWEEP).rglob("part*.h5"))
+    parts = [job for job in jobs if job["comment"].startswith("rule_solve_sweep_") and CUT_SWEEP in job["comment"]]
+    report.check(
+        len(files) >= 2 and len(parts) == len(files) and side_by_side(parts),
+        f"the sweep {CUT_SWEEP} in {len(files)} parts: {len(parts)} submissions, two of them side by side",
+        "\n".join(str(job) for job in parts),
     )
 
 

@@ -47,6 +47,7 @@ from snakemake.utils import Paramspace
 from rodimpact.analysis.studies import level_case, map_point_case, map_point_names, reference_case
 from rodimpact.analysis.measured import RECORDS, SIGNAL_RECORDS, measured_cases
 from rodimpact.analysis.sweeps import sweep_frame, sweep_point_case, sweep_points
+from rodimpact.storage.references import run_reference
 from rodimpact.config.calibration import applied_cases, calibration_cases, expected_evaluations, with_method
 from rodimpact.config.checks import swept_methods
 from rodimpact.contact.laws import LAWS, law_of

@@ -95,11 +95,11 @@ def calibration_resources():
         repeats = len(grid) if grid else expected_evaluations(len(block["parameters"]), len(fitted))
         runs = [(with_method(c, block["method"], config["numerics"]), block["method"], repeats) for c in cases]
         curves = [
-            (c, {"rule": curve_rule_of(c), "settings": CURVE_SETTINGS[curve_rule_of(c)]})
+            curve_cost({"case": c, "curve": {"rule": curve_rule_of(c), "settings": CURVE_SETTINGS[curve_rule_of(c)]}})
             for c in cases
             if curve_rule_of(c) is not None
         ]
-        return _estimate_batch(runs, None, curves * repeats)
+        return estimate_sequence(runs, extra=curves * repeats)
 
     return _resources(lambda w: estimate(w.set))
 

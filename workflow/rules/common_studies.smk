@@ -93,8 +93,8 @@ def sweep_runs(cases=None, methods=None):
 WORK_PRECISION_SEPARATE = WORK_PRECISION.get("separate") or {}
 
 
-# One Paramspace per sweep case: its grid, and the names of its points (one file each); and each
-# point's values by its name (the Paramspace's rows are the grid's points, in order).
+# One Paramspace per sweep case: its grid, and the names of its points (a group each in its part's
+# file); and each point's values by its name (the Paramspace's rows are the grid's points, in order).
 SWEEPS = {
     case_id: Paramspace(sweep_frame(case["sweep"]), filename_params="*", single_wildcard="sweep_point")
     for case_id, case in PROJECT.sweeps.items()
@@ -105,18 +105,30 @@ SWEEP_POINTS = {
 }
 
 
-def sweep_point_dirs(sweep_cases):
-    """The directories of the given sweep cases' points, one per method (one job each: rule solve_sweep)."""
-    return [f"results/sweeps/{c['id']}/{m}" for c in sweep_cases for m in c["sweep"]["methods"]]
+# A sweep's points by one method are cut into parts of about batch.target_s of typical solve time
+# (rodimpact.jobs.parts; sweep_parts_of in resources.smk): one job and one file of runs each.
+SWEEP_PART_FILE = "results/sweeps/{case}/{method}/part{part}.h5"
+
+
+def sweep_part_files(sweep_cases):
+    """The files of the given sweep cases' parts, of every method (one job each: rule solve_sweep)."""
+    return [
+        SWEEP_PART_FILE.format(case=c["id"], method=m, part=k)
+        for c in sweep_cases
+        for m in c["sweep"]["methods"]
+        for k in range(len(sweep_parts_of(c["id"], m)))
+    ]
 
 
 def sweep_point_runs(sweep_cases):
-    """HDF5 files of every point and method of the given sweep cases."""
+    """The runs of every point and method of the given sweep cases, in the grid's order: each
+    the reference ``file#point`` of its point in its part's file."""
     return [
-        f"results/sweeps/{c['id']}/{m}/{point}.h5"
+        run_reference(SWEEP_PART_FILE.format(case=c["id"], method=m, part=k), name)
         for c in sweep_cases
         for m in c["sweep"]["methods"]
-        for point in SWEEPS[c["id"]].instance_patterns
+        for k, part in enumerate(sweep_parts_of(c["id"], m))
+        for name in part.names
     ]
 
 

@@ -87,7 +87,7 @@ rule fig_readings:
     results, the sweeps' curves, and the readings with the thin-layer film and their bands)."""
     input:
         runs=run_batches(lambda w: set_reading_runs(w.set)),
-        sweep_points=lambda w: sweep_point_dirs(PROJECT.sweeps_in(w.set)),
+        sweep_parts=lambda w: sweep_part_files(PROJECT.sweeps_in(w.set)),
         band_files=lambda w: expand(
             "results/studies/film_band_{variant}.h5", variant=[v for v in FILM_VARIANTS if READING_SET_OF[v] == w.set]
         ),

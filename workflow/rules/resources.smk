@@ -5,8 +5,10 @@
 # times the memory and the run time.
 import importlib
 
+from rodimpact.config.project import ConfigFile
+from rodimpact.jobs.parts import TooManyParts, cut_runs
+from rodimpact.jobs.resources import PRESENTATION, estimate_sequence, run_cost
 from rodimpact.tools.bench_plan import fem_bench_runs, sem_bench_runs, sem_scaling_runs
-from rodimpact.jobs.resources import PRESENTATION, estimate_sequence
 
 
 @per_job
@@ -26,29 +28,75 @@ def level_runs(wildcards):
     return runs or refuse(f"the work-precision study does not sweep {wildcards.method!r}")
 
 
-@per_job
-def sweep_batch_runs(wildcards):
-    """Every point of the sweep of the wildcard's case by the method of the wildcard, by file name
-    (the point's name); refuses a method the sweep does not run."""
-    case_id = wildcards.case
+@functools.cache
+def sweep_runs_of(case_id, method):
+    """Every point of the sweep ``case_id`` by ``method``, by its name (in the grid's order): its
+    run (the point's case, the method, the study, and the curve its batch computes when its law
+    needs one); refuses a sweep or method the configuration does not define."""
+    if case_id not in PROJECT.sweeps:
+        refuse(f"unknown sweep {case_id!r}; known: {', '.join(PROJECT.sweeps)}")
     case = PROJECT.sweeps[case_id]
-    if wildcards.method not in case["sweep"]["methods"]:
-        refuse(
-            f"sweep {case_id!r} does not run {wildcards.method!r}; its methods: "
-            f"{', '.join(case['sweep']['methods'])}"
-        )
+    if method not in case["sweep"]["methods"]:
+        refuse(f"sweep {case_id!r} does not run {method!r}; its methods: {', '.join(case['sweep']['methods'])}")
     runs = {}
     for name, values in SWEEP_POINTS[case_id].items():
         point = sweep_point_case(case, values, name)
-        runs[name] = {
-            "case": point,
-            "method": wildcards.method,
-            "study": {"name": "sweep", "sweep": case_id, "point": name},
-        }
+        runs[name] = {"case": point, "method": method, "study": {"name": "sweep", "sweep": case_id, "point": name}}
         builder = curve_rule_of(point)
         if builder is not None:  # no rule computes a point's curve, its batch does
             runs[name]["curve"] = {"rule": builder, "settings": CURVE_SETTINGS[builder]}
     return runs
+
+
+@functools.cache
+def sweep_parts_of(case_id, method):
+    """The parts of the sweep ``case_id`` by ``method`` (rodimpact.jobs.parts.cut_runs of its
+    points' costs at batch.target_s: names, typical cost, resources), each point costed once.
+    Refuses a target that cuts the sweep into too many jobs, in one line."""
+    runs = sweep_runs_of(case_id, method)
+    costs = {
+        name: [run_cost(run["case"], method), *([curve_cost(run)] if "curve" in run else [])]
+        for name, run in runs.items()
+    }
+    try:
+        return cut_runs(costs, config["batch"]["target_s"])
+    except TooManyParts as error:
+        where = ConfigFile.under(CONFIG_FILE, Path(WORKDIR))
+        refuse(
+            f"invalid configuration: {where.error(f'sweep by {method}: {error}', case=case_id, field='batch.target_s')}"
+        )
+
+
+def curve_cost(run):
+    """The cost of the curve a run's batch computes for its law (CURVE_COSTS; its module imported
+    only when a batch needs it)."""
+    dotted, _, function = CURVE_COSTS[run["curve"]["rule"]].partition(":")
+    return getattr(importlib.import_module(dotted), function)(run["case"], run["curve"]["settings"])
+
+
+def sweep_part(wildcards):
+    """The part of the wildcards (case, method, part) of a sweep; refuses a part it does not have."""
+    parts = sweep_parts_of(wildcards.case, wildcards.method)
+    index = int(wildcards.part)
+    if index >= len(parts):
+        held = "one part: part0" if len(parts) == 1 else f"{len(parts)} parts: part0 to part{len(parts) - 1}"
+        refuse(
+            f"sweep {wildcards.case!r} by {wildcards.method} has {held} (batch.target_s = {config['batch']['target_s']:g} s)"
+        )
+    return parts[index]
+
+
+def sweep_part_runs(wildcards):
+    """The runs of one part of a sweep, by point name (rule solve_sweep's params)."""
+    runs = sweep_runs_of(wildcards.case, wildcards.method)
+    return {name: runs[name] for name in sweep_part(wildcards).names}
+
+
+def sweep_part_case_file(wildcards):
+    """The input of solve_sweep, the sweep's case file, once the part is known to exist
+    (an input function may refuse; its resources may not)."""
+    sweep_part(wildcards)
+    return f"results/cases/{wildcards.case}.yaml"
 
 
 @per_job
@@ -110,23 +158,20 @@ def batch_resources(runs, timing=None):
     """Resources of a batch rule: ``runs(wildcards)`` maps its outputs to their runs (``case``,
     ``method``), solved one after another; ``timing`` when each is timed."""
     return _resources(
-        lambda w: _estimate_batch(
+        lambda w: estimate_sequence(
             [(r["case"], r["method"], 1) for r in runs(w).values()],
-            timing,
-            [(r["case"], r["curve"]) for r in runs(w).values() if "curve" in r],
+            timing=timing,
+            extra=[curve_cost(r) for r in runs(w).values() if "curve" in r],
         )
     )
 
 
-def _estimate_batch(runs, timing, curves):
-    costs = {
-        name: getattr(importlib.import_module(path.partition(":")[0]), path.partition(":")[2])
-        for name, path in CURVE_COSTS.items()
-        if any(curve["rule"] == name for _, curve in curves)
+def sweep_part_resources():
+    """The resources of solve_sweep, its part's (sweep_parts_of), scaled by the attempt."""
+    return {
+        "mem_mb": lambda wildcards, attempt: sweep_part(wildcards).resources.for_attempt(attempt).mem_mb,
+        "runtime": lambda wildcards, attempt: sweep_part(wildcards).resources.for_attempt(attempt).runtime_min,
     }
-    return estimate_sequence(
-        runs, timing=timing, extra=[costs[curve["rule"]](case, curve["settings"]) for case, curve in curves]
-    )
 
 
 def bench_resources(runs):

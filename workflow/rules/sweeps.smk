@@ -1,41 +1,42 @@
-# Parameter sweeps: a case that declares `sweep:` is run at every point of its grid
-# (a snakemake Paramspace per sweep case, see common.smk), one HDF5 file per point. A point
-# solves in a fraction of a second and a job costs more to start, so every point of a sweep by
-# one method is solved in one job, whose output is the directory of its points' files
-# (results/sweeps/{case}/{method}/{point}.h5, each written whole with its own provenance). A
-# failure stops the build like a case's.
+# Parameter sweeps: a case that declares `sweep:` is run at every point of its grid (a snakemake
+# Paramspace per sweep case, see common_studies.smk). A point solves in a fraction of a second
+# and a job costs seconds to start, so a sweep's points by one method are cut into parts of about
+# batch.target_s of typical solve time (rodimpact.jobs.parts, known when the workflow is parsed):
+# the paper's sweeps are one part each, a sweep of thousands of points many, run side by side.
+# A part is one job and one file of runs (results/sweeps/{case}/{method}/part{k}.h5, a group per
+# point, each with its own provenance; the file written whole or not at all). A failure stops
+# the build like a case's. The parts are in no job group: each is sized to be worth a
+# submission of its own, and a group would put them back one after another on one node.
 
 
 rule solve_sweep:
-    """Every point of one case's sweep, one method."""
+    """One part of one case's sweep by one method: its points, one after another."""
     input:
-        case="results/cases/{case}.yaml",
+        case=sweep_part_case_file,
     output:
-        runs=directory("results/sweeps/{case}/{method}"),
+        runs="results/sweeps/{case}/{method}/part{part}.h5",
     log:
-        "logs/sweeps/{case}/{method}.log",
+        "logs/sweeps/{case}/{method}/part{part}.log",
     wildcard_constraints:
         case=one_of(PROJECT.sweeps),
-    group:
-        GROUP_SOLVERS
+        part=r"\d+",
     conda:
         "../envs/rodimpact.yaml"
     threads: 1
     resources:
-        **batch_resources(sweep_batch_runs),
+        **sweep_part_resources(),
     params:
         code=sweep_sources,
-        runs=sweep_batch_runs,
+        runs=sweep_part_runs,
         keep_failed=False,
-        timing=None,
     script:
-        "../scripts/solve_batch.py"
+        "../scripts/solve_sweep.py"
 
 
 rule sweep_table:
     """Every point of every sweep of a case set: swept values, contact time and force."""
     input:
-        points=lambda w: sweep_point_dirs(PROJECT.sweeps_in(w.set)),
+        parts=lambda w: sweep_part_files(PROJECT.sweeps_in(w.set)),
     output:
         csv=report(
             "results/tables/sweep_{set}.csv",

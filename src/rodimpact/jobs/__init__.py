@@ -7,7 +7,8 @@ sensor stack's band by the law the continuum calibrates), :mod:`.indentation` (t
 indentation as a contact-law curve), :mod:`.calibrate` (a set's declared constants fitted to its
 measurements, with leave-one-out), :mod:`.calibration_model` (what a calibration fits: the set's
 quantities run at its constants, or read between runs on a grid), :mod:`.cases` (the case files' contents),
-:mod:`.resources` (threads, memory and time of a job, estimated from its case), :mod:`.logs`
+:mod:`.resources` (threads, memory and time of a job, estimated from its case), :mod:`.parts` (a
+sweep's runs cut into jobs of about a target cost), :mod:`.logs`
 (the scripts' logging), :mod:`.timing` (how a timed run is repeated) and :mod:`.machine` (the
 machine a timing ran on).
 

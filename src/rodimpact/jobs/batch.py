@@ -1,9 +1,10 @@
-"""Several runs in one job: the points of a sweep, the stability map's points or a stress set's
-cases by one method, the levels of a work-precision sweep. Each run is its own HDF5 file, written
-whole (atomically) with its own provenance, as :func:`rodimpact.jobs.runner.run_to_file` writes a
-single run; a batch only shares what every run of it would repeat: the process, its imports, the
-case file's record and the code version. A batch whose rule's output is one directory
-(:func:`run_batch_into`) writes its runs into it, one file ``{name}.h5`` per run.
+"""Several runs in one job: the points of one part of a sweep, the stability map's points or a
+stress set's cases by one method, the levels of a work-precision sweep. Each run is stored with
+its own provenance, as :func:`rodimpact.jobs.runner.run_to_file` stores a single run; a batch
+only shares what every run of it would repeat: the process, its imports, the case file's record
+and the code version. A batch writes each run to its own HDF5 file (:func:`run_batch`), into
+the directory that is its rule's output (:func:`run_batch_into`), or every run into one file of
+runs (:func:`run_batch_file`, a sweep's part: one file per job, not per point).
 
 A run whose contact law is calibrated by a curve (a sweep point of a ``tabulated`` law) has no
 case of its own for the workflow's curve rule to compute it: its ``curve`` entry names the rule
@@ -15,17 +16,18 @@ from __future__ import annotations
 
 import importlib
 import logging
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from pathlib import Path
 from typing import Any
 
-from rodimpact.jobs.runner import run_to_file
+from rodimpact.jobs.runner import SolvedRun, solve_run
 from rodimpact.jobs.timing import Timing
 from rodimpact.storage.atomic import atomic_directory
 from rodimpact.storage.casefile import case_file_reference, read_case_file
 from rodimpact.storage.provenance import code_version
+from rodimpact.storage.runs import RUN_SEPARATOR, write_run, write_runs
 
-__all__ = ["CURVE_BUILDERS", "run_batch", "run_batch_into"]
+__all__ = ["CURVE_BUILDERS", "run_batch", "run_batch_file", "run_batch_into"]
 
 log = logging.getLogger(__name__)
 
@@ -33,6 +35,47 @@ log = logging.getLogger(__name__)
 #: in a job, ``(case, settings) -> ContactCurve`` (imported by the batches that need one: the
 #: continuum's modules cost a batch of SEM runs more than its runs).
 CURVE_BUILDERS = {"indentation": ("rodimpact.jobs.indentation", "indentation_curve")}
+
+
+def _solved(
+    runs: Mapping[str, Mapping[str, Any]],
+    case_file: str | Path | None,
+    keep_failed: bool,
+    timing: Mapping[str, Any] | None,
+) -> Iterator[tuple[str, SolvedRun]]:
+    """Each run of the batch solved, one after another, with its name (as :func:`run_batch`)."""
+    references: dict[tuple[str, str], dict[str, str]] = {}
+    documents: dict[str, dict[str, Any]] = {}  # each case file read once (a sweep's runs share one)
+    version = code_version()
+    timed = Timing(**timing) if timing is not None else None
+    for name, run in runs.items():
+        curve = run.get("contact_curve")  # the curve file of a law calibrated by a rule's curve
+        if run.get("curve") is not None:
+            rule = run["curve"].get("rule")
+            if rule not in CURVE_BUILDERS:
+                raise ValueError(f"runs: {name}: no curve rule {rule!r} in a batch; known: {', '.join(CURVE_BUILDERS)}")
+            module, function = CURVE_BUILDERS[rule]
+            curve = getattr(importlib.import_module(module), function)(run["case"], run["curve"].get("settings"))
+        source = run.get("case_file", case_file)
+        key = (str(source), str(run["case"]["id"]))
+        if source is not None and key not in references:
+            if key[0] not in documents:
+                documents[key[0]] = read_case_file(source)
+            references[key] = case_file_reference(source, run["case"]["id"], documents[key[0]])
+        yield (
+            name,
+            solve_run(
+                run["case"],
+                run["method"],
+                level=run.get("level"),
+                keep_failed=keep_failed,
+                timing=timed,
+                study=run.get("study"),
+                case_file=None if source is None else references[key],
+                contact_curve=curve,
+                code_version=version,
+            ),
+        )
 
 
 def run_batch(
@@ -76,40 +119,33 @@ def run_batch(
     """
     if set(runs) != set(paths):
         raise ValueError(f"runs and paths differ: runs {sorted(runs)}, paths {sorted(paths)}")
-    references: dict[tuple[str, str], dict[str, str]] = {}
-    documents: dict[str, dict[str, Any]] = {}  # each case file read once (a sweep's runs share one)
-    version = code_version()
-    timed = Timing(**timing) if timing is not None else None
-    written = []
-    for name, run in runs.items():
-        curve = run.get("contact_curve")  # the curve file of a law calibrated by a rule's curve
-        if run.get("curve") is not None:
-            rule = run["curve"].get("rule")
-            if rule not in CURVE_BUILDERS:
-                raise ValueError(f"runs: {name}: no curve rule {rule!r} in a batch; known: {', '.join(CURVE_BUILDERS)}")
-            module, function = CURVE_BUILDERS[rule]
-            curve = getattr(importlib.import_module(module), function)(run["case"], run["curve"].get("settings"))
-        source = run.get("case_file", case_file)
-        key = (str(source), str(run["case"]["id"]))
-        if source is not None and key not in references:
-            if key[0] not in documents:
-                documents[key[0]] = read_case_file(source)
-            references[key] = case_file_reference(source, run["case"]["id"], documents[key[0]])
-        written.append(
-            run_to_file(
-                run["case"],
-                run["method"],
-                paths[name],
-                level=run.get("level"),
-                keep_failed=keep_failed,
-                timing=timed,
-                study=run.get("study"),
-                case_file=None if source is None else references[key],
-                contact_curve=curve,
-                code_version=version,
-            )
-        )
+    written = [
+        write_run(paths[name], **solved.arguments()) for name, solved in _solved(runs, case_file, keep_failed, timing)
+    ]
     log.info("batch of %d runs written", len(written))
+    return written
+
+
+def run_batch_file(runs: Mapping[str, Mapping[str, Any]], path: str | Path, **options: Any) -> list[str]:
+    """:func:`run_batch` with every run written into one file of runs ``path``
+    (:func:`rodimpact.storage.runs.write_runs`), each as a group named by its run, with its
+    own provenance and digest. The file appears when every run is in it, or not at all.
+    ``options`` as for :func:`run_batch`; returns the runs' references (``path#name``).
+
+    Raises
+    ------
+    ValueError
+        A run's name cannot name a group (empty, with ``/`` or ``#``), or as :func:`run_batch`.
+    """
+    if not runs:
+        raise ValueError(f"runs: no run to write to {path}")
+    bad = [name for name in runs if not name or "/" in name or RUN_SEPARATOR in name or name in (".", "..")]
+    if bad:
+        raise ValueError(f"runs: {bad[0]!r} cannot name a run in the file of runs {path}")
+    options = {"case_file": None, "keep_failed": False, "timing": None, **options}
+    with write_runs(path) as writer:
+        written = [writer.add(name, **solved.arguments()) for name, solved in _solved(runs, **options)]
+    log.info("batch of %d runs written to %s", len(written), path)
     return written
 
 

@@ -21,7 +21,8 @@ from rodimpact.jobs.timing import Timing
 from rodimpact.solvers.cost import Cost
 from rodimpact.solvers.registry import METHODS
 
-__all__ = ["JobResources", "PRESENTATION", "SAFETY", "estimate_resources", "estimate_sequence"]
+__all__ = ["JobResources", "PRESENTATION", "SAFETY", "estimate_resources", "estimate_sequence", "job_resources"]
+__all__ += ["run_cost"]
 
 #: Factor between every estimate and the cost model (which covers what was measured).
 SAFETY = 2.0
@@ -76,8 +77,9 @@ class JobResources:
 PRESENTATION = JobResources(threads=1, mem_mb=1500, runtime_min=10)
 
 
-def _job(costs: Iterable[tuple[Cost, float]], threads: int = 1) -> JobResources:
-    """A job running the (cost, repeats) solves one after another."""
+def job_resources(costs: Iterable[tuple[Cost, float]], threads: int = 1) -> JobResources:
+    """A job running the (cost, repeats) solves one after another: the run times summed, the
+    largest memory, :data:`SAFETY` times the cost models, with the floors."""
     costs = list(costs)
     seconds = STARTUP_S + sum(cost.solve_s * repeats for cost, repeats in costs)
     mib = SNAKEMAKE_MIB + PYTHON_MIB + max(cost.mem_mib for cost, _ in costs)
@@ -101,7 +103,14 @@ def _timed_repeats(timing: Mapping[str, Any] | None, solve_s: float) -> float:
     return total / solve_s if solve_s > 0 else float(spec.min_repeats)
 
 
-def _cost(case: Mapping[str, Any], method: str) -> Cost:
+def run_cost(case: Mapping[str, Any], method: str) -> Cost:
+    """The cost model of one run of ``method`` on the resolved ``case``.
+
+    Raises
+    ------
+    ValueError
+        As :func:`estimate_resources`.
+    """
     if not isinstance(method, str) or method not in METHODS:
         raise ValueError(f"method: unknown method {method!r}; known: {', '.join(METHODS)}")
     if not isinstance(case, Mapping):
@@ -145,8 +154,8 @@ def estimate_resources(
         ``method`` is unknown, ``case`` is not a resolved case with numerics for it, or
         ``timing`` is invalid; the message starts with the argument's name.
     """
-    cost = _cost(case, method)
-    return _job([(cost, _timed_repeats(timing, cost.solve_s))])
+    cost = run_cost(case, method)
+    return job_resources([(cost, _timed_repeats(timing, cost.solve_s))])
 
 
 def estimate_sequence(
@@ -182,8 +191,8 @@ def estimate_sequence(
     for case, method, repeats in runs:
         if isinstance(repeats, bool) or not isinstance(repeats, int) or repeats < 1:
             raise ValueError(f"runs: repeats must be an integer >= 1, got {repeats!r}")
-        cost = _cost(case, method)
+        cost = run_cost(case, method)
         costs.append((cost, repeats * _timed_repeats(timing, cost.solve_s)))
     if not costs:
         raise ValueError("runs: no run given")
-    return _job([*costs, *((cost, 1.0) for cost in extra)])
+    return job_resources([*costs, *((cost, 1.0) for cost in extra)])

@@ -6,6 +6,7 @@ import logging
 import math
 import time
 from collections.abc import Mapping
+from dataclasses import dataclass, fields
 from pathlib import Path
 from typing import Any
 
@@ -20,7 +21,7 @@ from rodimpact.storage.curves import ContactCurve, read_contact_curve
 from rodimpact.storage.provenance import file_sha256
 from rodimpact.storage.runs import write_run
 
-__all__ = ["SolverFailed", "Timing", "run_case", "run_config", "run_to_file", "with_curve"]
+__all__ = ["SolvedRun", "SolverFailed", "Timing", "run_case", "run_config", "run_to_file", "solve_run", "with_curve"]
 
 log = logging.getLogger(__name__)
 
@@ -35,6 +36,25 @@ def run_config(case: Mapping[str, Any], method: str, level: int | None = None) -
     if level is not None:
         run["level"] = level
     return {**case, "run": run}
+
+
+@dataclass(frozen=True)
+class SolvedRun:
+    """What a solved run stores (:func:`rodimpact.storage.runs.write_run`'s arguments): its
+    config (the case with the run), method, series and summary, solver time (s), code version
+    (None: the checkout's) and field."""
+
+    config: dict[str, Any]
+    method: str
+    series: dict[str, tuple[np.ndarray, str, str]]
+    summary: dict[str, Any]
+    wall_time_s: float
+    code_version: str | None
+    field: dict[str, tuple[np.ndarray, str, str]]
+
+    def arguments(self) -> dict[str, Any]:
+        """The keyword arguments of :func:`~rodimpact.storage.runs.write_run` (but ``path``)."""
+        return {f.name: getattr(self, f.name) for f in fields(self)}
 
 
 def run_case(case: Mapping[str, Any], method: str, *, keep_failed: bool = False) -> ImpactResult:
@@ -105,10 +125,9 @@ def with_curve(case: Mapping[str, Any], curve: str | Path | ContactCurve | None)
     return {**case, "contact": {**contact, "curve": curve.law_curve()}}
 
 
-def run_to_file(
+def solve_run(
     case: Mapping[str, Any],
     method: str,
-    path: str | Path,
     level: int | None = None,
     *,
     keep_failed: bool = False,
@@ -117,8 +136,8 @@ def run_to_file(
     case_file: str | Path | Mapping[str, str] | None = None,
     contact_curve: str | Path | ContactCurve | None = None,
     code_version: str | None = None,
-) -> Path:
-    """Solve and write ``path`` (HDF5, atomically); returns the path.
+) -> SolvedRun:
+    """Solve ``case`` with ``method``: what its stored run holds (:func:`run_to_file` writes it).
 
     Only the outputs the case lists are stored (the strain field, ``strain_field``, by the
     methods that record it; the others skip it).
@@ -201,13 +220,12 @@ def run_to_file(
             wall_time_max_s=max(walls),
             machine=machine_description(),
         )
-    return write_run(
-        path,
-        config=config,
-        method=method,
-        series=series,
-        summary=summary,
-        wall_time_s=wall,
-        code_version=code_version,
-        field=field,
-    )
+    return SolvedRun(config, method, series, summary, wall, code_version, field)
+
+
+def run_to_file(
+    case: Mapping[str, Any], method: str, path: str | Path, level: int | None = None, **options: Any
+) -> Path:
+    """Solve (:func:`solve_run`, which takes the same ``options``) and write ``path`` (HDF5,
+    atomically); returns the path."""
+    return write_run(path, **solve_run(case, method, level, **options).arguments())

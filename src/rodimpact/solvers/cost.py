@@ -45,7 +45,13 @@ SHORT_CONTACT = 1.5
 class Cost:
     """The cost model of one solve: its time step (s), its steps, its time (s) and its own
     memory (MiB); with a step budget (``step_limit``, the solver fails on reaching it),
-    ``steps`` and the time stop there and ``steps_needed`` is what the run's span asks for."""
+    ``steps`` and the time stop there and ``steps_needed`` is what the run's span asks for.
+
+    ``solve_s`` is upper-side (it covers every stored run: a job's request); ``typical_share``
+    is the share of it a solve of the method typically takes (the median of measured over
+    modelled time of the stored runs, ``python -m rodimpact.tools.cost_share``), so that
+    :attr:`typical_s` is a central estimate: what a study is cut into jobs by
+    (:mod:`rodimpact.jobs.parts`)."""
 
     time_step_s: float
     steps: float
@@ -53,6 +59,12 @@ class Cost:
     mem_mib: float
     steps_needed: float | None = None
     step_limit: float = math.inf
+    typical_share: float = 1.0
+
+    @property
+    def typical_s(self) -> float:
+        """Central estimate of the solve's time, s: ``typical_share * solve_s``."""
+        return self.typical_share * self.solve_s
 
     @property
     def exceeds_step_limit(self) -> bool:

@@ -58,12 +58,14 @@ def mark_out_of_date(path: str | Path) -> bool:
 class UnreadableInput(ValueError):
     """An input file that cannot be used (``path``, ``reason``); ``str()`` is one line.
 
-    ``marked`` says whether the file was marked out of date for the next build.
+    ``marked`` says whether the file was marked out of date for the next build: ``path``, or
+    ``file`` when given (the file that holds what ``path`` names, a run in a file of runs).
     """
 
-    def __init__(self, path: str | Path, reason: str, *, mark: bool = False) -> None:
+    def __init__(self, path: str | Path, reason: str, *, mark: bool = False, file: str | Path | None = None) -> None:
         self.path, self.reason = str(path), reason
-        self.marked = mark_out_of_date(path) if mark and Path(path).is_file() else False
+        file = path if file is None else file
+        self.marked = mark_out_of_date(file) if mark and Path(file).is_file() else False
         hint = f"; {REBUILD_HINT}" if self.marked else ""
         super().__init__(f"{path}: {reason}{hint}")
 

@@ -74,7 +74,7 @@ def digest_entries(checked: list[Entry]) -> dict[str, tuple[np.ndarray, str, str
     return {f"{FIELD_GROUP}/{name}": (array, units, description) for name, array, units, description in checked}
 
 
-def write_field(h5: h5py.File, checked: list[Entry]) -> None:
+def write_field(h5: h5py.Group, checked: list[Entry]) -> None:
     """Write the checked field (:func:`check_field`) into ``h5``'s group ``field``."""
     if not checked:
         return
@@ -93,7 +93,7 @@ def write_field(h5: h5py.File, checked: list[Entry]) -> None:
                 dataset.dims[dim].label = label
 
 
-def read_field(h5: h5py.File, path: Path) -> list[Entry]:
+def read_field(h5: h5py.Group, path: Path) -> list[Entry]:
     """The field of an open run file, checked (:func:`check_field`); empty without one.
 
     Raises

@@ -38,18 +38,37 @@ One file per run (one case solved by one method); SI units throughout::
       field/                   group, the strain over the rod on its own grid, when recorded
                                (:mod:`rodimpact.storage.runfield`: time (m,), x (k,), strain (m, k))
 
+A file of runs (``layout`` ``"runs"``)
+-------------------------------------
+Several runs of one job in one file (the points of one part of a sweep, :mod:`rodimpact.jobs.parts`)::
+
+    /                          root group
+      @layout            str    "runs"
+      @schema_version    int    1
+      @runs              int    the number of runs
+      <name>/                  one group per run, named by the run (a sweep point's name),
+                               laid out as a run file's root above: its own attributes,
+                               provenance and digest, series, summary and field
+
+A run in such a file is named by the reference ``"{file}#{name}"`` (:func:`run_reference`):
+:func:`read_run` and :func:`read_summary` take it where they take a run file's path, and
+:func:`run_references` lists a file's runs. One file per job instead of one per run is what a
+cluster's file system handles best (docs/storage.md).
+
 Writes go through :func:`rodimpact.storage.atomic.atomic_output` (a temporary file beside the
 target, fsynced and moved onto it with :func:`os.replace`); a failed write leaves no
-temporary file and the target unchanged.
+temporary file and the target unchanged. A file of runs is written the same way, once every
+run of it is in (:func:`write_runs`): it appears whole or not at all.
 """
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import logging
 import math
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from dataclasses import field as dataclass_field
 from datetime import UTC, datetime
@@ -63,6 +82,7 @@ import numpy as np
 from rodimpact.storage import provenance
 from rodimpact.storage.atomic import atomic_output
 from rodimpact.storage.faults import UnreadableInput
+from rodimpact.storage.references import RUN_SEPARATOR, run_reference, split_reference
 from rodimpact.storage.runcheck import (
     REQUIRED_SUMMARY,
     SUMMARY_GROUP,
@@ -75,10 +95,13 @@ from rodimpact.storage.runfield import check_field, digest_entries, read_field, 
 
 logger = logging.getLogger(__name__)
 
-__all__ = ["REQUIRED_SUMMARY", "SCHEMA_VERSION", "CorruptRun", "RunRecord", "StoreError"]
-__all__ += ["read_run", "read_summary", "write_run"]
+__all__ = ["REQUIRED_SUMMARY", "RUNS_LAYOUT", "RUN_SEPARATOR", "SCHEMA_VERSION", "CorruptRun", "RunRecord"]
+__all__ += ["RunsWriter", "StoreError", "read_run", "read_summary", "run_reference", "run_references"]
+__all__ += ["split_reference", "write_run", "write_runs"]
 
 SCHEMA_VERSION = 1
+#: The ``layout`` attribute of a file of runs.
+RUNS_LAYOUT = "runs"
 _STR_ATTRS = tuple("case_id method config_json config_sha256 code_version library_versions created_utc".split())
 _ROOT_ATTRS = (*_STR_ATTRS, "wall_time_s", "schema_version")
 _COMPRESS_MIN_ELEMENTS = 4096
@@ -94,7 +117,7 @@ class CorruptRun(StoreError, UnreadableInput):
     (``path``, ``reason``); the reader marks it out of date (:mod:`rodimpact.storage.faults`)."""
 
     def __init__(self, path: str | Path, reason: str) -> None:
-        UnreadableInput.__init__(self, path, reason, mark=True)
+        UnreadableInput.__init__(self, path, reason, mark=True, file=split_reference(path)[0])
 
 
 @dataclass(frozen=True)
@@ -128,6 +151,73 @@ class RunRecord:
 
 def _write_summary(h5: h5py.File, summary: Mapping[str, Any]) -> None:
     h5.create_group(SUMMARY_GROUP, track_order=True).attrs.update(summary)
+
+
+@dataclass(frozen=True)
+class _CheckedRun:
+    """A run's content, checked and ready to write: root attributes, series, field, summary."""
+
+    attrs: dict[str, Any]
+    series: list
+    field: list
+    summary: dict[str, Any]
+
+
+def _check_run(
+    config: Mapping[str, Any],
+    method: str,
+    series: Mapping[str, tuple[np.ndarray, str, str]],
+    summary: Mapping[str, Any],
+    wall_time_s: float,
+    code_version: str | None,
+    field: Mapping[str, tuple[np.ndarray, str, str]] | None,
+) -> _CheckedRun:
+    """The checks of :func:`write_run` (its errors), and the root attributes with the digests."""
+    for name, arg in (("config", config), ("series", series), ("summary", summary)):
+        if not isinstance(arg, Mapping):
+            raise TypeError(f"{name} must be a mapping, got {type(arg).__name__}")
+    case_id, config_json = check_config(config)
+    if not isinstance(method, str) or not method:
+        raise ValueError(f"method must be a non-empty str, got {method!r}")
+    checked_series = check_series(series)
+    checked_field = check_field(field)
+    checked_summary = check_summary(summary)
+    real = isinstance(wall_time_s, Real) and not isinstance(wall_time_s, bool)
+    if not (real and math.isfinite(wall_time_s) and wall_time_s >= 0):
+        raise ValueError(f"wall_time_s must be a finite number >= 0, got {wall_time_s!r}")
+    code_version = provenance.code_version() if code_version is None else code_version
+    if not isinstance(code_version, str) or not code_version:
+        raise ValueError(f"code_version must be a non-empty str, got {code_version!r}")
+    attrs: dict[str, Any] = {
+        "case_id": case_id,
+        "method": method,
+        "config_json": config_json,
+        "config_sha256": hashlib.sha256(config_json.encode("utf-8")).hexdigest(),
+        "code_version": code_version,
+        "library_versions": provenance.canonical_json(provenance.library_versions()),
+        "wall_time_s": np.float64(wall_time_s),
+        "created_utc": datetime.now(UTC).isoformat(timespec="seconds"),
+        "schema_version": np.int64(SCHEMA_VERSION),
+        "data_sha256": provenance.data_sha256(
+            config_json,
+            method,
+            {**{n: (a, u, d) for n, a, u, d in checked_series}, **digest_entries(checked_field)},
+            checked_summary,
+        ),
+    }
+    return _CheckedRun(attrs, checked_series, checked_field, checked_summary)
+
+
+def _write_checked(group: h5py.Group, run: _CheckedRun) -> None:
+    """Write a checked run into ``group`` (a file's root, or a run's group in a file of runs)."""
+    group.attrs.update(run.attrs)
+    for name, array, units, description in run.series:
+        big = array.size > _COMPRESS_MIN_ELEMENTS
+        dataset = group.create_dataset(name, data=array, **(_COMPRESSION if big else {}))
+        dataset.attrs.update({"units": units, "description": description, "long_name": description})
+    _attach_time_scale(group)
+    write_field(group, run.field)
+    _write_summary(group, run.summary)
 
 
 def write_run(
@@ -176,56 +266,105 @@ def write_run(
     OSError
         Writing failed; the target is unchanged and no temporary file remains.
     """
-    for name, arg in (("config", config), ("series", series), ("summary", summary)):
-        if not isinstance(arg, Mapping):
-            raise TypeError(f"{name} must be a mapping, got {type(arg).__name__}")
     path = Path(path)
-    case_id, config_json = check_config(config)
-    if not isinstance(method, str) or not method:
-        raise ValueError(f"method must be a non-empty str, got {method!r}")
-    checked_series = check_series(series)
-    checked_field = check_field(field)
-    checked_summary = check_summary(summary)
-    real = isinstance(wall_time_s, Real) and not isinstance(wall_time_s, bool)
-    if not (real and math.isfinite(wall_time_s) and wall_time_s >= 0):
-        raise ValueError(f"wall_time_s must be a finite number >= 0, got {wall_time_s!r}")
-    code_version = provenance.code_version() if code_version is None else code_version
-    if not isinstance(code_version, str) or not code_version:
-        raise ValueError(f"code_version must be a non-empty str, got {code_version!r}")
-
-    root_attrs: dict[str, Any] = {
-        "case_id": case_id,
-        "method": method,
-        "config_json": config_json,
-        "config_sha256": hashlib.sha256(config_json.encode("utf-8")).hexdigest(),
-        "code_version": code_version,
-        "library_versions": provenance.canonical_json(provenance.library_versions()),
-        "wall_time_s": np.float64(wall_time_s),
-        "created_utc": datetime.now(UTC).isoformat(timespec="seconds"),
-        "schema_version": np.int64(SCHEMA_VERSION),
-        "data_sha256": provenance.data_sha256(
-            config_json,
-            method,
-            {**{n: (a, u, d) for n, a, u, d in checked_series}, **digest_entries(checked_field)},
-            checked_summary,
-        ),
-    }
+    run = _check_run(config, method, series, summary, wall_time_s, code_version, field)
     with atomic_output(path) as tmp:
         with h5py.File(tmp, "x", track_order=True) as h5:
-            h5.attrs.update(root_attrs)
-            for name, array, units, description in checked_series:
-                big = array.size > _COMPRESS_MIN_ELEMENTS
-                dataset = h5.create_dataset(name, data=array, **(_COMPRESSION if big else {}))
-                dataset.attrs.update({"units": units, "description": description, "long_name": description})
-            _attach_time_scale(h5)
-            write_field(h5, checked_field)
-            _write_summary(h5, checked_summary)
+            _write_checked(h5, run)
             h5.flush()
-    logger.info("wrote run %s/%s to %s (%d bytes)", case_id, method, path, path.stat().st_size)
+    logger.info("wrote run %s/%s to %s (%d bytes)", run.attrs["case_id"], method, path, path.stat().st_size)
     return path
 
 
-def _attach_time_scale(h5: h5py.File) -> None:
+class RunsWriter:
+    """The open file of runs of :func:`write_runs`: :meth:`add` writes one run into it."""
+
+    def __init__(self, h5: h5py.File, path: Path) -> None:
+        self._h5, self.path, self.names = h5, path, []
+
+    def add(
+        self,
+        name: str,
+        *,
+        config: Mapping[str, Any],
+        method: str,
+        series: Mapping[str, tuple[np.ndarray, str, str]],
+        summary: Mapping[str, Any],
+        wall_time_s: float,
+        code_version: str | None = None,
+        field: Mapping[str, tuple[np.ndarray, str, str]] | None = None,
+    ) -> str:
+        """Write the run ``name`` (parameters as :func:`write_run`'s); returns its reference.
+
+        Raises
+        ------
+        ValueError, TypeError
+            Invalid argument, or ``name`` is empty, holds ``/`` or :data:`RUN_SEPARATOR`, or is
+            taken; nothing of the run is written.
+        """
+        if not isinstance(name, str) or not name or "/" in name or RUN_SEPARATOR in name or name in (".", ".."):
+            raise ValueError(f"name: {name!r} cannot name a run in a file of runs")
+        if name in self._h5:
+            raise ValueError(f"name: {self.path} already holds a run {name!r}")
+        run = _check_run(config, method, series, summary, wall_time_s, code_version, field)
+        _write_checked(self._h5.create_group(name, track_order=True), run)
+        self.names.append(name)
+        return run_reference(self.path, name)
+
+
+@contextlib.contextmanager
+def write_runs(path: str | Path) -> Iterator[RunsWriter]:
+    """Write a file of runs (schema in the module docstring) atomically: the runs added in the
+    ``with`` block appear together when it ends, or (on an exception) nothing does.
+
+    Parameters
+    ----------
+    path : str or Path
+        Target file; its parent directory is created if needed.
+
+    Yields
+    ------
+    RunsWriter
+        ``add(name, **run)`` writes each run, as :func:`write_run` takes it.
+    """
+    path = Path(path)
+    with atomic_output(path) as tmp:
+        with h5py.File(tmp, "x", track_order=True) as h5:
+            writer = RunsWriter(h5, path)
+            yield writer
+            h5.attrs.update({"layout": RUNS_LAYOUT, "schema_version": np.int64(SCHEMA_VERSION)})
+            h5.attrs["runs"] = np.int64(len(writer.names))
+            h5.flush()
+    logger.info("wrote %d runs to %s (%d bytes)", len(writer.names), path, path.stat().st_size)
+
+
+def run_references(path: str | Path) -> list[str]:
+    """The runs a file holds: ``[path]`` for a run file, the reference of each run in a file
+    of runs (in the order written).
+
+    Raises
+    ------
+    FileNotFoundError
+        ``path`` does not exist.
+    CorruptRun
+        The file is not HDF5, or cannot be read.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"path does not exist or is not a file: {path}")
+    if not h5py.is_hdf5(path):
+        raise CorruptRun(path, "not an HDF5 file (truncated, or not a rodimpact run file)")
+    try:
+        with h5py.File(path, "r") as h5:
+            if _attr_value(h5.attrs.get("layout")) != RUNS_LAYOUT:
+                return [str(path)]
+            return [run_reference(path, name) for name, item in h5.items() if isinstance(item, h5py.Group)]
+    except (OSError, KeyError, ValueError, TypeError, RuntimeError) as exc:
+        reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise CorruptRun(path, f"unreadable run file ({reason})") from None
+
+
+def _attach_time_scale(h5: h5py.Group) -> None:
     """Make ``time`` the dimension scale of every series' first dimension (netCDF-4 readers,
     xarray and HDFView then plot each series against time)."""
     time = h5["time"]
@@ -247,7 +386,7 @@ def _attr_value(value: Any) -> Any:
     return value.decode("utf-8") if isinstance(value, bytes) else value
 
 
-def _read_series(h5: h5py.File, path: Path) -> tuple[dict, dict, dict]:
+def _read_series(h5: h5py.Group, path: Path) -> tuple[dict, dict, dict]:
     """Read all root datasets: ``(series, units, descriptions)``."""
     datasets = {name: obj for name, obj in h5.items() if isinstance(obj, h5py.Dataset)}
     n_time = h5["time"].shape[0] if h5["time"].ndim == 1 else -1
@@ -263,15 +402,19 @@ def _read_series(h5: h5py.File, path: Path) -> tuple[dict, dict, dict]:
     )
 
 
-def _read_record(path: str | Path, *, verify: bool, with_series: bool) -> RunRecord:
-    path = Path(path)
-    if not path.is_file():
-        raise FileNotFoundError(f"path does not exist or is not a file: {path}")
-    if not h5py.is_hdf5(path):
-        raise CorruptRun(path, "not an HDF5 file (truncated, or not a rodimpact run file)")
+def _read_record(reference: str | Path, *, verify: bool, with_series: bool) -> RunRecord:
+    file, name = split_reference(reference)
+    path = Path(str(reference))  # the run's own name: its file, or file#name
+    if not file.is_file():
+        raise FileNotFoundError(f"path does not exist or is not a file: {file}")
+    if not h5py.is_hdf5(file):
+        raise CorruptRun(file, "not an HDF5 file (truncated, or not a rodimpact run file)")
     try:
-        with h5py.File(path, "r") as h5:
-            attrs, summary, series, units, descriptions, field = _read_parts(h5, path, verify, with_series)
+        with h5py.File(file, "r") as h5:
+            if name is not None and not isinstance(h5.get(name), h5py.Group):
+                raise CorruptRun(path, f"no run {name!r} in the file of runs {file}")
+            group = h5 if name is None else h5[name]
+            attrs, summary, series, units, descriptions, field = _read_parts(group, path, verify, with_series)
     except StoreError:
         raise
     except (OSError, KeyError, ValueError, TypeError, RuntimeError) as exc:  # HDF5's errors of a damaged file
@@ -305,7 +448,7 @@ def _read_record(path: str | Path, *, verify: bool, with_series: bool) -> RunRec
 
 
 def _read_parts(
-    h5: h5py.File, path: Path, verify: bool, with_series: bool
+    h5: h5py.Group, path: Path, verify: bool, with_series: bool
 ) -> tuple[dict, dict, dict, dict, dict, list]:
     """The root attributes, the summary and (when asked for, or to verify the content) the series
     and the field."""
@@ -329,12 +472,13 @@ def _read_parts(
 
 
 def read_run(path: str | Path, *, verify: bool = True) -> RunRecord:
-    """Read a run file written by :func:`write_run`.
+    """Read a run file written by :func:`write_run`, or one run of a file of runs.
 
     Parameters
     ----------
     path : str or Path
-        Run file.
+        Run file, or the reference ``"{file}#{name}"`` of a run in a file of runs
+        (:func:`run_reference`); the record's ``path`` is what was given.
     verify : bool, default True
         Recompute the SHA-256 of the stored ``config_json`` and compare it with
         ``config_sha256``, check ``case_id`` against ``config["id"]``, and recompute the
@@ -348,10 +492,11 @@ def read_run(path: str | Path, *, verify: bool = True) -> RunRecord:
     Raises
     ------
     FileNotFoundError
-        If ``path`` does not exist.
+        If the file does not exist.
     CorruptRun
-        The file is truncated, unreadable or not a run file, or its content was changed
-        after it was written (verification fails): it is marked out of date.
+        The file is truncated, unreadable or not a run file (or holds no run of the name),
+        or its content was changed after it was written (verification fails): it is marked
+        out of date.
     StoreError
         The file is a run file of another schema version.
     """

@@ -5,7 +5,9 @@ every artifact resolves to the config and code that made it), :mod:`.report_chec
 report-check``: the HTML report's first screen in headless Chromium), :mod:`.bench`,
 :mod:`.bench_plan`, :mod:`.bench_scaling` and :mod:`.bench_planning` (``make bench``: the benchmarks
 and what they run; the last, how long snakemake takes to plan the workflow),
-:mod:`.build_stats` (``make bench``: the build's own timing), :mod:`.compare_tables` (are two
+:mod:`.bench_sweeps` (``make bench``: a large sweep's jobs, files and wall time on one core
+and on two), :mod:`.build_stats` (``make bench``: the build's own timing), :mod:`.cost_share`
+(``make bench``: how much of its cost model a solve takes, per method), :mod:`.compare_tables` (are two
 builds' tables the same?), :mod:`.accuracy_cost` (what an accuracy costs each method),
 :mod:`.sphere_flat` (``make sphere-flat``: the continuum's elastic-plastic sphere on a rigid flat
 against the published finite-element fits), :mod:`.yielding_rod` (Table 2's balls on a yielding

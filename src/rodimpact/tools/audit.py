@@ -2,9 +2,10 @@
 
 ``make provenance`` (``python -m rodimpact.tools.audit``) checks every file under ``results/``:
 
-* an HDF5 run: its config hash matches its config, its content digest (``data_sha256``,
-  over config, series and summary) matches its content, it was made by the libraries
-  installed now, and the case file it records still holds its case;
+* an HDF5 run (a run file, or each run of a file of runs: a sweep's part): its config hash
+  matches its config, its content digest (``data_sha256``, over config, series and summary)
+  matches its content, it was made by the libraries installed now, and the case file it
+  records still holds its case;
 * a case file (``results/cases/*.yaml``): its case has the hash it was written with;
 * a contact-law curve (``results/indentation/*.h5``), a band (``results/studies/film_band_*.h5``,
   ``results/studies/sensor_band/*/*.h5``; with their axes, ``make film-axes``' and ``make
@@ -43,7 +44,8 @@ from rodimpact.storage.casefile import read_case_file
 from rodimpact.storage.curves import read_contact_curve
 from rodimpact.storage.faults import DIRECTORY_TIMESTAMP, REBUILD_HINT, StoredFileError
 from rodimpact.storage.provenance import commit_exists, file_sha256, find_repo_root, library_versions
-from rodimpact.storage.runs import CorruptRun, StoreError, read_run, read_summary
+from rodimpact.storage.references import split_reference
+from rodimpact.storage.runs import CorruptRun, StoreError, read_run, read_summary, run_references
 
 logger = logging.getLogger(__name__)
 
@@ -53,6 +55,7 @@ __all__ = [
     "AuditResult",
     "Finding",
     "audit",
+    "audit_one_run",
     "audit_run",
     "audit_sidecar",
     "code_problems",
@@ -128,7 +131,31 @@ def code_problems(version: str, repo_root: Path | None) -> list[str]:
 
 
 def audit_run(path: str | Path, libraries: Mapping[str, str], repo_root: Path | None) -> Finding:
-    """Check one HDF5 run: config hash, content digest, code version and libraries."""
+    """Check one HDF5 run file, or every run of a file of runs (a sweep's part), each as
+    :func:`audit_one_run`; a problem of one run of a file names the run."""
+    try:
+        references = run_references(path)
+    except CorruptRun as error:
+        return Finding(str(path), "run", (f"{error.reason} ({REBUILD_HINT})" if error.marked else error.reason,))
+    except (StoreError, OSError, ValueError) as error:
+        return Finding(str(path), "run", (f"not a readable run file: {error}",))
+    if references == [str(path)]:
+        return audit_one_run(path, libraries, repo_root)
+    if not references:
+        return Finding(str(path), "run", ("a file of runs that holds no run",))
+    each = [audit_one_run(reference, libraries, repo_root) for reference in references]
+    return Finding(
+        str(path),
+        "run",
+        tuple(f"run {split_reference(f.path)[1]}: {problem}" for f in each for problem in f.problems),
+        tuple(sorted({version for f in each for version in f.code_versions})),
+        tuple(digest for f in each for digest in f.config_sha256),
+    )
+
+
+def audit_one_run(path: str | Path, libraries: Mapping[str, str], repo_root: Path | None) -> Finding:
+    """Check one run (a file, or ``file#name`` in a file of runs): config hash, content digest,
+    code version and libraries."""
     try:
         record = read_run(path)  # checks the content digest; a damaged or edited file is marked out of date
     except CorruptRun as error:

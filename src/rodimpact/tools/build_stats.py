@@ -9,9 +9,9 @@ groups them into jobs, and for each rule sums
 
 * ``job_s``: the jobs' times, end minus start: everything a job costs (snakemake's work on
   it, the Python process, the imports, the solves, the writing);
-* ``solver_s``: the solver times stored in the job's HDF5 runs (its outputs, or the files in its
-  output directory for a batch; ``wall_time_s``; a timed run stores the median of its repeats,
-  counted ``wall_time_repeats`` times);
+* ``solver_s``: the solver times stored in the job's HDF5 runs (its outputs, the files in its
+  output directory for a batch, each run of a file of runs; ``wall_time_s``; a timed run stores
+  the median of its repeats, counted ``wall_time_repeats`` times);
 * ``overhead_s = job_s - solver_s``, its median per job and its share per run file.
 
 ``wall_s`` is the span from the first start to the last end: of a rule's jobs, and, in the
@@ -121,19 +121,23 @@ def _output_of(record_path: Path, metadata: Path) -> str | None:
         return None
 
 
-def _solver_seconds(path: Path) -> float | None:
-    """Solver time of a run file, s: ``wall_time_s`` times ``summary/wall_time_repeats`` (1 when
-    absent); None for a file that stores none (not an HDF5 run)."""
+def _solver_seconds(path: Path) -> list[float]:
+    """Solver time of each run a file holds, s: ``wall_time_s`` times ``summary/wall_time_repeats``
+    (1 when absent), of the file's root, or of each run's group in a file of runs; none for a file
+    that stores none (not an HDF5 run)."""
     import h5py  # only the HDF5 outputs need it
+
+    def seconds(group: h5py.Group) -> float:
+        repeats = group["summary"].attrs.get("wall_time_repeats", 1) if "summary" in group else 1
+        return float(group.attrs["wall_time_s"]) * float(repeats)
 
     try:
         with h5py.File(path, "r") as h5:
-            if "wall_time_s" not in h5.attrs:
-                return None
-            repeats = h5["summary"].attrs.get("wall_time_repeats", 1) if "summary" in h5 else 1
-            return float(h5.attrs["wall_time_s"]) * float(repeats)
+            if "wall_time_s" in h5.attrs:
+                return [seconds(h5)]
+            return [seconds(g) for g in h5.values() if isinstance(g, h5py.Group) and "wall_time_s" in g.attrs]
     except (OSError, KeyError, TypeError, ValueError):
-        return None
+        return []
 
 
 def read_jobs(root: str | Path = ".", exclude: Sequence[str] = EXCLUDED) -> list[Job]:
@@ -186,7 +190,7 @@ def _run_files(root: Path, output: str) -> list[Path]:
 
 def _job(rule: str, entries: list[tuple[float, float, str]], root: Path) -> Job:
     outputs = tuple(sorted(output for _, _, output in entries))
-    solver = [s for s in (_solver_seconds(f) for o in outputs for f in _run_files(root, o)) if s is not None]
+    solver = [s for o in outputs for f in _run_files(root, o) for s in _solver_seconds(f)]
     return Job(
         rule=rule,
         start=min(start for _, start, _ in entries),

@@ -29,6 +29,9 @@ FEM1D_STEP_S = 150e-6
 FEM1D_DOF_STEP_S = 0.5e-6
 FEM1D_STEP_BYTES = 1000.0
 FEM1D_DOF_BYTES = 2000.0
+#: Measured over modelled solve time, median of the stored runs (``Cost.typical_share``;
+#: ``python -m rodimpact.tools.cost_share``).
+FEM1D_TYPICAL_SHARE = 0.084
 
 
 def fem1d_cost(case: Mapping[str, Any], options: FEM1DOptions) -> Cost:
@@ -55,4 +58,5 @@ def fem1d_cost(case: Mapping[str, Any], options: FEM1DOptions) -> Cost:
         steps=steps,
         solve_s=SOLVE_S + steps * (FEM1D_STEP_S + FEM1D_DOF_STEP_S * dofs),
         mem_mib=(steps * (FEM1D_STEP_BYTES + STATION_STEP_BYTES * stations) + dofs * FEM1D_DOF_BYTES) / MIB,
+        typical_share=FEM1D_TYPICAL_SHARE,
     )

@@ -30,6 +30,10 @@ __all__ = ["sem_cost"]
 #: the largest per step: 250 us at 17 round trips (a run spending its step budget).
 SEM_STEP_S = 20e-6
 SEM_REFLECTION_S = 10e-6
+#: Measured over modelled solve time, median of the stored runs (``Cost.typical_share``;
+#: ``python -m rodimpact.tools.cost_share``): the implicit scheme, the paper's explicit one.
+SEM_TYPICAL_SHARE = 0.034
+SEM_PAPER_TYPICAL_SHARE = 0.023
 #: SEM memory per stored step (Python lists of the state and the history, then the
 #: result's arrays; the step-doubling check's run is alive next to it), bytes: 750 at most
 #: measured (613479 steps, 549 MiB).
@@ -70,4 +74,5 @@ def sem_cost(case: Mapping[str, Any], options: SEMOptions | PaperSEMOptions) -> 
         mem_mib=stored * (SEM_STEP_BYTES + STATION_STEP_BYTES * stations) / MIB,
         steps_needed=needed,
         step_limit=float(options.max_steps),
+        typical_share=SEM_PAPER_TYPICAL_SHARE if isinstance(options, PaperSEMOptions) else SEM_TYPICAL_SHARE,
     )
