@@ -383,3 +383,39 @@ def test_a_changed_run_in_a_file_of_runs_is_named_and_its_file_marked(tmp_path: 
     assert raised.value.marked and path.stat().st_mtime == 0
     with pytest.raises(runs.CorruptRun, match="no run 'm~0.003' in the file of runs"):
         read_run(f"{path}#m~0.003")
+
+
+def test_many_runs_are_read_by_several_processes_in_order_as_one_reads_them(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """load_records with workers: the same records, in the same order, as one process reads; a
+    damaged run among them still refuses the whole read, naming the run (a reader's share made
+    small, so that a few runs take two readers)."""
+    from rodimpact.present import inputs
+    from rodimpact.present.inputs import load_records
+
+    monkeypatch.setattr(inputs, "RUNS_PER_READER", 10)
+    names = tuple(f"m~{i}" for i in range(27))
+    series = {"time": (np.linspace(0.0, 1e-4, 5), "s", "time")}
+    with runs.write_runs(tmp_path / "part0.h5") as writer:
+        references = [
+            writer.add(
+                name,
+                config={"id": f"s.{name}"},
+                method="sem",
+                series=series,
+                summary=make_summary(),
+                wall_time_s=0.01,
+                code_version="1.0+gabc1234",
+            )  # fmt: skip
+            for name in names
+        ]
+    alone = load_records(references)
+    shared = load_records(references, workers=2)
+    assert [r.path for r in shared] == [r.path for r in alone] == [Path(r) for r in references]
+    assert [r.case_id for r in shared] == [f"s.{name}" for name in names]
+    assert [r.data_sha256 for r in shared] == [r.data_sha256 for r in alone]
+    with h5py.File(tmp_path / "part0.h5", "r+") as h5:
+        h5["m~20/time"][1] = 1.0
+    with pytest.raises(runs.CorruptRun, match="m~20: its content differs"):
+        load_records(references, workers=2)

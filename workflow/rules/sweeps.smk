@@ -53,7 +53,8 @@ rule sweep_table:
     localrule: True
     conda:
         "../envs/rodimpact.yaml"
-    threads: 1
+    # a large sweep's points are read by as many processes (snakemake gives at most its cores)
+    threads: 8
     resources:
         **PRESENTATION_RESOURCES,
     params:

@@ -116,7 +116,8 @@ def sweep_table(records: Sequence[RunRecord]) -> Table:
     )
 
 
-def make_sweep_table(runs: Sequence[str | Path]) -> TableArtifact:
-    """Every sweep point's contact time and force (:func:`sweep_table`), from the points' runs."""
-    records = load_records(runs)
+def make_sweep_table(runs: Sequence[str | Path], threads: int = 1) -> TableArtifact:
+    """Every sweep point's contact time and force (:func:`sweep_table`), from the points' runs,
+    read by up to ``threads`` processes (:func:`~rodimpact.present.inputs.load_records`)."""
+    records = load_records(runs, workers=threads)
     return TableArtifact(sweep_table(records), records)
