@@ -68,6 +68,11 @@ EXEMPT: dict[str, str] = {
     "report.html": "the snakemake report: a view of the audited artifacts, rebuilt by `make report`",
     "report_screenshot.png": "the report's first screen in headless Chromium (`make report-check`)",
     "benchmarks/build.csv": "the last build's own timing, from snakemake's job records (`make bench`)",
+    "benchmarks/planning.csv": "how long snakemake takes to plan, timed on this machine (`make bench`)",
+    "benchmarks/cost_share.csv": "the stored runs' solver times over their cost models' (`make bench`)",
+    "benchmarks/sweep_scaling.csv": "sweeps built in scratch copies with -j1 and -j2, timed (`make bench`)",
+    "benchmarks/sweep_point.csv": "where a sweep point's time goes, timed in a scratch copy (`make bench`)",
+    "benchmarks/cluster.csv": "the small configuration built locally and through SLURM, timed (`make test-cluster`)",
 }
 #: Folders under results/ that a named target writes outside snakemake (the Makefile's): their
 #: files are audited by their provenance records, and not asked of snakemake's up-to-date check.
