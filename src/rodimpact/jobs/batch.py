@@ -25,7 +25,8 @@ from rodimpact.jobs.timing import Timing
 from rodimpact.storage.atomic import atomic_directory
 from rodimpact.storage.casefile import case_file_reference, read_case_file
 from rodimpact.storage.provenance import code_version
-from rodimpact.storage.runs import RUN_SEPARATOR, write_run, write_runs
+from rodimpact.storage.references import can_name_a_run
+from rodimpact.storage.runs import write_run, write_runs
 
 __all__ = ["CURVE_BUILDERS", "run_batch", "run_batch_file", "run_batch_into"]
 
@@ -139,7 +140,7 @@ def run_batch_file(runs: Mapping[str, Mapping[str, Any]], path: str | Path, **op
     """
     if not runs:
         raise ValueError(f"runs: no run to write to {path}")
-    bad = [name for name in runs if not name or "/" in name or RUN_SEPARATOR in name or name in (".", "..")]
+    bad = [name for name in runs if not can_name_a_run(name)]
     if bad:
         raise ValueError(f"runs: {bad[0]!r} cannot name a run in the file of runs {path}")
     options = {"case_file": None, "keep_failed": False, "timing": None, **options}

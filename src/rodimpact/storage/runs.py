@@ -82,7 +82,7 @@ import numpy as np
 from rodimpact.storage import provenance
 from rodimpact.storage.atomic import atomic_output
 from rodimpact.storage.faults import UnreadableInput
-from rodimpact.storage.references import RUN_SEPARATOR, run_reference, split_reference
+from rodimpact.storage.references import RUN_SEPARATOR, can_name_a_run, run_reference, split_reference
 from rodimpact.storage.runcheck import (
     REQUIRED_SUMMARY,
     SUMMARY_GROUP,
@@ -302,7 +302,7 @@ class RunsWriter:
             Invalid argument, or ``name`` is empty, holds ``/`` or :data:`RUN_SEPARATOR`, or is
             taken; nothing of the run is written.
         """
-        if not isinstance(name, str) or not name or "/" in name or RUN_SEPARATOR in name or name in (".", ".."):
+        if not can_name_a_run(name):
             raise ValueError(f"name: {name!r} cannot name a run in a file of runs")
         if name in self._h5:
             raise ValueError(f"name: {self.path} already holds a run {name!r}")
