@@ -1,4 +1,4 @@
-"""A batch job's runs: each its own HDF5 file with its own provenance, as a single run's."""
+"""A batch job's runs: each with its own provenance, as a single run's, in a file of runs or a file each."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from rodimpact.analysis.sweeps import sweep_point_case, sweep_points
-from rodimpact.jobs.batch import run_batch, run_batch_file, run_batch_into
+from rodimpact.jobs.batch import run_batch, run_batch_file
 from rodimpact.jobs.cases import write_case_file
 from rodimpact.jobs.runner import SolverFailed, run_to_file
 from rodimpact.storage.runs import read_run, run_references
@@ -74,24 +74,6 @@ def test_outputs_and_runs_must_match(sweep: dict, tmp_path: Path) -> None:
     with pytest.raises(ValueError, match="runs and paths differ"):
         run_batch(runs, {"other": tmp_path / "x.h5"})
     assert not list(tmp_path.iterdir())
-
-
-def test_a_batch_directory_appears_whole_or_not_at_all(sweep: dict, tmp_path: Path) -> None:
-    """run_batch_into: every run in the rule's output directory; a batch that fails leaves neither
-    the directory nor a temporary one, and a temporary directory a killed batch left is removed."""
-    runs = _runs(sweep, 2)
-    target = tmp_path / "batch" / "sem"
-    (tmp_path / "batch" / ".sem.tmp-0123abcd").mkdir(parents=True)  # left by a killed batch
-    assert run_batch_into(runs, target) == [target / "p0.h5", target / "p1.h5"]
-    assert sorted(p.name for p in (tmp_path / "batch").iterdir()) == ["sem"]
-    assert {read_run(target / f"{name}.h5").case_id for name in runs} == {r["case"]["id"] for r in runs.values()}
-    failing = copy.deepcopy(runs)
-    failing["p1"]["case"]["numerics"]["sem"]["max_steps"] = 10  # the second run fails after the first is written
-    with pytest.raises(SolverFailed):
-        run_batch_into(failing, tmp_path / "failed" / "sem")
-    assert not list((tmp_path / "failed").iterdir())
-    with pytest.raises(ValueError, match="not a file name"):
-        run_batch_into({"../x": runs["p0"]}, tmp_path / "bad")
 
 
 def test_a_part_of_a_sweep_is_one_file_of_runs_each_as_its_own_file_holds_it(sweep: dict, tmp_path: Path) -> None:

@@ -17,9 +17,11 @@ import sys
 from pathlib import Path
 
 import pytest
+import yaml
 import yte
 
 from rodimpact.jobs.resources import estimate_sequence
+from rodimpact.storage.runs import read_run, run_references
 
 from helpers.copies import copy_project, project_cases
 from helpers.snakemake_cli import snakemake
@@ -39,7 +41,7 @@ def test_every_job_is_submitted_with_its_estimated_resources(tmp_path: Path) -> 
         f"--time={{resources.runtime}} --cpus={{threads}} --name={{rule}}"
     )
     model = project_cases(project).cases["model"]
-    runs = [f"results/runs/model/{method}" for method in model["methods"]]  # a batch each (one case)
+    runs = [f"results/runs/model/{method}/part0.h5" for method in model["methods"]]  # a batch each (one case)
 
     run = snakemake(
         project,
@@ -63,7 +65,7 @@ def test_every_job_is_submitted_with_its_estimated_resources(tmp_path: Path) -> 
     # every solver rule is in the group `solvers` (workflow/rules/common.smk): with no
     # group-components (the stand-in has none), each job is a group of its own, sized as the job;
     # the table, and the force export its job reads, are local rules: written here, never submitted
-    expected_of = {run: estimate_sequence([(model, Path(run).name, 1)]) for run in runs}
+    expected_of = {run: estimate_sequence([(model, Path(run).parent.name, 1)]) for run in runs}
     submitted = sorted(next(o for o in entry["output"] if o in expected_of) for entry in entries)
     assert submitted == sorted(expected_of), entries
     local = [o for entry in entries for o in entry["output"] if o == TABLE or o.startswith("results/forces/")]
@@ -85,20 +87,19 @@ def test_every_job_is_submitted_with_its_estimated_resources(tmp_path: Path) -> 
         assert entry["resources"]["runtime"] == expected.runtime_min, entry
         assert entry["threads"] == expected.threads, entry
     # the estimate follows the case: the continuum model asks for more than the SEM
-    by_method = {Path(e["output"][0]).stem: e["resources"] for e in entries}
+    by_method = {Path(e["output"][0]).parent.name: e["resources"] for e in entries}
     assert by_method["fem_axi"]["mem_mb"] > by_method["sem"]["mem_mb"]
 
 
 def test_every_rule_is_local_or_in_a_group_the_slurm_profile_sizes() -> None:
     """Every rule a cluster runs is either a local rule (the case files, the tables, the figures
-    and the force export: written where snakemake runs) or in a declared group (the solvers); only
-    the benchmarks (each wants a node of its own) and a sweep's parts (each sized by its cost to be
-    worth a submission: a group would run them one after another) are neither. The profile sizes
-    exactly the declared groups."""
+    and the force export: written where snakemake runs) or in a declared group (the solvers: a
+    batch's part is in it when the batch is one part, ``part_group``); only the benchmarks (each
+    wants a node of its own) are neither. The profile sizes exactly the declared groups."""
     rules_dir = Path(__file__).resolve().parents[1] / "workflow" / "rules"
     common = (rules_dir / "common.smk").read_text(encoding="utf-8")
     groups = dict(re.findall(r'^(GROUP_\w+) = "(\w+)"$', common, re.M))
-    alone = {"bench_sem", "bench_fem", "bench_sem_scaling", "solve_sweep"}
+    alone = {"bench_sem", "bench_fem", "bench_sem_scaling"}
     local, grouped, neither, both, unknown = set(), set(), [], [], []
     for path in sorted(rules_dir.glob("*.smk")):
         blocks = re.split(r"^\s*rule(?= |:)", path.read_text(encoding="utf-8"), flags=re.M)[1:]
@@ -107,20 +108,51 @@ def test_every_rule_is_local_or_in_a_group_the_slurm_profile_sizes() -> None:
             if "script:" not in block or name in alone:
                 continue
             is_local = re.search(r"^\s+localrule:\s+True\s*$", block, re.M) is not None
-            declared = re.search(r"^\s+group:\s+(\w+)\s*$", block, re.M)  # its value on the line or the next
+            # its value on the line or the next: a group's name, or part_group (a batch's parts)
+            declared = re.search(r"^\s+group:\s+(\w+)(?:\(\"\w+\"\))?\s*$", block, re.M)
             if is_local and declared:
                 both.append(f"{path.name}: {name}")
             elif is_local:
                 local.add(name)
             elif declared is None:
                 neither.append(f"{path.name}: {name}")
-            elif declared.group(1) not in groups:
+            elif declared.group(1) not in (*groups, "part_group"):
                 unknown.append(f"{path.name}: {name}: {declared.group(1)}")
             else:
                 grouped.add(name)
     assert not neither and not both and not unknown, (neither, both, unknown)
     assert {"case_file", "paper_model", "compare", "forces"} <= local, local
-    assert {"solve", "solve_levels", "indentation", "calibrate"} <= grouped, grouped
+    assert {"solve", "solve_levels", "solve_stress", "solve_sweep", "indentation", "calibrate"} <= grouped, grouped
     with open(rules_dir.parents[1] / "profiles" / "slurm" / "config.yaml", encoding="utf-8") as handle:
         profile = yte.process_yaml(handle, require_use_yte=True)
     assert set(profile["group-components"]) == set(groups.values())
+
+
+def test_a_batch_cut_into_parts_is_submitted_part_by_part(tmp_path: Path) -> None:
+    """A batch the target cuts into several parts (the stability map's references at a target
+    below one point's cost: a part per point) sends each part alone, in no group, with its own
+    part's resources; a batch of one part (model by sem) still goes in the group of the solvers."""
+    project = copy_project(tmp_path / "project")
+    config = project / "config" / "config.yaml"
+    document = yaml.safe_load(config.read_text(encoding="utf-8"))
+    document["batch"] = {"target_s": 1.0e-3}
+    config.write_text(yaml.safe_dump(document, sort_keys=False), encoding="utf-8")
+    record = tmp_path / "submissions.jsonl"
+    submit = f"{sys.executable} {FAKE_SUBMIT} --record={record} --name={{rule}}"
+    parts = [f"results/stability_map/reference/part{k}.h5" for k in range(2)]
+    single = "results/runs/model/sem/part0.h5"
+    run = snakemake(
+        project,
+        *("--executor", "cluster-generic", "--cluster-generic-submit-cmd", submit, "--jobs", "2"),
+        *("--latency-wait", "10", *parts, single),
+        timeout=TIMEOUT_S,
+    )
+    assert run.returncode == 0, run.describe()
+    entries = [json.loads(line) for line in record.read_text(encoding="utf-8").splitlines()]
+    by_output = {o: entry for entry in entries for o in entry["output"] if o in (*parts, single)}
+    assert sorted(by_output) == sorted([*parts, single]), entries
+    assert all(by_output[p]["type"] == "single" and not by_output[p]["groupid"] for p in parts), entries
+    assert (by_output[single]["type"], by_output[single]["groupid"]) == ("group", "solvers"), entries
+    for path in parts:  # a point each, its run named in its part's file
+        assert len(run_references(project / path)) == 1
+    assert {read_run(r).config["row"] for p in parts for r in run_references(project / p)} == {"m0_z0", "m0_z1"}

@@ -21,16 +21,17 @@ import h5py
 import pytest
 
 from rodimpact.plumbing.locks import RUNS_DIR, live_job_pids
-from rodimpact.storage.faults import DIRECTORY_TIMESTAMP, REBUILD_HINT
-from rodimpact.storage.runs import read_run
+from rodimpact.storage.curves import read_contact_curve
+from rodimpact.storage.faults import DIRECTORY_TIMESTAMP, REBUILD_HINT, StoredFileError
+from rodimpact.storage.runs import read_run, run_references
 
 from helpers.copies import clone_built, copy_project
-from helpers.snakemake_cli import Run, snakemake, snakemake_command, snakemake_environment, start
+from helpers.snakemake_cli import Run, job_stats, snakemake, snakemake_command, snakemake_environment, start
 
 pytestmark = pytest.mark.workflow
 
-SOLVE_BATCH = "results/runs/model/sem"  # the batch of one SEM solve (about 2 s): a target
-SOLVE = f"{SOLVE_BATCH}/model.h5"  # its run
+SOLVE_BATCH = "results/runs/model/sem/part0.h5"  # the batch of one SEM solve (about 2 s): a target
+SOLVE = f"{SOLVE_BATCH}#model"  # its run
 TABLE = "results/tables/fig2_comparison.csv"  # reads the four runs of 'model'
 LONG = "results/tables/table2_r10_l30.csv"  # 25 jobs: six cases, four methods each
 BUILD_TIMEOUT_S = 600
@@ -81,22 +82,24 @@ def built(tmp_path_factory: pytest.TempPathFactory) -> Path:
 @pytest.mark.parametrize(
     "target, expected",
     [
-        ("results/runs/nosuch/sem", "rodimpact: unknown group of runs 'nosuch'; known: "),
+        ("results/runs/nosuch/sem/part0.h5", "rodimpact: unknown group of runs 'nosuch'; known: "),
         (
-            "results/runs/smooth/fem_axi",
+            "results/runs/smooth/fem_axi/part0.h5",
             "rodimpact: no case of group 'smooth' runs 'fem_axi'; its cases' methods: fem1d, sem, sem_paper",
         ),
         (
-            "results/convergence/model/sem/level99.h5",
-            "rodimpact: no rule makes 'results/convergence/model/sem/"
-            "level99.h5' alone: it would be a file of results/convergence/"
-            "model/sem, which rule solve_levels writes as a whole",
+            "results/convergence/model/sem/level9.h5",
+            "rodimpact: no rule makes 'results/convergence/model/sem/level9.h5'; "
+            "results/convergence/ holds: results/convergence/{case}/{method}/part{part}.h5",
         ),
         (
-            "results/convergence/model/nosuch/level0.h5",
-            "rodimpact: no rule makes 'results/convergence/model/nosuch/"
-            "level0.h5'; results/convergence/ holds: "
-            "results/convergence/{case}/{method}",
+            "results/convergence/model/nosuch/part0.h5",
+            "rodimpact: no rule makes 'results/convergence/model/nosuch/part0.h5'; "
+            "results/convergence/ holds: results/convergence/{case}/{method}/part{part}.h5",
+        ),
+        (
+            "results/runs/model/sem/part1.h5",
+            "rodimpact: group 'model' by sem has one part: part0 (batch.target_s = 30 s)",
         ),
         (
             "results/sweeps/ball_sweep-r1_l301/sem/ball_diameter_m~0.5.h5",
@@ -112,8 +115,9 @@ def built(tmp_path_factory: pytest.TempPathFactory) -> Path:
     ids=[
         "unknown group",
         "method no case of the group runs",
-        "a level of a batch",
-        "an unknown method's level",
+        "a level (a run in its part's file)",
+        "an unknown method's levels",
+        "a part the group's batch does not have",
         "a sweep point (a run in its part's file)",
         "a part the sweep does not have",
         "unknown rule",
@@ -175,17 +179,16 @@ def test_a_killed_build_leaves_a_lock_that_the_next_run_releases(tmp_path: Path,
     finally:
         build.wait(30)
     assert locks(path), "the killed run left no lock: the test did not kill it in time"
-    target = path / SOLVE
-    assert not target.exists() or read_run(target).case_id == "model"  # nothing readable is half-written
-    # what a kill during the batch's write leaves beside its directory: the temporary directory,
-    # a run half-written in it
-    stale = path / "results/runs/model/.sem.tmp-0123abcd"
-    stale.mkdir(parents=True, exist_ok=True)
-    (stale / "model.tmp-0123abcd.h5").write_bytes(b"\x89HDF\r\n\x1a\n" + bytes(64))
+    target = path / SOLVE_BATCH
+    assert not target.exists() or read_run(path / SOLVE).case_id == "model"  # nothing readable is half-written
+    # what a kill during the part's write leaves beside it: its temporary file, half-written
+    stale = path / "results/runs/model/sem/part0.tmp-0123abcd.h5"
+    stale.parent.mkdir(parents=True, exist_ok=True)
+    stale.write_bytes(b"\x89HDF\r\n\x1a\n" + bytes(64))
     rerun = snakemake(path, "-j1", SOLVE_BATCH, timeout=BUILD_TIMEOUT_S, wrapper=wrapper)
     assert rerun.returncode == 0, rerun.describe()
     assert "rodimpact: released snakemake's lock of " in rerun.output
-    assert not stale.exists() and read_run(target).case_id == "model"
+    assert not stale.exists() and read_run(path / SOLVE).case_id == "model"
     assert not locks(path)
 
 
@@ -193,10 +196,10 @@ def test_a_rerun_while_a_killed_runs_job_still_runs_starts_nothing(tmp_path: Pat
     """snakemake killed alone (its job keeps running and writing): a rerun at once keeps the lock
     and stops in one line naming the job, so the job's output is written once, by the job."""
     path = copy_project(tmp_path / "project")
-    batch = "results/runs/r10_l30/fem_axi"  # six continuum solves: tens of seconds in one job
+    batch = "results/runs/r10_l30/fem_axi/part0.h5"  # continuum solves: tens of seconds in one job
 
     def solving() -> dict[int, str]:
-        return {pid: script for pid, script in (live_job_pids(path) or {}).items() if script == "solve_batch.py"}
+        return {pid: script for pid, script in (live_job_pids(path) or {}).items() if script == "solve_part.py"}
 
     build = start(path, "-j1", batch)
     try:
@@ -215,7 +218,7 @@ def test_a_rerun_while_a_killed_runs_job_still_runs_starts_nothing(tmp_path: Pat
     finally:
         with contextlib.suppress(ProcessLookupError):
             os.killpg(build.pid, signal.SIGKILL)
-    written = sorted((path / batch).glob("*.h5"))  # the orphan finished its batch, once, whole
+    written = run_references(path / batch)  # the orphan finished its part, once, whole
     assert written and all(read_run(run).method == "fem_axi" for run in written)
 
 
@@ -292,66 +295,92 @@ def registered(project: Path) -> list[Path]:
 # ------------------------------------------------------------------ damaged and edited inputs
 
 
-def _damage(run_file: Path, how: str) -> None:
+def _damage(run_file: Path, name: str, how: str) -> None:
+    """Truncate the file of runs ``run_file``, or edit its run ``name``."""
     if how == "truncated":
         data = run_file.read_bytes()
         run_file.write_bytes(data[: len(data) // 2])
     else:
         with h5py.File(run_file, "r+") as h5:
-            h5["contact_force"][3] = 7.0
+            h5[name]["contact_force"][3] = 7.0
 
 
 @pytest.mark.parametrize(
     "how, reason",
     [
-        ("truncated", "results/runs/model/sem/model.h5: "),
+        ("truncated", "results/runs/model/sem/part0.h5"),
         (
             "edited",
-            "results/runs/model/sem/model.h5: its content differs from its data_sha256 (changed after it was written)",
+            "results/runs/model/sem/part0.h5#model: its content differs from its data_sha256 (changed after it was "
+            "written)",
         ),
     ],
 )
 def test_a_damaged_run_is_named_marked_and_remade(built: Path, tmp_path: Path, how: str, reason: str) -> None:
+    """A damaged part's file: the job that reads its run refuses it in one line that names it,
+    marks the file out of date, and the next build remakes the part and what reads it."""
     path = clone_built(built, tmp_path / "project")
-    run_file = path / SOLVE
-    _damage(run_file, how)
-    # a run inside a batch's directory: snakemake dates the directory by its own timestamp file,
-    # so the edit alone plans nothing; the job that reads the run (here forced) refuses it
-    assert "Nothing to be done" in snakemake(path, "-n", TABLE).output
-    failed = snakemake(path, "-j1", "--forcerun", "paper_model", "--", TABLE, timeout=BUILD_TIMEOUT_S)
+    run_file = path / SOLVE_BATCH
+    _damage(run_file, "model", how)
+    # snakemake sees a newer input (not the damage): the table is planned, its part is not
+    planned = snakemake(path, "-n", TABLE)
+    assert planned.returncode == 0 and "paper_model" in planned.output, planned.describe()
+    assert "rule solve:" not in planned.output, planned.describe()
+    failed = snakemake(path, "-j1", TABLE, timeout=BUILD_TIMEOUT_S)
     assert failed.returncode != 0, failed.describe()
     assert "Traceback" not in failed.output, failed.describe()
     refusal = [line for line in failed.output.splitlines() if "failed: " in line and reason in line]
     assert refusal and refusal[0].endswith(REBUILD_HINT), failed.describe()
-    assert run_file.stat().st_mtime == 0.0  # marked out of date, and so its batch
-    assert (path / SOLVE_BATCH / DIRECTORY_TIMESTAMP).stat().st_mtime == 0.0
+    assert run_file.stat().st_mtime == 0.0  # marked out of date: its part is remade
     table = path / TABLE
     assert not table.exists() or table.read_text(encoding="utf-8").count("\n") > 1
     recovered = snakemake(path, "-j1", TABLE, timeout=BUILD_TIMEOUT_S)
     assert recovered.returncode == 0, recovered.describe()
-    assert read_run(run_file).case_id == "model" and table.is_file()
+    assert "rule solve:" in recovered.output, recovered.describe()
+    assert read_run(path / SOLVE).case_id == "model" and table.is_file()
 
 
-BATCH = "results/convergence/model/sem"  # one job: the SEM's work-precision levels on model
+BATCH = "results/convergence/model/sem/part0.h5"  # one job: the SEM's work-precision levels on model
 
 
 def test_a_damaged_run_of_a_batch_is_named_marked_and_remade(project: Path, tmp_path: Path) -> None:
-    """A run in a batch's directory (the rule's output is the directory): its reader marks the file
-    and the directory's timestamp, and the next build remakes the batch."""
+    """A run in a part's file of runs: its reader names the run and marks the file out of date,
+    and the next build remakes the part."""
     path = clone_built(project, tmp_path / "project")
     built = snakemake(path, "-j1", BATCH, timeout=BUILD_TIMEOUT_S)
     assert built.returncode == 0, built.describe()
-    run_file = path / BATCH / "level0.h5"
-    _damage(run_file, "edited")
-    with pytest.raises(ValueError, match="data_sha256") as refused:
-        read_run(run_file)
+    run_file = path / BATCH
+    _damage(run_file, "level0", "edited")
+    with pytest.raises(ValueError, match="level0: its content differs from its data_sha256") as refused:
+        read_run(f"{run_file}#level0")
     assert str(refused.value).endswith(REBUILD_HINT)
-    assert run_file.stat().st_mtime == 0.0 and (path / BATCH / DIRECTORY_TIMESTAMP).stat().st_mtime == 0.0
+    assert run_file.stat().st_mtime == 0.0
     planned = snakemake(path, "-n", BATCH)
     assert planned.returncode == 0 and "solve_levels" in planned.output, planned.describe()
     recovered = snakemake(path, "-j1", BATCH, timeout=BUILD_TIMEOUT_S)
     assert recovered.returncode == 0, recovered.describe()
-    assert read_run(run_file).case_id == "model"
+    assert read_run(f"{run_file}#level0").case_id == "model"
+
+
+CURVES = "results/indentation/r10_l30_cal"  # one job: the continuum's indentation of the reading's balls
+
+
+def test_a_damaged_file_of_a_directory_output_is_marked_with_its_directory(project: Path, tmp_path: Path) -> None:
+    """A file inside a rule's output directory (a group's contact-law curves): its reader marks the
+    file and the directory's timestamp, by which snakemake dates the directory, and the next
+    build remakes the directory."""
+    path = clone_built(project, tmp_path / "project")
+    built = snakemake(path, "-j1", CURVES, timeout=BUILD_TIMEOUT_S)
+    assert built.returncode == 0, built.describe()
+    curve = sorted((path / CURVES).glob("*.h5"))[0]
+    with h5py.File(curve, "r+") as h5:
+        h5["force_N"][3] *= 1.01
+    assert "Nothing to be done" in snakemake(path, "-n", CURVES).output  # the edit alone plans nothing
+    with pytest.raises(StoredFileError, match="data_sha256"):
+        read_contact_curve(curve)
+    assert curve.stat().st_mtime == 0.0 and (path / CURVES / DIRECTORY_TIMESTAMP).stat().st_mtime == 0.0
+    planned = snakemake(path, "-n", CURVES)
+    assert planned.returncode == 0 and "indentation" in job_stats(planned.output), planned.describe()
 
 
 # ------------------------------------------------------------------ a full disk
@@ -380,7 +409,9 @@ def test_a_full_disk_is_one_line_and_leaves_no_temporary(tmp_path: Path) -> None
         assert any("failed: " in line and "No space left on device" in line for line in failed.output.splitlines()), (
             failed.describe()
         )
-        left = sorted(p.name for p in (mount / "model").iterdir()) if (mount / "model").is_dir() else []
+        left = (
+            sorted(p.name for p in (mount / "model").rglob("*") if not p.is_dir()) if (mount / "model").is_dir() else []
+        )
         assert left == []  # no temporary, no half-written run
         filler.unlink()
         recovered = snakemake(path, "-j1", SOLVE_BATCH, timeout=BUILD_TIMEOUT_S)

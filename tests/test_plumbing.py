@@ -151,13 +151,13 @@ def test_the_lock_of_a_killed_run_whose_jobs_still_run_is_kept_and_the_run_stops
     locks = _snakemakes_locks(project)
     elsewhere = tmp_path / "other"
     elsewhere.mkdir()
-    job = [sys.executable, ".snakemake/scripts/tmpab12cd.solve_batch.py"]
+    job = [sys.executable, ".snakemake/scripts/tmpab12cd.solve_part.py"]
     proc = _fake_proc(tmp_path, {4242: (job, project), 4343: (job, elsewhere)})
     with pytest.raises(OrphanedJobs) as caught:
         release_stale_lock(project, proc=proc)
-    assert caught.value.jobs == {4242: "solve_batch.py"}
+    assert caught.value.jobs == {4242: "solve_part.py"}
     message = str(caught.value)
-    assert "pid 4242 (solve_batch.py)" in message and "kill 4242" in message and "\n" not in message
+    assert "pid 4242 (solve_part.py)" in message and "kill 4242" in message and "\n" not in message
     assert all(lock.exists() for lock in locks)
     alone = tmp_path / "alone"
     alone.mkdir()

@@ -23,9 +23,11 @@ from rodimpact.jobs.resources import (
     estimate_resources,
     estimate_sequence,
     run_cost,
+    timed_cost,
 )
 from rodimpact.model.problem import ImpactProblem
 from rodimpact.plumbing.sources import module_sources
+from rodimpact.solvers.cost import Cost
 from rodimpact.solvers.fem_axi.cost import fem_axi_dofs, fem_axi_indentation_cost
 from rodimpact.tools.bench import resource_margins
 from rodimpact.tools.bench_plan import fem_bench_runs, sem_bench_runs
@@ -115,6 +117,24 @@ def test_timed_runs_ask_for_the_repeats(model):
     once = estimate_resources(case, "fem_axi")
     timed = estimate_resources(case, "fem_axi", timing={"min_repeats": 30, "min_total_s": 1.0, "max_total_s": 10_000.0})
     assert timed.runtime_min > once.runtime_min and timed.mem_mb == once.mem_mb
+
+
+def test_a_timed_run_costs_its_repeats_upper_side_and_typically():
+    """timed_cost: the upper-side time repeats the upper-side solve as Timing would, the typical
+    time repeats the typical solve (a short solve repeated more often to reach min_total_s);
+    memory and steps are the solve's; no timing is the cost itself."""
+    cost = Cost(time_step_s=1e-8, steps=1000.0, solve_s=1.0, mem_mib=40.0, typical_share=0.1)
+    assert timed_cost(cost, None) is cost
+    timing = {"min_repeats": 3, "min_total_s": 0.2, "max_total_s": 1.5}
+    timed = timed_cost(cost, timing)
+    # upper: max(3 x 1.0, 0.2 + 1.0) = 3.0, capped at 1.5 + 1.0; typical: max(3 x 0.1, 0.2 + 0.1) = 0.3
+    assert timed.solve_s == pytest.approx(2.5, rel=1e-12)
+    assert timed.typical_s == pytest.approx(0.3, rel=1e-12)
+    assert (timed.mem_mib, timed.steps, timed.time_step_s) == (cost.mem_mib, cost.steps, cost.time_step_s)
+    short = timed_cost(Cost(1e-8, 10.0, 0.5, 1.0, typical_share=0.02), timing)  # a 10 ms solve: 21 repeats
+    assert short.typical_s == pytest.approx(0.21, rel=1e-12)
+    with pytest.raises(ValueError, match="^timing"):
+        timed_cost(cost, {"min_repeats": 0})
 
 
 def test_a_sequence_sums_times_and_keeps_the_largest_memory(model):

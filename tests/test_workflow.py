@@ -15,12 +15,14 @@ install (tests/test_workflow_errors.py, ``test_jobs_run_the_checkouts_own_code``
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 import re
 import subprocess
 import sys
 from collections import Counter
+from collections.abc import Iterator
 from pathlib import Path
 
 import h5py
@@ -109,8 +111,17 @@ def assert_inputs_match(inputs: list[dict], runs: list[str], hashes: dict[str, s
     assert sorted(entry["path"] for entry in inputs) == sorted(runs)
     for entry in inputs:
         assert entry["config_sha256"] == hashes[entry["path"]], entry["path"]
-        case_id, method = Path(entry["path"]).stem, Path(entry["path"]).parent.name  # {group}/{method}/{case}.h5
+        file, case_id = split_reference(entry["path"])  # {group}/{method}/part{k}.h5#{case}
+        method = file.parent.name
         assert (entry["case_id"], entry["method"]) == (case_id, method)
+
+
+@contextlib.contextmanager
+def stored_run(built: Path, reference: str) -> Iterator[h5py.Group]:
+    """The HDF5 group that holds the run ``reference`` (``file#name``) of the build."""
+    file, name = split_reference(reference)
+    with h5py.File(built / file, "r") as h5:
+        yield h5[name]
 
 
 def _points(sweep: dict) -> int:
@@ -134,10 +145,12 @@ def expected(built: Path) -> dict:
     """What the build must contain, from its own configuration."""
     project = project_cases(built)
     variants = sorted(project.variants["table2"])
-    by_variant = {v: [case_run(c, m) for c in project.cases_in("table2", v) for m in c["methods"]] for v in variants}
-    runs = [case_run(c, m) for name in ("model", "table2", "example", "gauge_example")
+    by_variant = {
+        v: [case_run(built, c, m) for c in project.cases_in("table2", v) for m in c["methods"]] for v in variants
+    }
+    runs = [case_run(built, c, m) for name in ("model", "table2", "example", "gauge_example")
             for c in project.cases_in(name) for m in c["methods"]]  # fmt: skip
-    example = [case_run(c, m) for name in ("example", "gauge_example")
+    example = [case_run(built, c, m) for name in ("example", "gauge_example")
                for c in project.cases_in(name) for m in c["methods"]]  # fmt: skip
     plain = [v for v in variants if "contact" not in project.variants["table2"][v]]
     calibrated = [v for v in variants if (project.variants["table2"][v].get("contact") or {}).get("law") == "tabulated"]
@@ -155,7 +168,7 @@ def expected(built: Path) -> dict:
         "plain_variants": plain,
         "calibrated_variants": calibrated,
         "runs": runs,
-        "model_runs": [run_path("model", m) for m in project.cases["model"]["methods"]],
+        "model_runs": [run_path(built, "model", m) for m in project.cases["model"]["methods"]],
         "table2_runs": by_variant,
         "sweep_points": {name: _points(sweep) for name, sweep in project.sweeps.items()},
     }
@@ -166,7 +179,7 @@ def stored_hashes(built: Path, expected: dict) -> dict[str, str]:
     """config_sha256 of every run, read straight from the HDF5 root attributes."""
     hashes = {}
     for path in expected["runs"]:
-        with h5py.File(built / path, "r") as h5:
+        with stored_run(built, path) as h5:
             value = h5.attrs["config_sha256"]
         hashes[path] = value.decode() if isinstance(value, bytes) else str(value)
     return hashes
@@ -199,7 +212,7 @@ def test_full_build_produces_every_artifact(built: Path, expected: dict) -> None
         *(f"results/figures/{name}.{ext}"
           for name in ("fig2_contact_force", "fig4_midrod_displacement", "table2_contact_time")
           for ext in ("pdf", "png")),
-        *expected["runs"],
+        *sorted({str(split_reference(run)[0]) for run in expected["runs"]}),  # their parts' files
         *(f"results/tables/{name}" for name in ("work_precision.csv", "work_precision_orders.csv",
                                                  "work_precision_orders.md", "stability.csv", "stability.md",
                                                  "stability_map.csv")),
@@ -211,8 +224,13 @@ def test_full_build_produces_every_artifact(built: Path, expected: dict) -> None
     missing = [a for a in artifacts if not (built / a).is_file() or (built / a).stat().st_size == 0]
     assert not missing, f"missing or empty: {missing}"
     # No stray run files, and no temporary file left anywhere under results/.
-    stored = sorted(p.relative_to(built).as_posix() for p in (built / "results/runs").rglob("*.h5"))
-    assert stored == sorted(expected["runs"])
+    parts = sorted(p.relative_to(built).as_posix() for p in (built / "results/runs").rglob("*.h5"))
+    assert all(re.fullmatch(r"results/runs/[^/]+/[^/]+/part[0-9]+\.h5", p) for p in parts), parts
+    stored = [str(Path(r).relative_to(built)) for p in parts for r in run_references(built / p)]
+    assert sorted(stored) == sorted(expected["runs"])
+    # .test's batch.target_s cuts batches of every kind into parts: a group's, the map's, a sweep's
+    cut = [p for p in (built / "results").rglob("part1.h5")]
+    assert {p.relative_to(built / "results").parts[0] for p in cut} >= {"runs", "stability_map", "sweeps"}, cut
     assert not [p for p in (built / "results").rglob("*") if ".tmp" in p.name]
 
 
@@ -222,7 +240,7 @@ def test_every_run_records_the_case_file_it_was_made_from(built: Path, expected:
     for path in expected["runs"]:
         record = read_summary(built / path)
         reference = record.config["run"]["case_file"]
-        group = Path(path).parts[2]  # results/runs/{group}/{method}/{case}.h5
+        group = Path(path).parts[2]  # results/runs/{group}/{method}/part{k}.h5#{case}
         assert reference["path"] == f"results/cases/{group}.yaml"
         case_file = case_record(read_case_file(built / reference["path"]), record.case_id)
         assert case_file["case_id"] == record.case_id
@@ -237,11 +255,12 @@ def test_every_run_records_the_case_file_it_was_made_from(built: Path, expected:
 
 def test_every_run_file_has_provenance_and_summary(built: Path, expected: dict) -> None:
     for path in expected["runs"]:
-        with h5py.File(built / path, "r") as h5:
+        with stored_run(built, path) as h5:
             assert set(ROOT_ATTRS) <= set(h5.attrs), path
             assert set(SUMMARY_ATTRS) <= set(h5["summary"].attrs), path
         record = read_run(built / path)  # verifies config_sha256 against config_json
-        case_id, method = Path(path).stem, Path(path).parent.name  # {group}/{method}/{case}.h5
+        file, case_id = split_reference(path)  # {group}/{method}/part{k}.h5#{case}
+        method = file.parent.name
         assert (record.case_id, record.method) == (case_id, method)
         assert record.config["id"] == case_id
         assert record.config["run"]["method"] == method
@@ -291,7 +310,7 @@ def test_table2_csvs(built: Path, expected: dict) -> None:
         table = pd.read_csv(built / f"results/tables/table2_{variant}.csv")
         assert set(TABLE2_COLUMNS) <= set(table.columns), variant
         assert len(table) == len(expected["project"].cases_in("table2", variant)), variant
-        assert sorted(table["case_id"]) == sorted({Path(r).stem for r in runs})
+        assert sorted(table["case_id"]) == sorted({split_reference(r)[1] for r in runs})
         for row in table.itertuples():
             case = cases[row.case_id]
             assert row.measured_us == pytest.approx(case["measured"]["contact_time_us"])
@@ -345,7 +364,7 @@ def test_figures_carry_provenance(built: Path, expected: dict, stored_hashes: di
     runs = (
         expected["model_runs"]
         if figure in ("fig2_contact_force", "fig4_midrod_displacement")
-        else [run_path(figure.removeprefix("wave_map_"), m) for m in ("sem", "fem1d")]
+        else [run_path(built, figure.removeprefix("wave_map_"), m) for m in ("sem", "fem1d")]
         if figure.startswith("wave_map_")
         else [run for runs in expected["table2_runs"].values() for run in runs]
     )
@@ -504,8 +523,9 @@ def test_provenance_audit_fails_on_hand_edits_and_stale_artifacts(dottest: DotTe
     project = clone_build(dottest, tmp_path / "project").workdir
     table = project / "results/tables/table2_r10_l30_film.csv"
     table.write_text(table.read_text().replace("ball_3.16mm", "ball_3.16mm ", 1))
-    with h5py.File(project / run_path("model", "fem1d"), "r+") as h5:
-        h5["contact_force"][5] *= 1.01
+    damaged, name = run_path(project, "model", "fem1d").split("#")
+    with h5py.File(project / damaged, "r+") as h5:
+        h5[name]["contact_force"][5] *= 1.01
     (project / "results/tables/old_table.csv").write_text("a,b\n1,2\n")
     model_yaml = project / "config/cases/model.yaml"
     model_yaml.write_text(model_yaml.read_text().replace("velocity_m_s: 1.0\n", "velocity_m_s: 1.1\n"))
@@ -523,13 +543,13 @@ def test_provenance_audit_fails_on_hand_edits_and_stale_artifacts(dottest: DotTe
             path, problem = line[5:].split(": ", 1)
             failed.setdefault(path, []).append(problem)
     assert "bytes differ from those recorded" in " ".join(failed["results/tables/table2_r10_l30_film.csv"])
-    assert "its content differs from its data_sha256" in " ".join(failed[run_path("model", "fem1d")])
+    assert "run model: its content differs from its data_sha256" in " ".join(failed[damaged])
     assert "no provenance record lists it" in " ".join(failed["results/tables/old_table.csv"])
     assert "not an output of the current workflow" in " ".join(failed["results/tables/old_table.csv"])
-    assert "snakemake: params changed" in " ".join(failed[run_path("model", "sem")])
+    assert "snakemake: params changed" in " ".join(failed[run_path(project, "model", "sem").split("#")[0]])
     # what was made from the changed case's runs is planned again
     assert "snakemake: an input is out of date" in " ".join(failed["results/figures/fig2_contact_force.png"])
-    untouched = run_path("ball_3.16mm-r10_l30", "sem")
+    untouched = run_path(project, "ball_3.16mm-r10_l30", "sem").split("#")[0]
     assert untouched not in failed and "results/tables/table2_r10_l30.csv" not in failed
 
 

@@ -20,7 +20,17 @@ import yaml
 
 from rodimpact.storage.runs import read_run
 
-from helpers.copies import DOTTEST, DotTestBuild, clone_build, copy_project, project_cases, run_batch, run_path
+from helpers.copies import (
+    DOTTEST,
+    DotTestBuild,
+    batch_part,
+    batches,
+    clone_build,
+    copy_project,
+    project_cases,
+    run_batch,
+    run_path,
+)
 from helpers.snakemake_cli import BUILD_TIMEOUT_S, job_stats, pending, pending_runs, snakemake, summary
 
 pytestmark = pytest.mark.workflow
@@ -45,12 +55,13 @@ def test_target_plans_only_its_jobs(tmp_path: Path) -> None:
     target = "results/tables/table2_r1_l30.csv"
     run = snakemake(project, "-n", "-j2", target)
     assert run.returncode == 0, run.describe()
-    assert job_stats(run.output) == {"case_file": 1, "solve": 3, "readings_table": 1}, run.describe()
     # Which files: the case file of the six r1_l30 balls, their runs by each of the three methods
-    # (a batch each) and the five outputs of the table2 job.
+    # (a batch each, in as many parts as its cost asks) and the five outputs of the table2 job.
     rows = summary(project, target)
+    parts = pending(rows, "solve")
+    assert job_stats(run.output) == {"case_file": 1, "solve": len(parts), "readings_table": 1}, run.describe()
     balls = [c["id"] for c in project_cases(project).cases_in("table2", "r1_l30")]
-    assert pending(rows, "solve") == {run_batch(ball, m) for ball in balls for m in ("sem", "fem1d", "fem_axi")}
+    assert batches(parts) == {run_batch(ball, m) for ball in balls for m in ("sem", "fem1d", "fem_axi")}
     assert pending(rows, "readings_table") == {
         f"results/tables/table2_r1_l30.{ext}" for ext in ("csv", "md", "html", "tex", "provenance.json")
     }
@@ -70,7 +81,7 @@ def test_only_the_cases_asking_for_the_field_have_a_wave_map(tmp_path: Path) -> 
     run = snakemake(project, "-n", "-j2", target)
     assert run.returncode == 0, run.describe()
     assert job_stats(run.output) == {"case_file": 1, "solve": 2, "wave_map": 1}, run.describe()
-    assert pending(summary(project, target), "solve") == {run_batch("model", m) for m in ("sem", "fem1d")}
+    assert pending(summary(project, target), "solve") == {batch_part("model", m) for m in ("sem", "fem1d")}
     run = snakemake(project, "-n", "-j2", "results/figures/wave_map_ball_4.75mm-r10_l30.png")
     assert run.returncode != 0 and "no rule makes 'results/figures/wave_map_ball_4.75mm-r10_l30.png'" in run.output
 
@@ -106,15 +117,18 @@ def test_new_row_in_table2_yaml_is_computed(changed: DotTestBuild) -> None:
     table2_yaml.write_text(yaml.safe_dump(document, sort_keys=False), encoding="utf-8")
     new_case = "ball_8.00mm-r10_l30"
     before = pd.read_csv(changed.workdir / "results/tables/table2_r10_l30.csv")
+    # the reading's batches are solved again (each part whose cases the new ball changes)
+    parts = pending(summary(changed.project, "results/tables/table2_r10_l30.csv", workdir=DOTTEST), "solve")
+    assert batches(parts) == {run_batch(new_case, m) for m in ("sem", "fem1d", "fem_axi")}
 
     run = snakemake(
         changed.project, "-j2", "results/tables/table2_r10_l30.csv", timeout=BUILD_TIMEOUT_S, workdir=DOTTEST
     )
     assert run.returncode == 0, run.describe()
-    # The existing runs are reused: the new ball's case file, its three runs, then the table.
-    assert job_stats(run.output) == {"case_file": 1, "solve": 3, "readings_table": 1}, run.describe()
+    # The other readings' runs are reused: the new ball's case file, its batches, then the table.
+    assert job_stats(run.output) == {"case_file": 1, "solve": len(parts), "readings_table": 1}, run.describe()
 
-    record = read_run(changed.workdir / run_path(new_case, "sem"))
+    record = read_run(changed.workdir / run_path(changed.workdir, new_case, "sem"))
     assert record.config["measured"]["contact_time_us"] == 75.0
     assert record.config["impactor"]["mass_kg"] == pytest.approx(2.09e-3)
     assert record.config["rod"]["radius_m"] == pytest.approx(0.010)  # from the variant
@@ -137,13 +151,13 @@ def test_new_row_in_table2_yaml_is_computed(changed: DotTestBuild) -> None:
     assert table["case_id"].drop(lighter).tolist() == before["case_id"].tolist()
     assert table["sem_us"].is_monotonic_increasing
     provenance = json.loads((changed.workdir / "results/tables/table2_r10_l30.provenance.json").read_text())
-    assert run_path(new_case, "sem") in [entry["path"] for entry in provenance["inputs"]]
+    assert run_path(changed.workdir, new_case, "sem") in [entry["path"] for entry in provenance["inputs"]]
 
 
 def test_new_case_file_is_picked_up(tmp_path: Path) -> None:
     project = copy_project(tmp_path / "project")
     (project / "config/cases/my_experiment.yaml").write_text(NEW_CASE_FILE, encoding="utf-8")
-    target = run_batch("my_ball", "sem", group="my_experiment")
+    target = batch_part("my_ball", "sem", group="my_experiment")
     run = snakemake(project, "-n", "-j2", target)
     assert run.returncode == 0, run.describe()
     assert job_stats(run.output) == {"case_file": 1, "solve": 1}, run.describe()
@@ -290,9 +304,13 @@ def test_changed_case_value_reruns_only_that_case(changed: DotTestBuild) -> None
 
     run = snakemake(changed.project, "-n", "-j2", workdir=DOTTEST)
     assert run.returncode == 0, run.describe()
+    rows = summary(changed.project, workdir=DOTTEST)
     # model's runs and what shows them (its forces handed on too), and the studies built on model: its work-precision
     # levels (3 methods x 3 levels in .test, a job per method) and the stability map, whose
-    # base case it is (a job per method and one for the references)
+    # base case it is (every part of its batch per method and of the references')
+    assert batches(pending(rows, "solve_map")) == {
+        f"results/stability_map/{m}" for m in ("sem", "sem_paper", "reference")
+    }
     assert job_stats(run.output) == {
         "case_file": 1,
         "solve": 4,
@@ -301,13 +319,13 @@ def test_changed_case_value_reruns_only_that_case(changed: DotTestBuild) -> None
         "solve_levels": 3,
         "work_precision_table": 1,
         "work_precision_figure": 1,
-        "solve_map": 3,
+        "solve_map": len(pending(rows, "solve_map")),
         "stability_map": 1,
         "forces": 1,
         "wave_map": 1,
     }, run.describe()
-    assert pending(rows := summary(changed.project, workdir=DOTTEST), "case_file") == {"results/cases/model.yaml"}
-    assert pending(rows, "solve") == {run_batch("model", m) for m in ("sem", "sem_paper", "fem1d", "fem_axi")}
+    assert pending(rows, "case_file") == {"results/cases/model.yaml"}
+    assert pending(rows, "solve") == {batch_part("model", m) for m in ("sem", "sem_paper", "fem1d", "fem_axi")}
     assert pending(rows, "paper_model") == {
         f"results/figures/{name}.{ext}"
         for name in ("fig2_contact_force", "fig4_midrod_displacement", "force_fit_model")
@@ -324,18 +342,19 @@ def test_code_change_reruns_the_solvers(changed: DotTestBuild) -> None:
     assert run.returncode == 0, run.describe()
     stats = job_stats(run.output)
     project = project_cases(changed.workdir)
-    batches = {
-        (c.get("variant") or c["set"], m)
+    rows = summary(changed.project, workdir=DOTTEST)
+    every = {
+        run_batch(c["id"], m, group=c.get("variant") or c["set"])
         for name in ("model", "table2", "example", "gauge_example")
         for c in project.cases_in(name)
         for m in c["methods"]
     }
-    assert stats.get("solve") == len(batches), run.describe()  # every batch of runs of the target sets
+    assert batches(pending(rows, "solve")) == every  # every batch of runs of the target sets, every part
+    assert stats.get("solve") == len(pending(rows, "solve")), run.describe()
     assert stats.get("calibrate") == 1, run.describe()  # its model runs the solvers in memory
     # the code is a param (the digest of the sources a rule runs), not sixty input files
     assert "Params have changed since last execution" in run.output, run.describe()
     assert "src/rodimpact" not in run.output, run.describe()
-    rows = summary(changed.project, workdir=DOTTEST)
     assert pending(rows, "solve") == {row["output_file"] for row in rows if row["rule"] == "solve"}
 
 
@@ -352,9 +371,10 @@ def test_a_methods_code_change_reruns_only_its_runs(changed: DotTestBuild) -> No
     # as built; test_a_methods_code_change_reruns_the_law_it_calibrates: the film's)
     calibrated = {c["id"]: c for c in cases if (c.get("contact") or {}).get("law") == "tabulated"}
     assert calibrated
-    assert pending(rows, "solve") == {
+    assert batches(pending(rows, "solve")) == {
         run_batch(c["id"], "fem_axi") for c in cases if "fem_axi" in c["methods"] and c["set"] in ("model", "table2")
     } | {run_batch(case, m) for case, c in calibrated.items() for m in c["methods"]}
+    calibrated_groups = {c.get("variant") or c["set"] for c in calibrated.values()}
     assert pending(rows, "indentation") == {f"results/indentation/{c['variant']}" for c in calibrated.values()}
     assert pending(rows, "sensor_band") == {f"results/studies/sensor_band/{c['variant']}" for c in calibrated.values()}
     # and the calibrated sweeps' points, whose batches indent each point with fem_axi's code
@@ -370,7 +390,8 @@ def test_a_methods_code_change_reruns_only_its_runs(changed: DotTestBuild) -> No
     }
     assert reruns and all(
         "fem_axi" in path
-        or Path(path).stem in calibrated
+        or path.startswith("results/runs/")
+        and Path(path).parts[2] in calibrated_groups
         or path.startswith(("results/indentation/", "results/studies/sensor_band/"))
         or Path(path).parts[2:3]
         and Path(path).parts[2] in sweeps
@@ -378,10 +399,9 @@ def test_a_methods_code_change_reruns_only_its_runs(changed: DotTestBuild) -> No
     ), sorted(reruns)
 
 
-#: A run of the law calibrated by fem_axi's indentation (the text's rod without the film), and
-#: its batch (the reading's six balls by sem).
-CALIBRATED_RUN = run_path("ball_3.16mm-r10_l30_cal", "sem")
-CALIBRATED_BATCH = run_batch("ball_3.16mm-r10_l30_cal", "sem")
+#: The batch of the law calibrated by fem_axi's indentation (the text's rod without the film): the
+#: reading's six balls by sem, one part.
+CALIBRATED_BATCH = batch_part("ball_3.16mm-r10_l30_cal", "sem")
 
 
 def test_a_methods_code_change_reruns_the_law_it_calibrates(tmp_path: Path) -> None:
@@ -394,13 +414,14 @@ def test_a_methods_code_change_reruns_the_law_it_calibrates(tmp_path: Path) -> N
     run = snakemake(project, "-j2", CALIBRATED_BATCH, timeout=BUILD_TIMEOUT_S)
     assert run.returncode == 0, run.describe()
     assert job_stats(run.output) == {"case_file": 1, "indentation": 1, "solve": 1}, run.describe()
-    assert read_run(project / CALIBRATED_RUN).case_id == case["id"]
+    assert read_run(project / run_path(project, case["id"], "sem")).case_id == case["id"]
     with open(project / "src/rodimpact/solvers/fem_axi/solver.py", "a", encoding="utf-8") as handle:
         handle.write("# touched\n")
     rows = summary(project, CALIBRATED_BATCH)
     curves = {f"results/indentation/r10_l30_cal/{ball}.h5" for ball in balls}
     assert pending(rows, "indentation") == {"results/indentation/r10_l30_cal"}
-    assert pending_runs(rows, project) == curves | {run_path(ball, "sem") for ball in balls}
+    assert pending_runs(rows, project) == curves | {CALIBRATED_BATCH}
+    assert {run_path(project, ball, "sem").partition("#")[0] for ball in balls} == {CALIBRATED_BATCH}
 
 
 def test_figure_code_change_reruns_no_solver(changed: DotTestBuild) -> None:

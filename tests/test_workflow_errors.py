@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from helpers.copies import copy_project, run_batch
+from helpers.copies import batch_part, copy_project
 from helpers.snakemake_cli import BUILD_TIMEOUT_S, snakemake
 
 pytestmark = pytest.mark.workflow
@@ -23,9 +23,9 @@ def test_jobs_run_the_checkouts_own_code(tmp_path: Path) -> None:
     project = copy_project(tmp_path / "project")
     runner = project / "src" / "rodimpact" / "jobs" / "runner.py"
     runner.write_text(runner.read_text() + '\nraise ImportError("runner.py of the copy")\n')
-    run = snakemake(project, "-j1", run_batch("model", "sem"), timeout=BUILD_TIMEOUT_S)
+    run = snakemake(project, "-j1", batch_part("model", "sem"), timeout=BUILD_TIMEOUT_S)
     assert run.returncode != 0, run.describe()
-    log = project / "logs" / "runs" / "model" / "sem.log"
+    log = project / "logs" / "runs" / "model" / "sem" / "part0.log"
     assert "runner.py of the copy" in run.output + (log.read_text() if log.exists() else ""), run.describe()
 
 
@@ -93,17 +93,17 @@ def test_failing_solver_leaves_no_file(tmp_path: Path) -> None:
     project = copy_project(tmp_path / "project")
     with open(project / "config/cases/model.yaml", "a", encoding="utf-8") as handle:
         handle.write(FAILING_NUMERICS)
-    target = run_batch("model", "sem")
+    target = batch_part("model", "sem")
     # --keep-incomplete: snakemake must not be the one that cleans up; the rule itself must
     # never leave a (half-)file behind.
     run = snakemake(project, "-j1", "--keep-incomplete", target, timeout=BUILD_TIMEOUT_S)
     assert run.returncode != 0, run.describe()
     assert "Error in rule solve" in run.output, run.describe()
-    log = (project / "logs/runs/model/sem.log").read_text(encoding="utf-8")
+    log = (project / "logs/runs/model/sem/part0.log").read_text(encoding="utf-8")
     assert "SolverFailed" in log and "before the first contact ended" in log, log
     assert not (project / target).exists()
     run_dir = project / "results/runs/model"
-    leftovers = [p.name for p in run_dir.iterdir()] if run_dir.exists() else []
+    leftovers = [p.name for p in run_dir.rglob("*") if not p.is_dir()] if run_dir.exists() else []
     assert not [name for name in leftovers if ".tmp" in name], leftovers
     assert leftovers == [], leftovers
 

@@ -12,8 +12,10 @@ from html.parser import HTMLParser
 from pathlib import Path
 
 import pytest
+from snakemake.utils import Paramspace
 
 from rodimpact.analysis.measured import measured_cases
+from rodimpact.analysis.sweeps import sweep_frame
 from rodimpact.config.load import load_global_config, load_project
 from rodimpact.solvers.registry import METHODS as REGISTRY
 
@@ -133,8 +135,15 @@ def _expected_report(workdir: Path) -> dict[str, list[str]]:
     for name in config["targets"]["sets"]:
         swept = project.sweeps_in(name) if hasattr(project, "sweeps_in") else []
         if swept:
+            # each point named as its run is (snakemake's Paramspace of the grid)
+            points = {
+                point
+                for c in swept
+                for point in Paramspace(sweep_frame(c["sweep"]), filename_params="*").instance_patterns
+            }
             expected[f"results/tables/sweep_{name}.csv"] = [
                 f"Parameter sweeps of the case set {name}",
+                f"at {len(points)} points from",
                 *(c["id"] for c in swept),
                 *(settings[m] for m in sorted({m for c in swept for m in c["sweep"]["methods"]})),
             ]

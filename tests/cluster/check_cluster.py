@@ -16,11 +16,11 @@ What it does, in order:
    ``timeout -s INT`` (on SIGTERM snakemake would wait for the jobs it believes run):
 
    - the build: ``snakemake --workflow-profile profiles/slurm --directory .test``;
-   - a failing job: the same command for one batch, ``results/runs/model/sem``, in a copy
-     whose batch script (``workflow/scripts/solve_batch.py``) raises;
+   - a failing job: the same command for one batch, ``results/runs/model/sem/part0.h5``, in a copy
+     whose batch script (``workflow/scripts/solve_part.py``) raises;
 
 5. checks the build: exit status 0, the sbatch submissions (the scheduler's own list, which
-   keeps every job of the run: ``MinJobAge`` is long), the sweep the small configuration cuts
+   keeps every job of the run: ``MinJobAge`` is long), the batches the small configuration cuts
    into parts submitted one part each, side by side, the same files as the local build,
    every HDF5 dataset and attribute and every table equal but for the timings (:mod:`compare`),
    and the provenance audit (``python -m rodimpact.tools.audit --root .test``); writes its jobs,
@@ -83,11 +83,16 @@ BUILD_TIMEOUT_S = 1500
 FAILURE_TIMEOUT_S = 900
 #: A single target, planned through the profile and locally.
 SINGLE_TARGET = "results/tables/fig2_comparison.csv"
-#: The sweep the small configuration cuts into several parts (batch.target_s of .test/config).
-CUT_SWEEP = "ball_sweep-r10_l30"
+#: Batches the small configuration cuts into several parts (batch.target_s of .test/config): the
+#: folder of each one's part files, and the start of its parts' submissions' comments (the slurm
+#: plugin's ``rule_{rule}_wildcards_{wildcard values joined by _}``): a sweep, and a group's runs.
+CUT_BATCHES = {
+    "results/sweeps/ball_sweep-r10_l30/sem": "rule_solve_sweep_wildcards_ball_sweep-r10_l30_sem_",
+    "results/runs/r10_l30/fem_axi": "rule_solve_wildcards_r10_l30_fem_axi_",
+}
 #: The run the failure check asks for, and the rule's log it must name.
-FAILING_TARGET = "results/runs/model/sem"
-FAILING_RULE_LOG = "logs/runs/model/sem.log"
+FAILING_TARGET = "results/runs/model/sem/part0.h5"
+FAILING_RULE_LOG = "logs/runs/model/sem/part0.log"
 FAILURE_MESSAGE = "deliberate failure of the cluster check"
 FAILING_SCRIPT = f'''"""The cluster check's broken solver: it fails inside the rule's logging, as a solver would."""
 
@@ -325,7 +330,8 @@ def check_build(run: SnakemakeRun, jobs: list[dict[str, str]], project: Path, re
     )
     kinds = submission_kinds(jobs, set(profile_settings().get("group-components", {})))
     say(f"     {len(jobs)} submissions: " + ", ".join(f"{kind} {n}" for kind, n in sorted(kinds.items())))
-    check_sweep_parts(jobs, project, report)
+    for folder, comment in CUT_BATCHES.items():
+        check_parts(jobs, project / DOTTEST / folder, comment, report)
     counts, problems = compare_builds(reference, project / DOTTEST)
     report.check(
         not problems,
@@ -368,15 +374,15 @@ def ran_at_once(jobs: list[dict[str, str]]) -> bool:
     return any(a[0] < b[1] and b[0] < a[1] for a, b in itertools.combinations(spans, 2))
 
 
-def check_sweep_parts(jobs: list[dict[str, str]], project: Path, report: Report) -> None:
-    """The sweep the small configuration cuts into several parts (:data:`CUT_SWEEP`): one
+def check_parts(jobs: list[dict[str, str]], folder: Path, comment: str, report: Report) -> None:
+    """A batch the small configuration cuts into several parts (:data:`CUT_BATCHES`): one
     submission per part, in no group, all submitted before the first ended (side by side, none
     waiting for another); whether two ran at once is printed."""
-    files = sorted((project / DOTTEST / "results" / "sweeps" / CUT_SWEEP).rglob("part*.h5"))
-    parts = [job for job in jobs if job["comment"].startswith("rule_solve_sweep_") and CUT_SWEEP in job["comment"]]
+    files = sorted(folder.glob("part*.h5"))
+    parts = [job for job in jobs if job["comment"].startswith(comment)]
     report.check(
         len(files) >= 2 and len(parts) == len(files) and submitted_side_by_side(parts),
-        f"the sweep {CUT_SWEEP} in {len(files)} parts: {len(parts)} submissions, side by side",
+        f"{folder.relative_to(folder.parents[3])} in {len(files)} parts: {len(parts)} submissions, side by side",
         "\n".join(str(job) for job in parts),
     )
     say(f"     two of its parts {'ran' if ran_at_once(parts) else 'did not run'} at once")
@@ -453,7 +459,7 @@ def check_cluster_runs(
     the build is timed), then one target's plan; check each, and write the benchmark."""
     env = user_environment(cluster)
     built, failing = clone_built(pristine, scratch / "slurm"), clone_built(pristine, scratch / "failing")
-    (failing / "workflow" / "scripts" / "solve_batch.py").write_text(FAILING_SCRIPT, encoding="utf-8")
+    (failing / "workflow" / "scripts" / "solve_part.py").write_text(FAILING_SCRIPT, encoding="utf-8")
     say(f"through SLURM, with SBATCH_PARTITION={PARTITION} (each in a fresh copy of the project):")
     say(f"     the build: snakemake {' '.join(USER_COMMAND)}  ({built})")
     build_process = SnakemakeProcess(built, USER_COMMAND, env, BUILD_TIMEOUT_S, scratch / "build.log")
@@ -476,7 +482,7 @@ def check_cluster_runs(
 
     say(
         f"     a failing job: snakemake {' '.join(USER_COMMAND)} {FAILING_TARGET}  ({failing}: "
-        f"workflow/scripts/solve_batch.py raises)"
+        f"workflow/scripts/solve_part.py raises)"
     )
     failure_process = SnakemakeProcess(
         failing, (*USER_COMMAND, FAILING_TARGET), env, FAILURE_TIMEOUT_S, scratch / "failing_run.log"

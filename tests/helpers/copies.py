@@ -138,20 +138,37 @@ def group_of(case_id: str) -> str:
 
 
 def run_batch(case_id: str, method: str, group: str | None = None) -> str:
-    """The batch directory (rule solve's output) holding the run of ``case_id`` by ``method``."""
+    """The folder of the batch (rule solve's parts, ``part{k}.h5``) holding the run of ``case_id``
+    by ``method``: ``results/runs/{group}/{method}``."""
     return f"results/runs/{group or group_of(case_id)}/{method}"
 
 
-def case_run(case: dict, method: str) -> str:
-    """Where the run of a resolved ``case`` by ``method`` lives: in the batch of its group (its
-    reading, else its set)."""
-    return run_path(case["id"], method, group=case.get("variant") or case["set"])
+def batch_part(case_id: str, method: str, group: str | None = None, part: int = 0) -> str:
+    """The file of one part of that batch (a target): ``results/runs/{group}/{method}/part{k}.h5``."""
+    return f"{run_batch(case_id, method, group)}/part{part}.h5"
 
 
-def run_path(case_id: str, method: str, group: str | None = None) -> str:
-    """Where a run of ``case_id`` by ``method`` lives, relative to the working directory: in its
-    group's batch, ``results/runs/{group}/{method}/{case}.h5``."""
-    return f"{run_batch(case_id, method, group)}/{case_id}.h5"
+def batches(files) -> set[str]:
+    """The batches' folders of part files (a set of rule solve's outputs)."""
+    return {Path(f).parent.as_posix() for f in files}
+
+
+def case_run(workdir: Path, case: dict, method: str) -> str:
+    """The run of a resolved ``case`` by ``method`` in ``workdir``'s results: in the batch of its
+    group (its reading, else its set)."""
+    return run_path(workdir, case["id"], method, group=case.get("variant") or case["set"])
+
+
+def run_path(workdir: Path, case_id: str, method: str, group: str | None = None) -> str:
+    """The run of ``case_id`` by ``method`` as ``workdir``'s results hold it, relative to
+    ``workdir``: ``results/runs/{group}/{method}/part{k}.h5#{case}``, the part found by
+    reading the batch's files (the cut is the workflow's)."""
+    folder = run_batch(case_id, method, group)
+    for file in sorted((workdir / folder).glob("part*.h5")):
+        with h5py.File(file, "r") as h5:
+            if case_id in h5:
+                return f"{folder}/{file.name}#{case_id}"
+    raise FileNotFoundError(f"no part of {workdir / folder} holds the run {case_id!r}")
 
 
 # --------------------------------------------------------------------------------------------

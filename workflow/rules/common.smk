@@ -47,7 +47,7 @@ from snakemake.utils import Paramspace
 from rodimpact.analysis.studies import level_case, map_point_case, map_point_names, reference_case
 from rodimpact.analysis.measured import RECORDS, SIGNAL_RECORDS, measured_cases
 from rodimpact.analysis.sweeps import sweep_frame, sweep_point_case, sweep_points
-from rodimpact.storage.references import run_reference
+from rodimpact.storage.references import run_reference, split_reference
 from rodimpact.config.calibration import applied_cases, calibration_cases, expected_evaluations, with_method
 from rodimpact.config.checks import swept_methods
 from rodimpact.contact.laws import LAWS, law_of
@@ -127,7 +127,7 @@ def per_job(function):
     return once
 
 
-# A solver rule runs its batch of runs (scripts/solve_batch.py) through the batch module and the solver
+# A solver rule runs its part of a batch (scripts/solve_part.py) through the batch module and the solver
 # of its method (the registry names it): a change to one method's code reruns that method's batches only.
 SRC_BATCH = ("rodimpact.jobs.batch", "rodimpact.jobs.logs")
 BATCH_SOURCES = {name: sources(*SRC_BATCH, spec.solver_module) for name, spec in METHOD_REGISTRY.items()}
@@ -203,6 +203,7 @@ wildcard_constraints:
     case="[A-Za-z0-9][A-Za-z0-9_.\-]*",
     method=one_of(METHOD_REGISTRY),
     row="[0-9]+",
+    part="[0-9]+",
     map_method=one_of(["sem", "sem_paper", "reference"]),
 
 
@@ -251,7 +252,7 @@ def group_of(case):
     return case.get("variant") or case["set"]
 
 
-# group -> its cases: one job runs one method on every case of a group that lists it (rule solve)
+# group -> its cases: one batch runs one method on every case of a group that lists it (rule solve)
 GROUPS = {}
 for _case in PROJECT.cases.values():
     GROUPS.setdefault(group_of(_case), []).append(_case)
@@ -272,40 +273,18 @@ if _CLASH:
 
 
 def runs_of(cases):
-    """HDF5 files of every method of every case in ``cases``: results/runs/{group}/{method}/{case}.h5."""
-    return [f"results/runs/{group_of(c)}/{m}/{c['id']}.h5" for c in cases for m in c["methods"]]
+    """The runs of every method of every case in ``cases``, each in its group's batch (the solve rule),
+    results/runs/{group}/{method}/part{k}.h5#{case}."""
+    return [run_in_batch("solve", (group_of(c), m), c["id"]) for c in cases for m in c["methods"]]
 
 
 def run_batches(runs):
-    """Input: the batches' directories (rule solve) that hold the run files ``runs`` (a list, or a
-    function of the wildcards returning one). A rule that reads runs takes their directories as
-    inputs and the files as its ``runs`` param."""
+    """Input: the files of runs (a part of a batch each) that hold the runs ``runs`` (a list, or a
+    function of the wildcards returning one). A rule that reads runs takes their files as inputs
+    and the runs as its ``runs`` param."""
     if callable(runs):
         return lambda wildcards: run_batches(runs(wildcards))
-    return sorted({os.path.dirname(run) for run in runs})
-
-
-@per_job
-def group_runs(wildcards):
-    """The runs of one batch: the method of the wildcard on every case of the group that lists it,
-    by file name (the case), each with its case file and, for a law calibrated by a curve, the
-    curve's file; refuses an unknown group and a method no case of it runs."""
-    cases = GROUPS.get(wildcards.group)
-    if cases is None:
-        refuse(f"unknown group of runs {wildcards.group!r}; known: {', '.join(GROUPS)}")
-    runs = {}
-    for case in cases:
-        if wildcards.method in case["methods"]:
-            curve = curve_rule_of(case)
-            runs[case["id"]] = {"case": case, "method": wildcards.method, "case_file": case_file_of(case["id"])}
-            if curve is not None:
-                runs[case["id"]]["contact_curve"] = curve_file_of(case)
-    if not runs:
-        refuse(
-            f"no case of group {wildcards.group!r} runs {wildcards.method!r}; its cases' methods: "
-            f"{', '.join(sorted({m for c in cases for m in c['methods']}))}"
-        )
-    return runs
+    return sorted({str(split_reference(run)[0]) for run in runs})
 
 
 def force_files(cases, ext):

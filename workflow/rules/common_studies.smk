@@ -20,25 +20,40 @@ def work_precision_study(methods=None):
 
 
 MAP_POINTS = map_point_names(MAP) if MAP else []
-# The stress runs: each set's cases by each method some case of it lists, and the references
-# (one directory per set and method, one file per case, by the rule solve_stress)
-STRESS_DIRS = {
-    (name, m): f"results/stress/{name}/{m}"
-    for name in STABILITY.get("sets", [])
-    for m in METHOD_REGISTRY
-    if any(m in c["methods"] for c in PROJECT.cases_in(name))
-}
-STRESS_RUNS = [
-    f"results/stress/{name}/{m}/{c['id']}.h5"
-    for name in STABILITY.get("sets", [])
-    for c in PROJECT.cases_in(name)
-    for m in c["methods"]
-]
-STRESS_REFERENCES = [
-    f"results/stress/{name}/reference/{c['id']}.h5"
-    for name in STABILITY.get("sets", [])
-    for c in PROJECT.cases_in(name)
-]
+
+
+def stress_batches():
+    """Every batch of the stress study, by its keys (the solve_stress rule), each set by each method
+    some case of it lists, and by ``reference``."""
+    return [
+        (name, m)
+        for name in STABILITY.get("sets", [])
+        for m in [*METHOD_REGISTRY, "reference"]
+        if m == "reference" or any(m in c["methods"] for c in PROJECT.cases_in(name))
+    ]
+
+
+def stress_runs(reference):
+    """The stress study's runs: every method on every case of each set (``reference`` False),
+    or each case's sem reference (True), in the order of the sets' cases and methods."""
+    return [
+        run_in_batch("solve_stress", (name, m), c["id"])
+        for name in STABILITY.get("sets", [])
+        for c in PROJECT.cases_in(name)
+        for m in (["reference"] if reference else c["methods"])
+    ]
+
+
+def map_runs(methods):
+    """The stability map's runs of every point by each of ``methods`` (or ``reference``), point by point."""
+    return [run_in_batch("solve_map", (m,), p) for p in MAP_POINTS for m in methods]
+
+
+def map_files():
+    """The files of the stability map's parts, of every method and the reference."""
+    return [f for m in [*MAP.get("methods", []), "reference"] for f in part_files("solve_map", (m,))] if MAP else []
+
+
 # The cases that ask for the strain over the rod (output strain_field): each gets its wave map
 # (waves.smk), and only they.
 WAVE_CASES = [case_id for case_id, case in PROJECT.cases.items() if FIELD_OUTPUT in case["outputs"]]
@@ -78,15 +93,14 @@ def _swept(cases=None, methods=None):
     return [(c, m, len(swept[m]["levels"])) for c in cases for m in swept_on(c) if methods is None or m in methods]
 
 
-def level_dirs(cases=None, methods=None):
-    """The directories of the work-precision levels (one job each: rule solve_levels) of
-    :func:`_swept`'s cases and methods."""
-    return [f"results/convergence/{c}/{m}" for c, m, _ in _swept(cases, methods)]
+def level_files(cases=None, methods=None):
+    """The files of the work-precision levels (the solve_levels rule) of :func:`_swept`'s cases and methods."""
+    return [f for c, m, _ in _swept(cases, methods) for f in part_files("solve_levels", (c, m))]
 
 
-def sweep_runs(cases=None, methods=None):
-    """HDF5 files of every level of :func:`_swept`'s cases and methods."""
-    return [f"results/convergence/{c}/{m}/level{k}.h5" for c, m, count in _swept(cases, methods) for k in range(count)]
+def level_runs(cases=None, methods=None):
+    """Every level of :func:`_swept`'s cases and methods, each ``part{k}.h5#level{i}``."""
+    return [run for c, m, _ in _swept(cases, methods) for run in runs_in_batch("solve_levels", (c, m))]
 
 
 # The sweep's cases too slow for the default build (a level over a minute): their own target.
@@ -105,30 +119,16 @@ SWEEP_POINTS = {
 }
 
 
-# A sweep's points by one method are cut into parts of about batch.target_s of typical solve time
-# (rodimpact.jobs.parts; sweep_parts_of in resources.smk): one job and one file of runs each.
-SWEEP_PART_FILE = "results/sweeps/{case}/{method}/part{part}.h5"
-
-
 def sweep_part_files(sweep_cases):
     """The files of the given sweep cases' parts, of every method (one job each: rule solve_sweep)."""
-    return [
-        SWEEP_PART_FILE.format(case=c["id"], method=m, part=k)
-        for c in sweep_cases
-        for m in c["sweep"]["methods"]
-        for k in range(len(sweep_parts_of(c["id"], m)))
-    ]
+    return [f for c in sweep_cases for m in c["sweep"]["methods"] for f in part_files("solve_sweep", (c["id"], m))]
 
 
 def sweep_point_runs(sweep_cases):
     """The runs of every point and method of the given sweep cases, in the grid's order: each
-    the reference ``file#point`` of its point in its part's file."""
+    ``part{k}.h5#{point}`` in its part's file."""
     return [
-        run_reference(SWEEP_PART_FILE.format(case=c["id"], method=m, part=k), name)
-        for c in sweep_cases
-        for m in c["sweep"]["methods"]
-        for k, part in enumerate(sweep_parts_of(c["id"], m))
-        for name in part.names
+        run for c in sweep_cases for m in c["sweep"]["methods"] for run in runs_in_batch("solve_sweep", (c["id"], m))
     ]
 
 

@@ -1,122 +1,121 @@
-# Solvers: one HDF5 file per (case, method), written in batches (below).
+# Solvers: every batch of runs (common_batches.smk) cut into parts, one job and one file of runs
+# each: results/{runs,convergence,stress,stability_map}/.../part{k}.h5, a run named
+# part{k}.h5#{name}. A batch below batch.target_s is one part in the job group of the solvers (its
+# submission shared with other small jobs); a batch cut into parts is submitted part by part.
 
 
 rule solve:
-    """One method on every case of one group (a reading of a set with variants, else a set) that
-    lists it: one file per case, results/runs/{group}/{method}/{case}.h5, each written whole."""
+    """One part of one group's batch (a reading of a set with variants, else a set): one method on
+    its cases that list it, results/runs/{group}/{method}/part{part}.h5, a run per case."""
     input:
-        cases=lambda w: sorted({run["case_file"] for run in group_runs(w).values()}),
-        curves=lambda w: sorted(
-            {os.path.dirname(run["contact_curve"]) for run in group_runs(w).values() if "contact_curve" in run}
+        cases=part_input("solve", case_files),
+        curves=part_input(
+            "solve",
+            lambda runs: sorted({os.path.dirname(r["contact_curve"]) for r in runs.values() if "contact_curve" in r}),
         ),
     output:
-        runs=directory("results/runs/{group}/{method}"),
+        runs="results/runs/{group}/{method}/part{part}.h5",
     log:
-        "logs/runs/{group}/{method}.log",
+        "logs/runs/{group}/{method}/part{part}.log",
     group:
-        GROUP_SOLVERS
+        part_group("solve")
     conda:
         "../envs/rodimpact.yaml"
     threads: 1
     resources:
-        **batch_resources(group_runs),
+        **part_resources("solve"),
     params:
         code=batch_sources(),
-        runs=group_runs,
+        runs=part_runs("solve"),
         keep_failed=False,
         timing=None,
     script:
-        "../scripts/solve_batch.py"
-
-
-# Batches: one method on a group of runs in one job, written into the rule's output directory,
-# one HDF5 file per run (each whole, with its own provenance; rodimpact.jobs.batch). A run of a
-# fraction of a second costs less than starting a job.
+        "../scripts/solve_part.py"
 
 
 rule solve_levels:
-    """Every level of one method's work-precision sweep on one case, each timed: one file per
-    level, results/convergence/{case}/{method}/level{k}.h5."""
+    """One part of one method's work-precision levels on one case, each timed:
+    results/convergence/{case}/{method}/part{part}.h5, a run per level (level{k})."""
     input:
-        case=case_file(lambda w: w.case),
+        cases=part_input("solve_levels", case_files),
     output:
-        runs=directory("results/convergence/{case}/{method}"),
+        runs="results/convergence/{case}/{method}/part{part}.h5",
     log:
-        "logs/convergence/{case}/{method}.log",
+        "logs/convergence/{case}/{method}/part{part}.log",
     group:
-        GROUP_SOLVERS
+        part_group("solve_levels")
     conda:
         "../envs/rodimpact.yaml"
     threads: 1
     resources:
-        **batch_resources(level_runs, timing=WORK_PRECISION.get("timing", {})),
+        **part_resources("solve_levels"),
     params:
         code=batch_sources(),
-        runs=level_runs,
+        runs=part_runs("solve_levels"),
         keep_failed=False,
         timing=WORK_PRECISION.get("timing", {}),
     script:
-        "../scripts/solve_batch.py"
+        "../scripts/solve_part.py"
 
 
 rule solve_stress:
-    """One method on every case of a stress set that lists it, or (``reference``) the sem reference of
-    each case at the study's reference tolerance: one file per case,
-    results/stress/{set}/{stress_method}/{case}.h5; a failure is stored as data (the study checks it)."""
+    """One part of one method on the cases of a stress set that list it, or (``reference``) of the
+    sem references at the study's tolerance: results/stress/{set}/{stress_method}/part{part}.h5, a
+    run per case; a failure is stored as data (the study checks it)."""
     input:
-        cases=lambda w: sorted({run["case_file"] for run in stress_runs(w).values()}),
+        cases=part_input("solve_stress", case_files),
     output:
-        runs=directory("results/stress/{set}/{stress_method}"),
+        runs="results/stress/{set}/{stress_method}/part{part}.h5",
     log:
-        "logs/stress/{set}/{stress_method}.log",
+        "logs/stress/{set}/{stress_method}/part{part}.log",
     wildcard_constraints:
         set=one_of(STABILITY.get("sets", [])),
         stress_method=one_of([*METHOD_REGISTRY, "reference"]),
     group:
-        GROUP_SOLVERS
+        part_group("solve_stress")
     conda:
         "../envs/rodimpact.yaml"
     threads: 1
     resources:
-        **batch_resources(stress_runs),
+        **part_resources("solve_stress"),
     params:
-        code=batch_sources(stress_method_of),
-        runs=stress_runs,
+        code=batch_sources(lambda w: stress_method_of(w.stress_method)),
+        runs=part_runs("solve_stress"),
         keep_failed=True,
         timing=None,
     script:
-        "../scripts/solve_batch.py"
+        "../scripts/solve_part.py"
 
 
 if MAP:
 
     rule solve_map:
-        """Every point of the stability map (each impactor mass at every rod impedance) with one
-        method or its sem reference: one file per point, results/stability_map/{map_method}/m{i}_z{j}.h5;
-        a failure is stored as data."""
+        """One part of the stability map's points (each impactor mass at every rod impedance) by one
+        method or its sem reference: results/stability_map/{map_method}/part{part}.h5, a run per
+        point (m{i}_z{j}); a failure is stored as data."""
         input:
-            case=case_file(lambda w: MAP["base_case"]),
+            cases=part_input("solve_map", case_files),
         output:
-            runs=directory("results/stability_map/{map_method}"),
+            runs="results/stability_map/{map_method}/part{part}.h5",
         log:
-            "logs/stability_map/{map_method}.log",
+            "logs/stability_map/{map_method}/part{part}.log",
         group:
-            GROUP_SOLVERS
+            part_group("solve_map")
         conda:
             "../envs/rodimpact.yaml"
         threads: 1
         resources:
-            **batch_resources(map_runs),
+            **part_resources("solve_map"),
         params:
-            code=batch_sources(map_method_of),
-            runs=map_runs,
+            code=batch_sources(lambda w: stress_method_of(w.map_method)),
+            runs=part_runs("solve_map"),
             keep_failed=True,
             timing=None,
         script:
-            "../scripts/solve_batch.py"
+            "../scripts/solve_part.py"
 
 
-# Every run of the built sets' cases, by their batches' directories.
+# Every run of the built sets' cases, by their parts' files.
 default_target(
     lambda: [batch for name in config["targets"]["sets"] for batch in run_batches(runs_of(PROJECT.cases_in(name)))]
 )

@@ -6,7 +6,7 @@ rule work_precision_table:
     """Errors of every level against the converged reference; the orders, expected and observed,
     and the uncertainty of a method measured against its own finest level."""
     input:
-        levels=level_dirs(),
+        levels=level_files(),
     output:
         csv=report(
             "results/tables/work_precision.csv",
@@ -35,7 +35,7 @@ rule work_precision_table:
         **PRESENTATION_RESOURCES,
     params:
         **presentation("rodimpact.present.study_tables:make_work_precision"),
-        runs=sweep_runs(),
+        runs=level_runs(),
         study=work_precision_study(),
     script:
         "../scripts/artifact.py"
@@ -48,7 +48,7 @@ if WORK_PRECISION_SEPARATE:
     # script, group and resources; its own levels, files and report entry.
     use rule work_precision_table as work_precision_separate_table with:
         input:
-            levels=level_dirs(WORK_PRECISION_SEPARATE["cases"], WORK_PRECISION_SEPARATE["methods"]),
+            levels=level_files(WORK_PRECISION_SEPARATE["cases"], WORK_PRECISION_SEPARATE["methods"]),
         output:
             csv="results/tables/work_precision_separate.csv",
             orders_csv=report(
@@ -65,7 +65,7 @@ if WORK_PRECISION_SEPARATE:
             "logs/tables/work_precision_separate.log",
         params:
             **presentation("rodimpact.present.study_tables:make_work_precision"),
-            runs=sweep_runs(WORK_PRECISION_SEPARATE["cases"], WORK_PRECISION_SEPARATE["methods"]),
+            runs=level_runs(WORK_PRECISION_SEPARATE["cases"], WORK_PRECISION_SEPARATE["methods"]),
             study=work_precision_study(WORK_PRECISION_SEPARATE["methods"]),
 
 
@@ -73,7 +73,7 @@ rule work_precision_figure:
     """Error against wall time for one case, one panel per error quantity, one line per method,
     with a slope guide of each method's expected order."""
     input:
-        levels=lambda w: level_dirs([w.case]),
+        levels=lambda w: level_files([w.case]),
     output:
         pdf=report(
             "results/figures/work_precision_{case}.pdf",
@@ -100,7 +100,7 @@ rule work_precision_figure:
         **PRESENTATION_RESOURCES,
     params:
         **presentation("rodimpact.present.study_figures:make_work_precision_figure"),
-        runs=lambda w: sweep_runs([w.case]),
+        runs=lambda w: level_runs([w.case]),
         study=work_precision_study(),
     script:
         "../scripts/artifact.py"
@@ -109,7 +109,7 @@ rule work_precision_figure:
 rule stability_table:
     """Every method on every stress case: ok, or failed with a message; a violation stops here."""
     input:
-        batches=[*STRESS_DIRS.values(), *(f"results/stress/{name}/reference" for name in STABILITY.get("sets", []))],
+        batches=[f for keys in stress_batches() for f in part_files("solve_stress", keys)],
     output:
         csv=report(
             "results/tables/stability.csv",
@@ -131,8 +131,8 @@ rule stability_table:
         **PRESENTATION_RESOURCES,
     params:
         **presentation("rodimpact.present.study_tables:make_stability"),
-        runs=STRESS_RUNS,
-        references=STRESS_REFERENCES,
+        runs=stress_runs(reference=False),
+        references=stress_runs(reference=True),
         tolerances=STABILITY.get("tolerances", {}),
     script:
         "../scripts/artifact.py"
@@ -141,7 +141,7 @@ rule stability_table:
 rule stability_map:
     """Where each SEM scheme is stable and accurate at one step, over mass and impedance."""
     input:
-        batches=[f"results/stability_map/{m}" for m in [*MAP.get("methods", []), "reference"]] if MAP else [],
+        batches=map_files(),
     output:
         csv=report(
             "results/tables/stability_map.csv",
@@ -175,8 +175,8 @@ rule stability_map:
         **PRESENTATION_RESOURCES,
     params:
         **presentation("rodimpact.present.study_figures:make_stability_map"),
-        runs=[f"results/stability_map/{m}/{p}.h5" for p in MAP_POINTS for m in MAP.get("methods", [])],
-        references=[f"results/stability_map/reference/{p}.h5" for p in MAP_POINTS],
+        runs=map_runs(MAP.get("methods", [])) if MAP else [],
+        references=map_runs(["reference"]) if MAP else [],
         spec=MAP,
     script:
         "../scripts/artifact.py"

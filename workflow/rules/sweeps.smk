@@ -4,33 +4,33 @@
 # batch.target_s of typical solve time (rodimpact.jobs.parts, known when the workflow is parsed):
 # the paper's sweeps are one part each, a sweep of thousands of points many, run side by side.
 # A part is one job and one file of runs (results/sweeps/{case}/{method}/part{k}.h5, a group per
-# point, each with its own provenance; the file written whole or not at all). A failure stops
-# the build like a case's. The parts are in no job group: each is sized to be worth a
-# submission of its own, and a group would put them back one after another on one node.
+# point; common_batches.smk). A failure stops the build like a case's.
 
 
 rule solve_sweep:
     """One part of one case's sweep by one method: its points, one after another."""
     input:
-        case=sweep_part_case_file,
+        cases=part_input("solve_sweep", case_files),
     output:
         runs="results/sweeps/{case}/{method}/part{part}.h5",
     log:
         "logs/sweeps/{case}/{method}/part{part}.log",
     wildcard_constraints:
         case=one_of(PROJECT.sweeps),
-        part=r"\d+",
+    group:
+        part_group("solve_sweep")
     conda:
         "../envs/rodimpact.yaml"
     threads: 1
     resources:
-        **sweep_part_resources(),
+        **part_resources("solve_sweep"),
     params:
         code=sweep_sources,
-        runs=sweep_part_runs,
+        runs=part_runs("solve_sweep"),
         keep_failed=False,
+        timing=None,
     script:
-        "../scripts/solve_sweep.py"
+        "../scripts/solve_part.py"
 
 
 rule sweep_table:

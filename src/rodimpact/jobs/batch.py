@@ -1,10 +1,10 @@
-"""Several runs in one job: the points of one part of a sweep, the stability map's points or a
-stress set's cases by one method, the levels of a work-precision sweep. Each run is stored with
-its own provenance, as :func:`rodimpact.jobs.runner.run_to_file` stores a single run; a batch
-only shares what every run of it would repeat: the process, its imports, the case file's record
-and the code version. A batch writes each run to its own HDF5 file (:func:`run_batch`), into
-the directory that is its rule's output (:func:`run_batch_into`), or every run into one file of
-runs (:func:`run_batch_file`, a sweep's part: one file per job, not per point).
+"""Several runs in one job: one part of a batch (a group's cases, the levels of a work-precision
+sweep, a stress set's cases, the stability map's points or a sweep's points, by one method). Each
+run is stored with its own provenance, as :func:`rodimpact.jobs.runner.run_to_file` stores a
+single run; a batch only shares what every run of it would repeat: the process, its imports, the
+case file's record and the code version. A batch writes every run into one file of runs
+(:func:`run_batch_file`, what the workflow's solver rules do: one file per job, not per run), or
+each run to its own HDF5 file (:func:`run_batch`).
 
 A run whose contact law is calibrated by a curve (a sweep point of a ``tabulated`` law) has no
 case of its own for the workflow's curve rule to compute it: its ``curve`` entry names the rule
@@ -22,13 +22,12 @@ from typing import Any
 
 from rodimpact.jobs.runner import SolvedRun, solve_run
 from rodimpact.jobs.timing import Timing
-from rodimpact.storage.atomic import atomic_directory
 from rodimpact.storage.casefile import case_file_reference, read_case_file
 from rodimpact.storage.provenance import code_version
 from rodimpact.storage.references import can_name_a_run
 from rodimpact.storage.runs import write_run, write_runs
 
-__all__ = ["CURVE_BUILDERS", "run_batch", "run_batch_file", "run_batch_into"]
+__all__ = ["CURVE_BUILDERS", "run_batch", "run_batch_file"]
 
 log = logging.getLogger(__name__)
 
@@ -148,23 +147,3 @@ def run_batch_file(runs: Mapping[str, Mapping[str, Any]], path: str | Path, **op
         written = [writer.add(name, **solved.arguments()) for name, solved in _solved(runs, **options)]
     log.info("batch of %d runs written to %s", len(written), path)
     return written
-
-
-def run_batch_into(runs: Mapping[str, Mapping[str, Any]], directory: str | Path, **options: Any) -> list[Path]:
-    """:func:`run_batch` with every run written to ``directory/{name}.h5``: the batch of a rule whose
-    output is that directory. The runs are written into a temporary directory beside it, renamed
-    onto it when all are written (:func:`~rodimpact.storage.atomic.atomic_directory`): the batch
-    appears whole or not at all, each run in it whole. ``options`` as for :func:`run_batch`.
-
-    Raises
-    ------
-    ValueError
-        A run's name is not a plain file name (empty, or with a path separator).
-    """
-    directory = Path(directory)
-    bad = [name for name in runs if not name or Path(name).name != name or name in (".", "..")]
-    if bad:
-        raise ValueError(f"runs: {bad[0]!r} is not a file name in {directory}")
-    with atomic_directory(directory) as tmp:
-        run_batch(runs, {name: tmp / f"{name}.h5" for name in runs}, **options)
-    return [directory / f"{name}.h5" for name in runs]

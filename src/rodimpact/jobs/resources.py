@@ -22,7 +22,7 @@ from rodimpact.solvers.cost import Cost
 from rodimpact.solvers.registry import METHODS
 
 __all__ = ["JobResources", "PRESENTATION", "SAFETY", "estimate_resources", "estimate_sequence", "job_resources"]
-__all__ += ["run_cost"]
+__all__ += ["run_cost", "timed_cost"]
 
 #: Factor between every estimate and the cost model (which covers what was measured).
 SAFETY = 2.0
@@ -101,6 +101,24 @@ def _timed_repeats(timing: Mapping[str, Any] | None, solve_s: float) -> float:
     total = max(spec.min_repeats * solve_s, spec.min_total_s + solve_s)
     total = min(total, spec.max_total_s + solve_s)
     return total / solve_s if solve_s > 0 else float(spec.min_repeats)
+
+
+def timed_cost(cost: Cost, timing: Mapping[str, Any] | None) -> Cost:
+    """The cost of a run timed by ``timing`` (repeated, see :class:`rodimpact.jobs.timing.Timing`)
+    as one :class:`Cost`: ``solve_s`` the repeats of the upper-side solve, ``typical_s`` the
+    repeats a typical solve takes (a short solve is repeated more often to reach
+    ``min_total_s``); ``cost`` itself when ``timing`` is None.
+
+    Raises
+    ------
+    ValueError
+        ``timing`` is invalid (the message starts with ``timing``).
+    """
+    if timing is None:
+        return cost
+    upper = cost.solve_s * _timed_repeats(timing, cost.solve_s)
+    typical = cost.typical_s * _timed_repeats(timing, cost.typical_s)
+    return replace(cost, solve_s=upper, typical_share=typical / upper if upper > 0 else cost.typical_share)
 
 
 def run_cost(case: Mapping[str, Any], method: str) -> Cost:

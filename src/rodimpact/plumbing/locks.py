@@ -143,11 +143,11 @@ class OrphanedJobs(RuntimeError):
 
 
 def _job_script(command: list[str]) -> str | None:
-    """The script a snakemake ``script:`` job runs (``solve_batch.py``), None for another process."""
+    """The script a snakemake ``script:`` job runs (``solve_part.py``), None for another process."""
     for argument in command[1:]:
         normal = os.path.normpath(argument)
         if normal.startswith(SCRIPTS_DIR + os.sep) or f"{os.sep}{SCRIPTS_DIR}{os.sep}" in normal:
-            return os.path.basename(normal).split(".", 1)[-1]  # tmpXXXX.solve_batch.py -> solve_batch.py
+            return os.path.basename(normal).split(".", 1)[-1]  # tmpXXXX.solve_part.py -> solve_part.py
     return None
 
 

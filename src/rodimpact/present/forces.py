@@ -1,6 +1,6 @@
 """The contact force handed on: each run's P(t) as CSV, and its closed form as JSON.
 
-For a run ``results/runs/{group}/{method}/{case}.h5`` the workflow writes
+For a run ``results/runs/{group}/{method}/part{k}.h5#{case}`` the workflow writes
 
 * ``results/forces/{set}/{case}/{method}.csv``: ``time_s,contact_force_N`` at every stored sample, SI
   units, under ``#`` lines that carry the provenance (the run file, its case's and content's

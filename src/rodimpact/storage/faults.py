@@ -8,18 +8,19 @@ on the next build; the message says so.
 
 What snakemake does on its own
     A job reruns when an output is older than the job's script (its ``code`` trigger), whatever
-    its inputs. For a rule whose output is a directory (a batch of runs), snakemake takes the
+    its inputs. For a rule whose output is a directory (a group's curves, a reading's bands), snakemake takes the
     modification time of the file ``.snakemake_timestamp`` it writes inside the directory when
     the job ends (:data:`DIRECTORY_TIMESTAMP`), not the times of the files in it.
 
 Why that is not enough here
-    A damaged run inside a batch's directory must rerun its batch: the directory's timestamp
-    is marked too.
+    A damaged file inside a directory output must rerun the job that wrote the directory: the
+    directory's timestamp is marked too. (A file of runs is a rule's output itself: marking it
+    is enough.)
 
 If snakemake's internals change
-    Should snakemake carry a directory's time elsewhere, a damaged run of a batch is refused
-    again on the next build instead of remade: ``tests/test_faults.py::
-    test_a_damaged_run_of_a_batch_is_named_marked_and_remade`` fails.
+    Should snakemake carry a directory's time elsewhere, a damaged file of a directory output is
+    refused again on the next build instead of remade: ``tests/test_faults.py::
+    test_a_damaged_file_of_a_directory_output_is_marked_with_its_directory`` fails.
 """
 
 from __future__ import annotations
@@ -41,12 +42,12 @@ DIRECTORY_TIMESTAMP = ".snakemake_timestamp"
 
 def mark_out_of_date(path: str | Path) -> bool:
     """Set the file's modification time to the epoch (older than every input of its job), and so
-    the timestamp of the directory output holding it, when it lies in one (a batch's run); False
+    the timestamp of the directory output holding it, when it lies in one (a group's curve); False
     when the file cannot be touched."""
     with contextlib.suppress(OSError):
         os.utime(path, (0, 0))
         logger.warning("%s: marked out of date (modification time set to the epoch)", path)
-        batch = Path(path).parent  # a file a reader refuses lies directly in its batch's directory
+        batch = Path(path).parent  # a file a reader refuses lies directly in its job's directory
         if (batch / DIRECTORY_TIMESTAMP).is_file():
             with contextlib.suppress(OSError):
                 os.utime(batch / DIRECTORY_TIMESTAMP, (0, 0))
