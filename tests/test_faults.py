@@ -127,6 +127,18 @@ def test_a_target_the_configuration_does_not_define_is_one_line(project: Path, t
     assert_one_line_refusal(snakemake(project, "-n", target), expected)
 
 
+def test_a_batchs_folder_as_a_target_is_one_line_naming_its_parts(project: Path, tmp_path: Path) -> None:
+    """A batch's folder (which holds its parts' files once built) is no output: asked for, it is
+    refused in one line that names the parts' pattern, also when it exists."""
+    path = clone_built(project, tmp_path / "project")
+    (path / "results/runs/model/sem").mkdir(parents=True)
+    assert_one_line_refusal(
+        snakemake(path, "-n", "results/runs/model/sem"),
+        "rodimpact: no rule makes 'results/runs/model/sem'; results/runs/ holds: results/runs/{group}/{method}/"
+        "part{part}.h5",
+    )
+
+
 @pytest.mark.parametrize(
     "text, expected",
     [

@@ -16,7 +16,7 @@ def check_targets(targets):
         if ids and name not in config["targets"]["sets"]
     }
     for target in targets:
-        if target in names or os.path.exists(target) or any(r.is_producer(target) for r in rules):
+        if target in names or os.path.isfile(target) or any(r.is_producer(target) for r in rules):
             continue
         message = untargeted_set_message(target, untargeted, CONFIG_FILE)
         if message is not None:
