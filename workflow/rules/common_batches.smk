@@ -17,9 +17,10 @@ from rodimpact.jobs.resources import run_cost, timed_cost
 @dataclass(frozen=True)
 class BatchKind:
     """One kind of batch: ``keys`` the wildcards that name a batch, ``runs(*keys)`` its runs by
-    name (each a ``case``, a ``method``, its ``case_file`` and what else the solver rule passes on), ``file`` the file
-    of its part ``{part}``, ``timing`` of timed runs (None: solved once), ``label(*keys)`` what
-    a message calls the batch, ``case(*keys)`` the case a refused target names (or None)."""
+    name (each a ``case``, a ``method``, its ``case_file`` and what else the solver rule passes
+    on), ``file`` the file of its part ``{part}`` (the solver rule's output), ``timing`` of timed
+    runs (None: solved once), ``label(*keys)`` what a message calls the batch, ``case(*keys)``
+    the case a refused target names (or None)."""
 
     keys: tuple
     runs: Callable
@@ -69,9 +70,10 @@ def level_runs_of(case_id, method):
     return runs or refuse(f"the work-precision study does not sweep {method!r}")
 
 
-def stress_method_of(stress_method):
-    """The solver a stress batch uses: its method, sem for the reference."""
-    return "sem" if stress_method == "reference" else stress_method
+def solver_of(study_method):
+    """The solver a batch of the stability study (a stress set, the map) uses: its method, sem for
+    the reference."""
+    return "sem" if study_method == "reference" else study_method
 
 
 @functools.cache
@@ -103,7 +105,7 @@ def stress_runs_of(set_name, stress_method):
 def map_runs_of(map_method):
     """Every point of the stability map (each impactor mass at every rod impedance) by one method
     or its sem reference, by the point's name (m{i}_z{j})."""
-    base, method = PROJECT.cases[MAP["base_case"]], stress_method_of(map_method)
+    base, method = PROJECT.cases[MAP["base_case"]], solver_of(map_method)
     return {
         name: {
             "case": map_point_case(base, MAP, name, map_method, config["numerics"]),

@@ -14,7 +14,7 @@ rule solve:
             lambda runs: sorted({os.path.dirname(r["contact_curve"]) for r in runs.values() if "contact_curve" in r}),
         ),
     output:
-        runs="results/runs/{group}/{method}/part{part}.h5",
+        runs=BATCHES["solve"].file,
     log:
         "logs/runs/{group}/{method}/part{part}.log",
     group:
@@ -39,7 +39,7 @@ rule solve_levels:
     input:
         cases=part_input("solve_levels", case_files),
     output:
-        runs="results/convergence/{case}/{method}/part{part}.h5",
+        runs=BATCHES["solve_levels"].file,
     log:
         "logs/convergence/{case}/{method}/part{part}.log",
     group:
@@ -53,7 +53,7 @@ rule solve_levels:
         code=batch_sources(),
         runs=part_runs("solve_levels"),
         keep_failed=False,
-        timing=WORK_PRECISION.get("timing", {}),
+        timing=BATCHES["solve_levels"].timing,
     script:
         "../scripts/solve_part.py"
 
@@ -65,7 +65,7 @@ rule solve_stress:
     input:
         cases=part_input("solve_stress", case_files),
     output:
-        runs="results/stress/{set}/{stress_method}/part{part}.h5",
+        runs=BATCHES["solve_stress"].file,
     log:
         "logs/stress/{set}/{stress_method}/part{part}.log",
     wildcard_constraints:
@@ -79,7 +79,7 @@ rule solve_stress:
     resources:
         **part_resources("solve_stress"),
     params:
-        code=batch_sources(lambda w: stress_method_of(w.stress_method)),
+        code=batch_sources(lambda w: solver_of(w.stress_method)),
         runs=part_runs("solve_stress"),
         keep_failed=True,
         timing=None,
@@ -96,7 +96,7 @@ if MAP:
         input:
             cases=part_input("solve_map", case_files),
         output:
-            runs="results/stability_map/{map_method}/part{part}.h5",
+            runs=BATCHES["solve_map"].file,
         log:
             "logs/stability_map/{map_method}/part{part}.log",
         group:
@@ -107,7 +107,7 @@ if MAP:
         resources:
             **part_resources("solve_map"),
         params:
-            code=batch_sources(lambda w: stress_method_of(w.map_method)),
+            code=batch_sources(lambda w: solver_of(w.map_method)),
             runs=part_runs("solve_map"),
             keep_failed=True,
             timing=None,

@@ -12,7 +12,7 @@ rule solve_sweep:
     input:
         cases=part_input("solve_sweep", case_files),
     output:
-        runs="results/sweeps/{case}/{method}/part{part}.h5",
+        runs=BATCHES["solve_sweep"].file,
     log:
         "logs/sweeps/{case}/{method}/part{part}.log",
     wildcard_constraints:

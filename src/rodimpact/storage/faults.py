@@ -8,9 +8,10 @@ on the next build; the message says so.
 
 What snakemake does on its own
     A job reruns when an output is older than the job's script (its ``code`` trigger), whatever
-    its inputs. For a rule whose output is a directory (a group's curves, a reading's bands), snakemake takes the
-    modification time of the file ``.snakemake_timestamp`` it writes inside the directory when
-    the job ends (:data:`DIRECTORY_TIMESTAMP`), not the times of the files in it.
+    its inputs. For a rule whose output is a directory (a group's curves, a reading's bands),
+    snakemake takes the modification time of the file ``.snakemake_timestamp`` it writes inside
+    the directory when the job ends (:data:`DIRECTORY_TIMESTAMP`), not the times of the files in
+    it.
 
 Why that is not enough here
     A damaged file inside a directory output must rerun the job that wrote the directory: the
